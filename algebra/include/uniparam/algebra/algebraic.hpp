@@ -1,0 +1,70 @@
+// uniparam/algebra/algebraic.hpp -- real algebraic numbers.
+//
+// A RealAlgebraic is either an exact rational, or the unique root of a
+// squarefree integer polynomial in an open isolating interval (lo, hi) with
+// rational ends. Refinement only shrinks the interval, so every enclosure
+// ever handed out stays valid.
+#pragma once
+
+#include <string>
+
+#include "uniparam/core/ball.hpp"
+#include "uniparam/core/number.hpp"
+#include "uniparam/core/poly.hpp"
+#include "uniparam/algebra/real_roots.hpp"
+
+namespace uniparam {
+
+class RealAlgebraic {
+ public:
+  /// The rational q (exact), with polynomial den*t - num.
+  RealAlgebraic(const Rational& q);  // NOLINT: exact conversion
+  RealAlgebraic(long q) : RealAlgebraic(Rational(q)) {}  // NOLINT: exact conversion
+  /// From an isolated root (see real_roots.hpp).
+  explicit RealAlgebraic(const IsolatedRoot& r);
+  /// The root of `squarefree` in (lo, hi).
+  /// \pre squarefree is squarefree, lo < hi, neither end is a root and there
+  ///      is exactly one root in (lo, hi) -- all checked exactly
+  ///      (InvalidArgument otherwise).
+  RealAlgebraic(const Poly& squarefree, const Rational& lo, const Rational& hi);
+
+  bool is_rational() const { return lo_ == hi_; }
+  /// The exact value; \pre is_rational().
+  const Rational& rational() const;
+  /// A squarefree polynomial with this number as a root (primitive,
+  /// positive leading coefficient; degree 1 for rationals).
+  const Poly& poly() const { return poly_; }
+  /// Current isolating interval (lo == hi for rationals).
+  const Rational& lo() const { return lo_; }
+  const Rational& hi() const { return hi_; }
+
+  /// Shrinks the interval until hi - lo <= 2^-bits (no-op for rationals).
+  void refine(long bits) const;
+  /// Ball containing the number with radius <= 2^-prec * max(1, |x|).
+  Ball to_ball(long prec) const;
+  /// Exact sign.
+  int sign() const;
+  /// Decimal with `digits` significant digits, e.g. "0.438691337650831",
+  /// correctly rounded is not promised; the value is within one unit of the
+  /// last digit.
+  std::string decimal(long digits) const;
+  /// "t^4*27 - 1 in (43/100, 11/25)"-style description:
+  /// "root of 27*t^4 - 1 in [lo, hi]" or the rational "1/2".
+  std::string str() const;
+
+ private:
+  Poly poly_;
+  mutable Rational lo_, hi_;
+};
+
+/// Exact comparison: -1, 0, 1. Equality is decided exactly (gcd of the two
+/// polynomials has a root in the intersection of the intervals).
+int compare(const RealAlgebraic& x, const RealAlgebraic& y);
+inline bool operator==(const RealAlgebraic& x, const RealAlgebraic& y) { return compare(x, y) == 0; }
+inline bool operator!=(const RealAlgebraic& x, const RealAlgebraic& y) { return compare(x, y) != 0; }
+inline bool operator<(const RealAlgebraic& x, const RealAlgebraic& y) { return compare(x, y) < 0; }
+
+/// Exact sign of an integer polynomial at an algebraic number.
+int sign_at(const Poly& p, const RealAlgebraic& x);
+
+}  // namespace uniparam

@@ -1,0 +1,50 @@
+// uniparam/algebra/quadrature.hpp -- certified integration of analytic
+// functions (Arb's acb_calc_integrate) with a precision budget.
+#pragma once
+
+#include <acb.h>
+
+#include <functional>
+#include <string>
+
+#include "uniparam/algebra/algebraic.hpp"
+#include "uniparam/core/ball.hpp"
+
+namespace uniparam {
+
+/// An integrand f on a complex neighbourhood of the segment [a, b].
+/// Must write to `out` an enclosure of f(z) for every z in the ball `z`, at
+/// working precision `prec`. When `analytic` is true, it must also certify
+/// that f is holomorphic on the ball z and set `out` to indeterminate
+/// (acb_indeterminate) when it cannot (branch cut, pole, non-analytic
+/// point): this is acb_calc_integrate's order == 1 contract.
+using Integrand = std::function<void(acb_t out, const acb_t z, bool analytic, long prec)>;
+
+struct QuadratureOptions {
+  /// Goal: the result's radius <= 2^-rel_goal_bits * |value|, or, when
+  /// abs_goal_bits > 0, radius <= 2^-abs_goal_bits (whichever is met first).
+  /// Use abs_goal_bits when the integral may be 0.
+  long rel_goal_bits = 64;
+  long abs_goal_bits = 0;
+  /// First working precision; doubled after every miss up to max_prec.
+  long initial_prec = 0;    ///< 0: rel_goal_bits + 32
+  long max_prec = 8192;
+  /// Forwarded to acb_calc_integrate (0: Arb's defaults scaled with prec).
+  long eval_limit = 0;
+  long depth_limit = 0;
+  /// Used in the BudgetExceeded message: what was being integrated.
+  std::string what = "integral";
+};
+
+/// Certified integral of f over [a, b] (a <= b, algebraic ends, refined as
+/// needed). The ends are handled rigorously: the integral over the exact
+/// dyadic midpoints of the end enclosures is computed, and the radius of each
+/// end enclosure times a bound of |f| on it is added.
+/// \post the true integral lies in the returned ball, which meets the goal.
+/// \throws BudgetExceeded when the goal is not met at max_prec ("could not
+///         certify <what> to N bits within M bits of working precision;
+///         raise --max-prec"), InvalidArgument when a > b.
+Ball integrate(const Integrand& f, const RealAlgebraic& a, const RealAlgebraic& b,
+               const QuadratureOptions& opt = {});
+
+}  // namespace uniparam

@@ -1,0 +1,48 @@
+// uniparam/algebra/real_roots.hpp -- certified real-root isolation in a
+// closed interval with rational ends.
+#pragma once
+
+#include <vector>
+
+#include "uniparam/core/number.hpp"
+#include "uniparam/core/poly.hpp"
+
+namespace uniparam {
+
+/// One real root of a polynomial p, isolated.
+struct IsolatedRoot {
+  /// Isolating interval. lo == hi exactly when the root is rational (it is
+  /// then lo). Otherwise lo < hi, neither lo nor hi is a root of p, and the
+  /// open interval (lo, hi) holds exactly one root of p.
+  Rational lo, hi;
+  /// The primitive squarefree factor of p (positive leading coefficient)
+  /// this root is a simple root of; for a rational root lo = n/d it is d*t - n.
+  Poly factor;
+  /// Multiplicity of the root as a root of p (>= 1).
+  int multiplicity = 1;
+
+  bool is_exact() const { return lo == hi; }
+};
+
+/// Options of the isolator.
+struct RootIsolationOptions {
+  /// Refuse inputs of larger degree (BudgetExceeded naming --max-degree).
+  long max_degree = 20000;
+};
+
+/// All real roots of p in the closed interval [a, b].
+/// \pre p != 0, a <= b (InvalidArgument otherwise).
+/// \post Sorted increasingly; the intervals [lo, hi] are pairwise disjoint and
+///       contained in [a, b]; every root of p in [a, b] appears exactly once,
+///       with its multiplicity; rational roots (in particular roots at a or b)
+///       are exact (lo == hi).
+/// Works on [a, b] only (Descartes' rule of signs with Taylor shifts on the
+/// squarefree factors), so its cost does not depend on roots elsewhere.
+std::vector<IsolatedRoot> isolate_real_roots(const Poly& p, const Rational& a, const Rational& b,
+                                             const RootIsolationOptions& opt = {});
+
+/// Number of distinct real roots of p in the open interval (a, b), exact.
+/// \pre p != 0, a < b.
+long count_real_roots(const Poly& p, const Rational& a, const Rational& b);
+
+}  // namespace uniparam

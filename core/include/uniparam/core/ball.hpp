@@ -1,0 +1,59 @@
+// uniparam/core/ball.hpp -- real balls [mid +- rad] (RAII over Arb's arb_t).
+//
+// The ball rule (Arb's): every operation's output contains the exact result
+// for every choice of inputs inside the input balls. A Ball never pretends
+// to be a number: comparisons are "certainly" predicates (false means
+// "not proven", not "false").
+#pragma once
+
+#include <arb.h>
+
+#include <string>
+
+#include "uniparam/core/number.hpp"
+
+namespace uniparam {
+
+class Ball {
+ public:
+  Ball() noexcept { arb_init(v_); }
+  /// The exact integer x.
+  explicit Ball(long x) noexcept { arb_init(v_); arb_set_si(v_, x); }
+  /// An enclosure of x rounded to prec bits (exact when representable).
+  Ball(const Rational& x, long prec) noexcept { arb_init(v_); arb_set_fmpq(v_, x.get(), prec); }
+  explicit Ball(const Integer& x) noexcept { arb_init(v_); arb_set_fmpz(v_, x.get()); }
+  explicit Ball(const arb_t x) noexcept { arb_init(v_); arb_set(v_, x); }
+  Ball(const Ball& o) noexcept { arb_init(v_); arb_set(v_, o.v_); }
+  Ball(Ball&& o) noexcept { arb_init(v_); arb_swap(v_, o.v_); }
+  Ball& operator=(const Ball& o) noexcept { arb_set(v_, o.v_); return *this; }
+  Ball& operator=(Ball&& o) noexcept { arb_swap(v_, o.v_); return *this; }
+  ~Ball() { arb_clear(v_); }
+
+  arb_struct* get() noexcept { return v_; }
+  const arb_struct* get() const noexcept { return v_; }
+
+  bool is_finite() const noexcept { return arb_is_finite(v_); }
+  bool is_exact() const noexcept { return arb_is_exact(v_); }
+  bool certainly_positive() const noexcept { return arb_is_positive(v_); }
+  bool certainly_negative() const noexcept { return arb_is_negative(v_); }
+  bool certainly_zero() const noexcept { return arb_is_zero(v_); }
+  bool contains(const Rational& x) const noexcept { return arb_contains_fmpq(v_, x.get()); }
+  bool contains(const Ball& x) const noexcept { return arb_contains(v_, x.v_); }
+  /// True when rad <= 10^-digits * max(1, |mid|): the accuracy contract of
+  /// every reported number.
+  bool meets_digits(long digits) const;
+
+  /// The midpoint, in decimal with up to `digits` significant digits and
+  /// rounded to nearest, e.g. "1.24904577239825"; "0" for zero.
+  std::string mid_decimal(long digits) const;
+  /// An upper bound of the radius, in decimal (3 significant digits,
+  /// rounded up), e.g. "3.12e-17"; "0" for an exact ball.
+  std::string rad_decimal() const;
+  /// Arb's own notation "[mid +/- rad]" at `digits` digits.
+  std::string str(long digits = 20) const;
+
+ private:
+  arb_t v_;
+};
+
+}  // namespace uniparam

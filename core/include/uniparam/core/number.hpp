@@ -1,0 +1,96 @@
+// uniparam/core/number.hpp -- exact integers and rationals (RAII over FLINT's
+// fmpz and fmpq).
+//
+// Values are always exact. There is deliberately no constructor from double:
+// 0.1 is 1/10 only when the text "0.1" is parsed (see parser.hpp).
+#pragma once
+
+#include <flint/fmpq.h>
+#include <flint/fmpz.h>
+
+#include <string>
+
+namespace uniparam {
+
+/// An exact integer.
+class Integer {
+ public:
+  Integer() noexcept { fmpz_init(v_); }
+  Integer(long x) noexcept { fmpz_init_set_si(v_, x); }  // NOLINT: exact
+  /// Parses a decimal integer (optional leading '-'); throws InvalidArgument.
+  explicit Integer(const std::string& decimal);
+  explicit Integer(const fmpz_t x) noexcept { fmpz_init_set(v_, x); }
+  Integer(const Integer& o) noexcept { fmpz_init_set(v_, o.v_); }
+  Integer(Integer&& o) noexcept { fmpz_init(v_); fmpz_swap(v_, o.v_); }
+  Integer& operator=(const Integer& o) noexcept { fmpz_set(v_, o.v_); return *this; }
+  Integer& operator=(Integer&& o) noexcept { fmpz_swap(v_, o.v_); return *this; }
+  ~Integer() { fmpz_clear(v_); }
+
+  fmpz* get() noexcept { return v_; }
+  const fmpz* get() const noexcept { return v_; }
+
+  int sign() const noexcept { return fmpz_sgn(v_); }
+  /// Number of bits of |x| (0 for x = 0).
+  long bits() const noexcept { return static_cast<long>(fmpz_bits(v_)); }
+  std::string str() const;
+
+  friend bool operator==(const Integer& a, const Integer& b) noexcept { return fmpz_equal(a.v_, b.v_); }
+  friend bool operator!=(const Integer& a, const Integer& b) noexcept { return !(a == b); }
+  friend bool operator<(const Integer& a, const Integer& b) noexcept { return fmpz_cmp(a.v_, b.v_) < 0; }
+  friend Integer operator+(const Integer& a, const Integer& b);
+  friend Integer operator-(const Integer& a, const Integer& b);
+  friend Integer operator*(const Integer& a, const Integer& b);
+
+ private:
+  fmpz_t v_;
+};
+
+/// An exact rational number, always in canonical form (gcd 1, positive
+/// denominator).
+class Rational {
+ public:
+  Rational() noexcept { fmpq_init(v_); }
+  Rational(long x) noexcept { fmpq_init(v_); fmpq_set_si(v_, x, 1); }  // NOLINT: exact
+  /// num/den; throws DomainError when den == 0.
+  Rational(const Integer& num, const Integer& den);
+  Rational(long num, long den);
+  explicit Rational(const Integer& x) noexcept { fmpq_init(v_); fmpz_set(fmpq_numref(v_), x.get()); }
+  explicit Rational(const fmpq_t x) noexcept { fmpq_init(v_); fmpq_set(v_, x); }
+  /// Parses "a", "-a", "a/b" or a decimal "1.25", "-0.1", "1e-3" exactly.
+  /// Throws ParseError (column within the string) on anything else.
+  static Rational parse(const std::string& text);
+  Rational(const Rational& o) noexcept { fmpq_init(v_); fmpq_set(v_, o.v_); }
+  Rational(Rational&& o) noexcept { fmpq_init(v_); fmpq_swap(v_, o.v_); }
+  Rational& operator=(const Rational& o) noexcept { fmpq_set(v_, o.v_); return *this; }
+  Rational& operator=(Rational&& o) noexcept { fmpq_swap(v_, o.v_); return *this; }
+  ~Rational() { fmpq_clear(v_); }
+
+  fmpq* get() noexcept { return v_; }
+  const fmpq* get() const noexcept { return v_; }
+
+  Integer num() const { return Integer(fmpq_numref(v_)); }
+  Integer den() const { return Integer(fmpq_denref(v_)); }
+  int sign() const noexcept { return fmpq_sgn(v_); }
+  bool is_zero() const noexcept { return fmpq_is_zero(v_); }
+  bool is_integer() const noexcept { return fmpz_is_one(fmpq_denref(v_)); }
+  /// "a" or "a/b".
+  std::string str() const;
+
+  friend bool operator==(const Rational& a, const Rational& b) noexcept { return fmpq_equal(a.v_, b.v_); }
+  friend bool operator!=(const Rational& a, const Rational& b) noexcept { return !(a == b); }
+  friend bool operator<(const Rational& a, const Rational& b) noexcept { return fmpq_cmp(a.v_, b.v_) < 0; }
+  friend bool operator<=(const Rational& a, const Rational& b) noexcept { return fmpq_cmp(a.v_, b.v_) <= 0; }
+  friend bool operator>(const Rational& a, const Rational& b) noexcept { return fmpq_cmp(a.v_, b.v_) > 0; }
+  friend bool operator>=(const Rational& a, const Rational& b) noexcept { return fmpq_cmp(a.v_, b.v_) >= 0; }
+  friend Rational operator+(const Rational& a, const Rational& b);
+  friend Rational operator-(const Rational& a, const Rational& b);
+  friend Rational operator*(const Rational& a, const Rational& b);
+  /// Throws DomainError on division by zero.
+  friend Rational operator/(const Rational& a, const Rational& b);
+  Rational operator-() const;
+
+ private:
+  fmpq_t v_;
+};
+
+}  // namespace uniparam

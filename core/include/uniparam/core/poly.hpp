@@ -1,0 +1,68 @@
+// uniparam/core/poly.hpp -- dense polynomials in Z[t] (RAII over fmpz_poly).
+#pragma once
+
+#include <flint/fmpz_poly.h>
+
+#include <string>
+#include <vector>
+
+#include "uniparam/core/number.hpp"
+
+namespace uniparam {
+
+/// A polynomial with integer coefficients. Degree of 0 is -1.
+class Poly {
+ public:
+  Poly() noexcept { fmpz_poly_init(v_); }
+  /// The constant c.
+  Poly(long c) noexcept { fmpz_poly_init(v_); fmpz_poly_set_si(v_, c); }  // NOLINT: exact
+  /// Coefficients from low to high degree.
+  explicit Poly(const std::vector<Integer>& coeffs_low_to_high);
+  explicit Poly(const std::vector<long>& coeffs_low_to_high);
+  explicit Poly(const fmpz_poly_t p) noexcept { fmpz_poly_init(v_); fmpz_poly_set(v_, p); }
+  /// The polynomial t.
+  static Poly t();
+  Poly(const Poly& o) noexcept { fmpz_poly_init(v_); fmpz_poly_set(v_, o.v_); }
+  Poly(Poly&& o) noexcept { fmpz_poly_init(v_); fmpz_poly_swap(v_, o.v_); }
+  Poly& operator=(const Poly& o) noexcept { fmpz_poly_set(v_, o.v_); return *this; }
+  Poly& operator=(Poly&& o) noexcept { fmpz_poly_swap(v_, o.v_); return *this; }
+  ~Poly() { fmpz_poly_clear(v_); }
+
+  fmpz_poly_struct* get() noexcept { return v_; }
+  const fmpz_poly_struct* get() const noexcept { return v_; }
+
+  long degree() const noexcept { return fmpz_poly_degree(v_); }
+  bool is_zero() const noexcept { return fmpz_poly_is_zero(v_); }
+  Integer coeff(long i) const;
+  Integer leading() const { return coeff(degree()); }
+  /// Max bits of the coefficients' absolute values.
+  long max_bits() const noexcept;
+  Poly derivative() const;
+  /// Exact value at a rational point.
+  Rational operator()(const Rational& x) const;
+  /// Sign of the value at x (-1, 0, 1), exact.
+  int sign_at(const Rational& x) const;
+  /// Divides by the content and makes the leading coefficient positive
+  /// (the zero polynomial stays zero).
+  Poly primitive() const;
+  /// Plain text in t, e.g. "3*t^2 - t + 1".
+  std::string str(const char* var = "t") const;
+
+  friend bool operator==(const Poly& a, const Poly& b) noexcept { return fmpz_poly_equal(a.v_, b.v_); }
+  friend bool operator!=(const Poly& a, const Poly& b) noexcept { return !(a == b); }
+  friend Poly operator+(const Poly& a, const Poly& b);
+  friend Poly operator-(const Poly& a, const Poly& b);
+  friend Poly operator*(const Poly& a, const Poly& b);
+  Poly operator-() const;
+  Poly pow(unsigned long e) const;
+
+ private:
+  fmpz_poly_t v_;
+};
+
+/// gcd with positive leading coefficient (gcd(0, 0) = 0).
+Poly gcd(const Poly& a, const Poly& b);
+/// Exact quotient a / b; throws DomainError if b does not divide a.
+Poly divexact(const Poly& a, const Poly& b);
+
+}  // namespace uniparam

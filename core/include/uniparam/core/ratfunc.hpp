@@ -1,0 +1,60 @@
+// uniparam/core/ratfunc.hpp -- rational functions in Q(t) (RAII over
+// fmpz_poly_q), always canonical: numerator and denominator in Z[t] coprime
+// (content included) and the denominator's leading coefficient positive.
+// Two equal rational functions therefore have equal representations.
+#pragma once
+
+#include <flint/fmpz_poly_q.h>
+
+#include <string>
+
+#include "uniparam/core/number.hpp"
+#include "uniparam/core/poly.hpp"
+
+namespace uniparam {
+
+class RatFunc {
+ public:
+  RatFunc() noexcept { fmpz_poly_q_init(v_); }
+  RatFunc(long c) noexcept { fmpz_poly_q_init(v_); fmpz_poly_q_set_si(v_, c); }  // NOLINT: exact
+  explicit RatFunc(const Rational& c);
+  explicit RatFunc(const Poly& p);
+  /// num/den canonicalised; throws DomainError when den is zero.
+  RatFunc(const Poly& num, const Poly& den);
+  static RatFunc t();
+  RatFunc(const RatFunc& o) noexcept { fmpz_poly_q_init(v_); fmpz_poly_q_set(v_, o.v_); }
+  RatFunc(RatFunc&& o) noexcept { fmpz_poly_q_init(v_); fmpz_poly_q_swap(v_, o.v_); }
+  RatFunc& operator=(const RatFunc& o) noexcept { fmpz_poly_q_set(v_, o.v_); return *this; }
+  RatFunc& operator=(RatFunc&& o) noexcept { fmpz_poly_q_swap(v_, o.v_); return *this; }
+  ~RatFunc() { fmpz_poly_q_clear(v_); }
+
+  fmpz_poly_q_struct* get() noexcept { return v_; }
+  const fmpz_poly_q_struct* get() const noexcept { return v_; }
+
+  Poly num() const { return Poly(fmpz_poly_q_numref(v_)); }
+  Poly den() const { return Poly(fmpz_poly_q_denref(v_)); }
+  bool is_zero() const noexcept { return fmpz_poly_q_is_zero(v_); }
+  /// True when the function is a constant (denominator and numerator of degree <= 0).
+  bool is_constant() const noexcept;
+  RatFunc derivative() const;
+  /// Exact value at x; throws DomainError when x is a pole.
+  Rational operator()(const Rational& x) const;
+  /// Plain text "(num)/(den)" or "num" when den = 1.
+  std::string str(const char* var = "t") const;
+
+  friend bool operator==(const RatFunc& a, const RatFunc& b) noexcept { return fmpz_poly_q_equal(a.v_, b.v_); }
+  friend bool operator!=(const RatFunc& a, const RatFunc& b) noexcept { return !(a == b); }
+  friend RatFunc operator+(const RatFunc& a, const RatFunc& b);
+  friend RatFunc operator-(const RatFunc& a, const RatFunc& b);
+  friend RatFunc operator*(const RatFunc& a, const RatFunc& b);
+  /// Throws DomainError when b is zero.
+  friend RatFunc operator/(const RatFunc& a, const RatFunc& b);
+  RatFunc operator-() const;
+  /// Integer power; a negative exponent inverts (DomainError for 0^-k).
+  RatFunc pow(long e) const;
+
+ private:
+  fmpz_poly_q_t v_;
+};
+
+}  // namespace uniparam

@@ -1,0 +1,42 @@
+#include "uniparam/core/ball.hpp"
+
+#include <arf.h>
+#include <mag.h>
+
+#include "error_util.hpp"
+#include "uniparam/core/decimal.hpp"
+
+namespace uniparam {
+
+bool Ball::meets_digits(long digits) const {
+  if (!is_finite()) return false;
+  // rad <= 10^-digits * max(1, |mid|), decided exactly on rationals.
+  Rational mid, rad;
+  arf_get_fmpq(mid.get(), arb_midref(v_));
+  arf_t r;
+  arf_init(r);
+  arf_set_mag(r, arb_radref(v_));
+  arf_get_fmpq(rad.get(), r);
+  arf_clear(r);
+  if (mid.sign() < 0) mid = -mid;
+  Rational scale = mid > Rational(1) ? mid : Rational(1);
+  Integer p;
+  fmpz_ui_pow_ui(p.get(), 10, static_cast<ulong>(digits < 0 ? 0 : digits));
+  return rad * Rational(p) <= scale;
+}
+
+std::string Ball::mid_decimal(long digits) const { return decimal_enclosure(*this, digits).mid; }
+
+std::string Ball::rad_decimal() const {
+  Rational rad;
+  arf_t r;
+  arf_init(r);
+  arf_set_mag(r, arb_radref(v_));
+  arf_get_fmpq(rad.get(), r);
+  arf_clear(r);
+  return decimal_upper(rad);
+}
+
+std::string Ball::str(long digits) const { return detail::take_flint_string(arb_get_str(v_, digits, 0)); }
+
+}  // namespace uniparam

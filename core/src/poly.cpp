@@ -1,0 +1,88 @@
+#include "uniparam/core/poly.hpp"
+
+#include "error_util.hpp"
+#include "uniparam/core/error.hpp"
+
+namespace uniparam {
+
+Poly::Poly(const std::vector<Integer>& c) {
+  fmpz_poly_init(v_);
+  for (std::size_t i = 0; i < c.size(); ++i) fmpz_poly_set_coeff_fmpz(v_, static_cast<slong>(i), c[i].get());
+}
+
+Poly::Poly(const std::vector<long>& c) {
+  fmpz_poly_init(v_);
+  for (std::size_t i = 0; i < c.size(); ++i) fmpz_poly_set_coeff_si(v_, static_cast<slong>(i), c[i]);
+}
+
+Poly Poly::t() { return Poly(std::vector<long>{0, 1}); }
+
+Integer Poly::coeff(long i) const {
+  Integer r;
+  if (i >= 0) fmpz_poly_get_coeff_fmpz(r.get(), v_, i);
+  return r;
+}
+
+long Poly::max_bits() const noexcept {
+  slong b = fmpz_poly_max_bits(v_);
+  return b < 0 ? -b : b;
+}
+
+Poly Poly::derivative() const { Poly r; fmpz_poly_derivative(r.v_, v_); return r; }
+
+Rational Poly::operator()(const Rational& x) const {
+  Rational r;
+  fmpz_poly_evaluate_fmpq(r.get(), v_, x.get());
+  return r;
+}
+
+int Poly::sign_at(const Rational& x) const { return (*this)(x).sign(); }
+
+Poly Poly::primitive() const {
+  Poly r;
+  fmpz_poly_primitive_part(r.v_, v_);  // FLINT makes the leading coefficient positive
+  return r;
+}
+
+std::string Poly::str(const char* var) const {
+  if (is_zero()) return "0";
+  std::string out;
+  for (long i = degree(); i >= 0; --i) {
+    Integer c = coeff(i);
+    if (c.sign() == 0) continue;
+    bool neg = c.sign() < 0;
+    std::string mag = neg ? (-Rational(c)).str() : c.str();
+    if (out.empty()) out += neg ? "-" : "";
+    else out += neg ? " - " : " + ";
+    bool unit = (mag == "1") && i > 0;
+    if (!unit) out += mag;
+    if (i > 0) {
+      if (!unit) out += "*";
+      out += var;
+      if (i > 1) out += "^" + std::to_string(i);
+    }
+  }
+  return out;
+}
+
+Poly operator+(const Poly& a, const Poly& b) { Poly r; fmpz_poly_add(r.v_, a.v_, b.v_); return r; }
+Poly operator-(const Poly& a, const Poly& b) { Poly r; fmpz_poly_sub(r.v_, a.v_, b.v_); return r; }
+Poly operator*(const Poly& a, const Poly& b) { Poly r; fmpz_poly_mul(r.v_, a.v_, b.v_); return r; }
+Poly Poly::operator-() const { Poly r; fmpz_poly_neg(r.v_, v_); return r; }
+Poly Poly::pow(unsigned long e) const { Poly r; fmpz_poly_pow(r.v_, v_, e); return r; }
+
+Poly gcd(const Poly& a, const Poly& b) {
+  Poly r;
+  fmpz_poly_gcd(r.get(), a.get(), b.get());
+  return r;
+}
+
+Poly divexact(const Poly& a, const Poly& b) {
+  if (b.is_zero()) throw DomainError("polynomial division by zero");
+  Poly q;  // distinct from a: fmpz_poly_divides zeroes q on failure
+  if (!fmpz_poly_divides(q.get(), a.get(), b.get()))
+    throw DomainError("polynomial does not divide exactly");
+  return q;
+}
+
+}  // namespace uniparam
