@@ -21,7 +21,7 @@ bool Ball::meets_digits(long digits) const {
   if (mid.sign() < 0) mid = -mid;
   Rational scale = mid > Rational(1) ? mid : Rational(1);
   Integer p;
-  fmpz_ui_pow_ui(p.get(), 10, static_cast<ulong>(digits < 0 ? 0 : digits));
+  fmpz_set_ui(p.get(), 10); fmpz_pow_ui(p.get(), p.get(), static_cast<ulong>(digits < 0 ? 0 : digits));
   return rad * Rational(p) <= scale;
 }
 

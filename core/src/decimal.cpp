@@ -10,7 +10,7 @@ namespace {
 
 Rational pow10(long k) {
   Integer p;
-  fmpz_ui_pow_ui(p.get(), 10, static_cast<ulong>(k < 0 ? -k : k));
+  fmpz_set_ui(p.get(), 10); fmpz_pow_ui(p.get(), p.get(), static_cast<ulong>(k < 0 ? -k : k));
   return k >= 0 ? Rational(p) : Rational(Integer(1), p);
 }
 

@@ -50,7 +50,7 @@ Rational Rational::parse(const std::string& s) {
   Rational value(Integer(ip.empty() ? std::string("0") : ip));
   if (!fp.empty()) {
     Integer f(fp), p;
-    fmpz_ui_pow_ui(p.get(), 10, fp.size());
+    fmpz_set_ui(p.get(), 10); fmpz_pow_ui(p.get(), p.get(), fp.size());
     value = value + Rational(f, p);
   }
   if (i < s.size() && s[i] == '/' && !had_point) {
@@ -68,7 +68,7 @@ Rational Rational::parse(const std::string& s) {
     if (ep.empty()) throw ParseError(i + 1, "a digit", "invalid exponent in '" + s + "'");
     if (ep.size() > 6) throw InvalidArgument("exponent out of range in '" + s + "'");
     Integer p;
-    fmpz_ui_pow_ui(p.get(), 10, std::stoul(ep));
+    fmpz_set_ui(p.get(), 10); fmpz_pow_ui(p.get(), p.get(), std::stoul(ep));
     value = eneg ? value / Rational(p) : value * Rational(p);
   }
   if (i != s.size()) throw ParseError(i + 1, "end of number", "unexpected character in '" + s + "'");
