@@ -1,1 +1,68 @@
-int main() { return 0; }
+// cli/main.cpp -- the uniparam command: dispatch, error reporting, exit codes.
+//
+// Exit codes: 0 success; 2 usage error or invalid input (bad option, parse
+// error); 3 domain error (the curve is not regular on [0, 1], ...);
+// 4 budget exceeded (could not certify within the limits); 1 anything else.
+#include <cstring>
+#include <iostream>
+#include <string>
+
+#include "commands.hpp"
+#include "uniparam/uniparam.hpp"
+
+namespace {
+
+const char* kMainHelp =
+    "usage: uniparam COMMAND [ARGS] [options]\n"
+    "\n"
+    "Certified uniformity-improving reparameterization of rational curves.\n"
+    "Every printed number is exact or a ball proven to contain the true value.\n"
+    "\n"
+    "commands:\n"
+    "  uniformity CURVE   exact speed^2, zeros of the speed in [0,1], certified mu and u\n"
+    "\n"
+    "CURVE is a tuple of rational functions of t, e.g. \"(t, t^3)\" or\n"
+    "\"((1-t^2)/(1+t^2), 2t/(1+t^2), t)\"; decimals are read exactly (0.1 = 1/10).\n"
+    "\n"
+    "Run 'uniparam COMMAND --help' for the options of a command.\n"
+    "Exit codes: 0 ok, 2 invalid input or option, 3 curve not regular on [0,1],\n"
+    "4 accuracy not certifiable within the budget, 1 other error.\n";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace uniparam;
+  if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h") || !std::strcmp(argv[1], "help")) {
+    std::cout << kMainHelp;
+    return argc < 2 ? 2 : 0;
+  }
+  if (!std::strcmp(argv[1], "--version")) {
+    std::cout << "uniparam 0.1.0\n";
+    return 0;
+  }
+  const std::string cmd = argv[1];
+  try {
+    for (const auto& c : cli::commands())
+      if (c.spec.name == cmd) return c.run(argc, argv);
+    std::cerr << "uniparam: unknown command '" << cmd << "' (run 'uniparam --help' for the list)\n";
+    return 2;
+  } catch (const ParseError& e) {
+    std::cerr << "uniparam " << cmd << ": " << e.what() << "\n";
+    return 2;
+  } catch (const InvalidArgument& e) {
+    std::cerr << "uniparam " << cmd << ": " << e.what() << "\n";
+    return 2;
+  } catch (const DomainError& e) {
+    std::cerr << "uniparam " << cmd << ": " << e.what() << "\n";
+    return 3;
+  } catch (const BudgetExceeded& e) {
+    std::cerr << "uniparam " << cmd << ": " << e.what() << "\n";
+    return 4;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "uniparam " << cmd << ": out of memory\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "uniparam " << cmd << ": internal error: " << e.what() << "\n";
+    return 1;
+  }
+}

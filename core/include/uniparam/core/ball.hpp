@@ -19,6 +19,7 @@ class Ball {
   Ball() noexcept { arb_init(v_); }
   /// The exact integer x.
   explicit Ball(long x) noexcept { arb_init(v_); arb_set_si(v_, x); }
+  explicit Ball(int x) noexcept : Ball(static_cast<long>(x)) {}  // beats the arb_t overload for 0
   /// An enclosure of x rounded to prec bits (exact when representable).
   Ball(const Rational& x, long prec) noexcept { arb_init(v_); arb_set_fmpq(v_, x.get(), prec); }
   explicit Ball(const Integer& x) noexcept { arb_init(v_); arb_set_fmpz(v_, x.get()); }

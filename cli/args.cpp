@@ -1,0 +1,84 @@
+#include "args.hpp"
+
+#include <cerrno>
+#include <cstdlib>
+
+#include "uniparam/core/error.hpp"
+
+namespace uniparam::cli {
+
+long Args::get_long(const std::string& n, long dflt, long lo, long hi) const {
+  auto it = values.find(n);
+  if (it == values.end()) return dflt;
+  const std::string& s = it->second;
+  char* end = nullptr;
+  errno = 0;
+  long v = std::strtol(s.c_str(), &end, 10);
+  if (s.empty() || *end != '\0' || errno == ERANGE)
+    throw InvalidArgument("--" + n + " expects an integer, got '" + s + "'");
+  if (v < lo || v > hi)
+    throw InvalidArgument("--" + n + " must be between " + std::to_string(lo) + " and " + std::to_string(hi) +
+                          ", got " + s);
+  return v;
+}
+
+Args parse_args(const CommandSpec& spec, int argc, char** argv, int first) {
+  Args a;
+  for (int i = first; i < argc; ++i) {
+    std::string arg = argv[i];
+    if (arg == "--help" || arg == "-h") { a.help = true; continue; }
+    if (arg.size() > 2 && arg.compare(0, 2, "--") == 0) {
+      std::string name = arg.substr(2), value;
+      bool inline_value = false;
+      if (auto eq = name.find('='); eq != std::string::npos) {
+        value = name.substr(eq + 1);
+        name = name.substr(0, eq);
+        inline_value = true;
+      }
+      const OptionSpec* o = nullptr;
+      for (const auto& cand : spec.options)
+        if (cand.name == name) o = &cand;
+      if (!o) throw InvalidArgument("unknown option '--" + name + "' for 'uniparam " + spec.name +
+                                    "' (see 'uniparam " + spec.name + " --help')");
+      if (o->value.empty()) {
+        if (inline_value) throw InvalidArgument("option '--" + name + "' takes no value");
+        a.flags[name] = true;
+      } else {
+        if (!inline_value) {
+          if (i + 1 >= argc) throw InvalidArgument("option '--" + name + "' needs a value " + o->value);
+          value = argv[++i];
+        }
+        a.values[name] = value;
+      }
+      continue;
+    }
+    a.positional.push_back(arg);
+  }
+  if (!a.help && a.positional.size() != spec.positionals.size()) {
+    std::string want;
+    for (const auto& p : spec.positionals) want += " " + p;
+    throw InvalidArgument("'uniparam " + spec.name + "' expects" + (want.empty() ? " no arguments" : want) +
+                          ", got " + std::to_string(a.positional.size()) + " argument(s) (quote the curve: \"(t, t^3)\")");
+  }
+  return a;
+}
+
+std::string help_text(const CommandSpec& spec) {
+  std::string s = "usage: uniparam " + spec.name;
+  for (const auto& p : spec.positionals) s += " " + p;
+  s += " [options]\n\n" + spec.synopsis + "\n";
+  if (!spec.description.empty()) s += "\n" + spec.description + "\n";
+  s += "\noptions:\n";
+  for (const auto& o : spec.options) {
+    std::string left = "  --" + o.name + (o.value.empty() ? "" : " " + o.value);
+    if (left.size() < 26) left += std::string(26 - left.size(), ' ');
+    else left += "\n" + std::string(26, ' ');
+    s += left + o.help;
+    if (!o.fallback.empty()) s += " (default: " + o.fallback + ")";
+    s += "\n";
+  }
+  s += "  --help, -h              show this help\n";
+  return s;
+}
+
+}  // namespace uniparam::cli

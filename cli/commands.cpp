@@ -1,0 +1,31 @@
+// cli/commands.cpp -- the table of subcommands and their shared options.
+#include "commands.hpp"
+
+namespace uniparam::cli {
+
+std::vector<OptionSpec> common_options() {
+  return {
+      {"speed", "KIND", "speed to make uniform: angular or parametric", "angular"},
+      {"digits", "D", "correct decimal digits: every ball has radius <= 10^-D * max(1, |mid|)", "15"},
+      {"json", "", "print JSON: certified reals as {\"mid\", \"rad\"}", ""},
+      {"max-prec", "BITS", "largest working precision before giving up", "16384"},
+      {"max-degree", "N", "largest curve degree accepted", "2000"},
+  };
+}
+
+Options read_options(const Args& a) {
+  Options o;
+  o.digits = a.get_long("digits", o.digits, 1, 10000);
+  o.max_prec = a.get_long("max-prec", o.max_prec, 64, 1L << 24);
+  o.max_degree = a.get_long("max-degree", o.max_degree, 1, 1000000);
+  return o;
+}
+
+const std::vector<Command>& commands() {
+  static const std::vector<Command> table = {
+      {uniformity_spec(), &run_uniformity},
+  };
+  return table;
+}
+
+}  // namespace uniparam::cli

@@ -1,0 +1,28 @@
+// cli/commands.hpp -- the table of subcommands.
+#pragma once
+
+#include <vector>
+
+#include "args.hpp"
+#include "uniparam/uniparam.hpp"
+
+namespace uniparam::cli {
+
+struct Command {
+  CommandSpec spec;
+  int (*run)(int argc, char** argv);  ///< argv[1] is the command name
+};
+
+const std::vector<Command>& commands();
+
+/// Options shared by the certified commands: --speed, --digits, --json,
+/// --max-prec, --max-degree.
+std::vector<OptionSpec> common_options();
+/// Reads --digits, --max-prec, --max-degree (validated ranges).
+Options read_options(const Args& a);
+
+// One pair per command, defined in cmd_<name>.cpp.
+CommandSpec uniformity_spec();
+int run_uniformity(int argc, char** argv);
+
+}  // namespace uniparam::cli

@@ -1,0 +1,23 @@
+// cli/report.hpp -- turning results into JSON (the certified-real contract)
+// and into text.
+#pragma once
+
+#include <string>
+
+#include "uniparam/uniparam.hpp"
+
+namespace uniparam::cli {
+
+/// Significant digits printed for a result requested at `digits` digits.
+inline long printed_digits(long digits) { return digits + 3; }
+
+/// {"mid", "rad"} plus, for an exact rational, "exact": "p/q", and for an
+/// irrational algebraic number "exact": {"poly": "...", "interval": ["lo", "hi"]}.
+Json json_algebraic(const RealAlgebraic& x, long digits);
+/// Text: "1/2", or "0.43869133765083082 (root of 27*t^4 - 1 in (43/100, 11/25))".
+std::string text_algebraic(const RealAlgebraic& x, long digits);
+
+/// {"text": ..., "latex": ..., "maple": ...} of a rational function.
+Json json_ratfunc(const RatFunc& r);
+
+}  // namespace uniparam::cli

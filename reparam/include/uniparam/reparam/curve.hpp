@@ -1,0 +1,44 @@
+// uniparam/reparam/curve.hpp -- rational curves p : [0, 1] -> R^n, n >= 2.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "uniparam/core/parser.hpp"
+#include "uniparam/core/poly.hpp"
+#include "uniparam/core/ratfunc.hpp"
+
+namespace uniparam {
+
+/// A rational curve with rational coefficients on the parameter interval
+/// [0, 1], checked at construction to be usable:
+/// * n >= 2 components,
+/// * not constant (some component has a nonzero derivative),
+/// * no pole in the closed interval [0, 1].
+/// Its derivative is kept as p' = (X_1, ..., X_n) / W with X_i, W in Z[t],
+/// gcd(X_1, ..., X_n, W) = 1 and W with positive leading coefficient.
+class Curve {
+ public:
+  /// \throws InvalidArgument (fewer than two components), DomainError
+  ///         (constant curve; pole in [0, 1], named as an algebraic number).
+  explicit Curve(std::vector<RatFunc> components);
+  /// Parses "(x(t), y(t), ...)" (see parser.hpp) and checks as above.
+  static Curve parse(const std::string& text, const ParseLimits& limits = {});
+
+  std::size_t dimension() const { return components_.size(); }
+  const std::vector<RatFunc>& components() const { return components_; }
+  /// Numerators of p' over the common denominator W().
+  const std::vector<Poly>& derivative_numerators() const { return X_; }
+  const Poly& derivative_denominator() const { return W_; }
+  /// Largest degree among numerators and denominators of the components.
+  long degree() const;
+  /// "(x(t), y(t))" in plain text.
+  std::string str() const;
+
+ private:
+  std::vector<RatFunc> components_;
+  std::vector<Poly> X_;
+  Poly W_;
+};
+
+}  // namespace uniparam

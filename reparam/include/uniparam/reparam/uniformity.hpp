@@ -1,0 +1,57 @@
+// uniparam/reparam/uniformity.hpp -- certified mean speed and uniformity
+// (MATH.md section 1): mu = int_0^1 sigma, u = mu^2 / int_0^1 sigma^2.
+#pragma once
+
+#include <vector>
+
+#include "uniparam/algebra/algebraic.hpp"
+#include "uniparam/core/ball.hpp"
+#include "uniparam/reparam/speed.hpp"
+
+namespace uniparam {
+
+/// Accuracy and budgets shared by every certified computation.
+struct Options {
+  /// Correct decimal digits wanted: every reported ball has
+  /// rad <= 10^-digits * max(1, |mid|). 1 <= digits <= 10000.
+  long digits = 15;
+  /// Largest working precision (bits) the quadrature may use before giving up
+  /// with BudgetExceeded (CLI: --max-prec).
+  long max_prec = 16384;
+  /// Largest curve degree accepted (CLI: --max-degree).
+  long max_degree = 2000;
+};
+
+/// Throws InvalidArgument when an option is out of range.
+void validate(const Options& o);
+
+/// Certified integral of sigma over [a, b], split at the zeros of sigma
+/// inside, so that every piece's integrand is analytic. \pre 0 <= a <= b <= 1.
+Ball integrate_speed(const Speed& s, const RealAlgebraic& a, const RealAlgebraic& b, long rel_goal_bits,
+                     long max_prec);
+/// Certified integral of sigma^2 over [a, b].
+Ball integrate_speed_squared(const Speed& s, const RealAlgebraic& a, const RealAlgebraic& b,
+                             long rel_goal_bits, long max_prec);
+
+struct UniformityResult {
+  SpeedKind kind;
+  RatFunc speed_squared;          ///< sigma^2, exact
+  std::vector<SpeedZero> zeros;   ///< zeros of sigma in [0, 1]
+  bool identically_zero = false;  ///< angular speed of a line: mu = 0, u = 1 exactly
+  Ball mu;                        ///< int_0^1 sigma
+  Ball mean_square;               ///< int_0^1 sigma^2
+  Ball u;                         ///< mu^2 / int sigma^2 (1 exactly when identically_zero)
+};
+
+/// Certified uniformity of the curve for the chosen speed.
+/// \post mu, mean_square and u contain the true values and each meets
+///       Options::digits.
+/// \throws BudgetExceeded if that accuracy cannot be reached within
+///         Options::max_prec; InvalidArgument for bad options or a curve above
+///         Options::max_degree; DomainError for a non-regular curve.
+UniformityResult uniformity(const Curve& c, SpeedKind kind, const Options& opt = {});
+
+/// Bits of relative accuracy that give `digits` decimal digits with margin.
+long digits_to_bits(long digits);
+
+}  // namespace uniparam

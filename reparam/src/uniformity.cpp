@@ -1,0 +1,93 @@
+#include "uniparam/reparam/uniformity.hpp"
+
+#include <cmath>
+
+#include "uniparam/algebra/quadrature.hpp"
+#include "uniparam/core/error.hpp"
+
+namespace uniparam {
+
+void validate(const Options& o) {
+  if (o.digits < 1 || o.digits > 10000)
+    throw InvalidArgument("--digits must be between 1 and 10000, got " + std::to_string(o.digits));
+  if (o.max_prec < 64 || o.max_prec > (1L << 24))
+    throw InvalidArgument("--max-prec must be between 64 and 16777216 bits, got " + std::to_string(o.max_prec));
+  if (o.max_degree < 1)
+    throw InvalidArgument("--max-degree must be positive, got " + std::to_string(o.max_degree));
+}
+
+long digits_to_bits(long digits) { return static_cast<long>(std::ceil(digits * 3.3219280948873623)) + 8; }
+
+Ball integrate_speed(const Speed& s, const RealAlgebraic& a, const RealAlgebraic& b, long rel_goal_bits,
+                     long max_prec) {
+  Ball total(0);
+  if (s.identically_zero() || a == b) return total;
+  // Piece ends: a, the zeros of sigma strictly inside (a, b), b.
+  std::vector<RealAlgebraic> ends{a};
+  for (const auto& z : s.zeros())
+    if (a < z.t && z.t < b) ends.push_back(z.t);
+  ends.push_back(b);
+  for (std::size_t i = 0; i + 1 < ends.size(); ++i) {
+    const int sign = s.piece_sign(ends[i], ends[i + 1]);
+    Integrand f = [&s, sign](acb_t out, const acb_t z, bool analytic, long prec) {
+      s.eval(out, z, sign, analytic, prec);
+    };
+    QuadratureOptions qo;
+    qo.rel_goal_bits = rel_goal_bits;
+    qo.max_prec = max_prec;
+    qo.what = "the integral of the " + to_string(s.kind()) + " speed";
+    Ball piece = integrate(f, ends[i], ends[i + 1], qo);
+    arb_add(total.get(), total.get(), piece.get(), 2 * rel_goal_bits + 64);
+  }
+  return total;
+}
+
+Ball integrate_speed_squared(const Speed& s, const RealAlgebraic& a, const RealAlgebraic& b,
+                             long rel_goal_bits, long max_prec) {
+  if (s.identically_zero() || a == b) return Ball(0);
+  Integrand f = [&s](acb_t out, const acb_t z, bool, long prec) { s.eval_squared(out, z, prec); };
+  QuadratureOptions qo;
+  qo.rel_goal_bits = rel_goal_bits;
+  qo.max_prec = max_prec;
+  qo.what = "the integral of the squared " + to_string(s.kind()) + " speed";
+  return integrate(f, a, b, qo);
+}
+
+UniformityResult uniformity(const Curve& c, SpeedKind kind, const Options& opt) {
+  validate(opt);
+  if (c.degree() > opt.max_degree)
+    throw InvalidArgument("the curve has degree " + std::to_string(c.degree()) + ", above the limit " +
+                          std::to_string(opt.max_degree) + " (raise it with --max-degree)");
+  Speed s(c, kind);
+  UniformityResult r;
+  r.kind = kind;
+  r.speed_squared = s.squared();
+  r.zeros = s.zeros();
+  r.identically_zero = s.identically_zero();
+  if (r.identically_zero) {
+    r.mu = Ball(0);
+    r.mean_square = Ball(0);
+    r.u = Ball(1);
+    return r;
+  }
+  const RealAlgebraic zero(0), one(1);
+  // Each integral to relative accuracy 2^-bits gives u to about 4 * 2^-bits.
+  for (long bits = digits_to_bits(opt.digits); ; bits += 32) {
+    r.mu = integrate_speed(s, zero, one, bits, opt.max_prec);
+    r.mean_square = integrate_speed_squared(s, zero, one, bits, opt.max_prec);
+    const long prec = 2 * bits + 64;
+    arb_mul(r.u.get(), r.mu.get(), r.mu.get(), prec);
+    arb_div(r.u.get(), r.u.get(), r.mean_square.get(), prec);
+    // One digit of margin, so that the decimal printing of the balls (which
+    // adds its rounding error to the radius) still meets opt.digits.
+    if (r.mu.meets_digits(opt.digits + 1) && r.mean_square.meets_digits(opt.digits + 1) &&
+        r.u.meets_digits(opt.digits + 1))
+      return r;
+    if (bits > opt.max_prec)
+      throw BudgetExceeded("could not certify the uniformity to " + std::to_string(opt.digits) +
+                           " digits within " + std::to_string(opt.max_prec) +
+                           " bits of working precision (raise it with --max-prec)");
+  }
+}
+
+}  // namespace uniparam

@@ -1,0 +1,88 @@
+// The uniparam command: exit codes, messages and the JSON contract.
+#include <gtest/gtest.h>
+
+#include <regex>
+
+#include "support/run.hpp"
+#include "uniparam/uniparam.hpp"
+
+using uniparam::testing::run_uniparam;
+
+namespace {
+
+// Extracts {"mid": "...", "rad": "..."} of a top-level key from our JSON.
+bool certified_real(const std::string& json, const std::string& key, std::string& mid, std::string& rad) {
+  std::regex re("\"" + key + "\": \\{\\s*\"mid\": \"([^\"]+)\",\\s*\"rad\": \"([^\"]+)\"");
+  std::smatch m;
+  if (!std::regex_search(json, m, re)) return false;
+  mid = m[1];
+  rad = m[2];
+  return true;
+}
+
+}  // namespace
+
+TEST(Cli, UniformityJsonMeetsTheCertifiedRealContract) {
+  for (long digits : {5L, 15L, 30L}) {
+    auto r = run_uniparam({"uniformity", "(t, t^3)", "--json", "--digits", std::to_string(digits)});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    std::string mid, rad;
+    ASSERT_TRUE(certified_real(r.out, "u", mid, rad)) << r.out;
+    // [mid - rad, mid + rad] read exactly must contain the reference value and
+    // rad <= 10^-digits * max(1, |mid|).
+    uniparam::Rational m = uniparam::Rational::parse(mid), d = uniparam::Rational::parse(rad);
+    uniparam::Rational ref = uniparam::Rational::parse("0.845695243153366341883011346954");
+    uniparam::Rational slack = uniparam::Rational::parse("1e-30");
+    EXPECT_LE(m - d - slack, ref) << mid << " +/- " << rad;
+    EXPECT_GE(m + d + slack, ref) << mid << " +/- " << rad;
+    uniparam::Rational bound = uniparam::Rational::parse("1e-" + std::to_string(digits));
+    EXPECT_LE(d, bound) << rad;
+    ASSERT_TRUE(certified_real(r.out, "mu", mid, rad)) << r.out;
+  }
+}
+
+TEST(Cli, TextOutputNamesZerosAndUniformity) {
+  auto r = run_uniparam({"uniformity", "(t, t^3)"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("t = 0, multiplicity 1"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("0.8456952431533663"), std::string::npos) << r.out;
+}
+
+TEST(Cli, HelpIsAvailableForEveryCommand) {
+  auto r = run_uniparam({"--help"});
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("uniformity"), std::string::npos);
+  auto u = run_uniparam({"uniformity", "--help"});
+  EXPECT_EQ(u.exit_code, 0);
+  for (const char* opt : {"--speed", "--digits", "--json", "--max-prec"})
+    EXPECT_NE(u.out.find(opt), std::string::npos) << opt;
+}
+
+struct BadInput {
+  std::vector<std::string> args;
+  int exit_code;
+  const char* message;  // a fragment the error message must contain
+};
+
+TEST(Cli, BadInputGivesClearErrorAndNonZeroExit) {
+  const BadInput cases[] = {
+      {{"frobnicate"}, 2, "unknown command"},
+      {{"uniformity"}, 2, "expects CURVE"},
+      {{"uniformity", "(t, t^3"}, 2, "column"},
+      {{"uniformity", "(t, x)"}, 2, "'x'"},
+      {{"uniformity", "(t, t^3)", "--digits", "-3"}, 2, "--digits"},
+      {{"uniformity", "(t, t^3)", "--digits", "abc"}, 2, "--digits"},
+      {{"uniformity", "(t, t^3)", "--speed", "fast"}, 2, "unknown speed"},
+      {{"uniformity", "(t, t^3)", "--bogus"}, 2, "unknown option"},
+      {{"uniformity", "(t)"}, 2, "two components"},
+      {{"uniformity", "(1/(t-1/2), t)"}, 3, "pole"},
+      {{"uniformity", "(1, 2)"}, 3, "constant"},
+      {{"uniformity", "(t, 1/0)"}, 3, "division by zero"},
+  };
+  for (const auto& c : cases) {
+    auto r = run_uniparam(c.args);
+    EXPECT_EQ(r.exit_code, c.exit_code) << c.args.back() << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args.back() << ": " << r.err;
+    EXPECT_TRUE(r.out.empty()) << "no partial result on error: " << r.out;
+  }
+}
