@@ -26,7 +26,9 @@ struct QuadratureOptions {
   /// Use abs_goal_bits when the integral may be 0.
   long rel_goal_bits = 64;
   long abs_goal_bits = 0;
-  /// First working precision; doubled after every miss up to max_prec.
+  /// First working precision; doubled after every miss up to max_prec (the
+  /// last attempt is made at max_prec exactly; a larger initial precision is
+  /// lowered to max_prec).
   long initial_prec = 0;    ///< 0: rel_goal_bits + 32
   long max_prec = 8192;
   /// Forwarded to acb_calc_integrate (0: Arb's defaults scaled with prec).
@@ -40,10 +42,14 @@ struct QuadratureOptions {
 /// needed). The ends are handled rigorously: the integral over the exact
 /// dyadic midpoints of the end enclosures is computed, and the radius of each
 /// end enclosure times a bound of |f| on it is added.
+/// f must be real on [a, b]; a == b gives exactly 0 without calling f.
 /// \post the true integral lies in the returned ball, which meets the goal.
 /// \throws BudgetExceeded when the goal is not met at max_prec ("could not
 ///         certify <what> to N bits within M bits of working precision;
-///         raise --max-prec"), InvalidArgument when a > b.
+///         raise --max-prec"), InvalidArgument when a > b, f is empty or an
+///         option is out of range (negative goal or initial_prec,
+///         max_prec < 2), DomainError when the enclosure proves the integral
+///         is not real. An exception thrown by f propagates unchanged.
 Ball integrate(const Integrand& f, const RealAlgebraic& a, const RealAlgebraic& b,
                const QuadratureOptions& opt = {});
 

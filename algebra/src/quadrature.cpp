@@ -1,0 +1,170 @@
+#include "uniparam/algebra/quadrature.hpp"
+
+#include <acb_calc.h>
+#include <arf.h>
+#include <mag.h>
+
+#include <algorithm>
+#include <exception>
+#include <string>
+
+#include "uniparam/core/error.hpp"
+
+namespace uniparam {
+namespace {
+
+/// RAII holders for the few Arb temporaries, so that an exception thrown by
+/// the integrand (rethrown below) leaks nothing.
+struct AcbVar {
+  acb_t v;
+  AcbVar() noexcept { acb_init(v); }
+  ~AcbVar() { acb_clear(v); }
+  AcbVar(const AcbVar&) = delete;
+  AcbVar& operator=(const AcbVar&) = delete;
+};
+struct MagVar {
+  mag_t v;
+  MagVar() noexcept { mag_init(v); }
+  ~MagVar() { mag_clear(v); }
+  MagVar(const MagVar&) = delete;
+  MagVar& operator=(const MagVar&) = delete;
+};
+
+/// What acb_calc_integrate hands back to the trampoline.
+struct Context {
+  const Integrand* f;
+  std::exception_ptr error;  ///< first exception thrown by *f, rethrown after the C call
+};
+
+}  // namespace
+}  // namespace uniparam
+
+extern "C" {
+/// acb_calc_func_t -> Integrand. No exception crosses the C frames: the first
+/// one is stored, and from then on every call answers an exact 0 without
+/// calling the integrand, so that Arb accepts every subinterval at once
+/// (indeterminate answers would make it bisect up to eval_limit); the
+/// enclosure of that run is discarded and integrate() rethrows.
+/// acb_calc_integrate only asks for order 0 (evaluate) and order 1 (evaluate
+/// and certify holomorphy); any other order gets an indeterminate answer.
+static int uniparam_quadrature_trampoline(acb_ptr out, const acb_t z, void* param, slong order,
+                                          slong prec) {
+  auto* ctx = static_cast<uniparam::Context*>(param);
+  if (ctx->error) {
+    acb_zero(out);
+    return 0;
+  }
+  if (order < 0 || order > 1) {
+    acb_indeterminate(out);
+    return 0;  // Arb reserves the return value; indeterminate is the answer
+  }
+  try {
+    (*ctx->f)(out, z, order == 1, prec);
+  } catch (...) {
+    ctx->error = std::current_exception();
+    acb_zero(out);
+  }
+  return 0;
+}
+}  // extern "C"
+
+namespace uniparam {
+namespace {
+
+/// Adds rad(end) * sup |f(end)| to the error of `res`: the integral over the
+/// piece between the true end and the midpoint of its enclosure `end`.
+void add_end_error(acb_t res, const Integrand& f, const Ball& end, long prec) {
+  const mag_struct* rad = arb_radref(end.get());
+  if (mag_is_zero(rad)) return;  // exact dyadic end: nothing to add, f not evaluated
+  AcbVar z, fz;
+  acb_set_arb(z.v, end.get());
+  f(fz.v, z.v, false, prec);  // exceptions propagate; the holders clean up
+  MagVar bound;
+  acb_get_mag(bound.v, fz.v);  // upper bound of |f| on the end ball (inf if not finite)
+  mag_mul(bound.v, bound.v, rad);
+  acb_add_error_mag(res, bound.v);
+}
+
+/// radius <= 2^-rel * |mid| (with a lower bound of |mid|), or radius <=
+/// 2^-abs when abs > 0; false for a non-finite ball.
+bool meets_goal(const Ball& r, const QuadratureOptions& opt) {
+  if (!r.is_finite()) return false;
+  const mag_struct* rad = arb_radref(r.get());
+  if (opt.abs_goal_bits > 0 && mag_cmp_2exp_si(rad, -opt.abs_goal_bits) <= 0) return true;
+  MagVar m;
+  arf_get_mag_lower(m.v, arb_midref(r.get()));
+  mag_mul_2exp_si(m.v, m.v, -opt.rel_goal_bits);
+  return mag_cmp(rad, m.v) <= 0;
+}
+
+std::string goal_text(const QuadratureOptions& opt) {
+  std::string s = std::to_string(opt.rel_goal_bits) + " bits";
+  if (opt.abs_goal_bits > 0) s += " (or absolute error 2^-" + std::to_string(opt.abs_goal_bits) + ")";
+  return s;
+}
+
+}  // namespace
+
+Ball integrate(const Integrand& f, const RealAlgebraic& a, const RealAlgebraic& b,
+               const QuadratureOptions& opt) {
+  if (!f) throw InvalidArgument("integrate: empty integrand");
+  if (opt.rel_goal_bits < 0 || opt.abs_goal_bits < 0)
+    throw InvalidArgument("integrate: accuracy goals must be non-negative");
+  if (opt.max_prec < 2) throw InvalidArgument("integrate: max_prec must be at least 2 bits");
+  if (opt.initial_prec < 0) throw InvalidArgument("integrate: initial_prec must be non-negative");
+  const int c = compare(a, b);
+  if (c > 0) throw InvalidArgument("integrate: lower end " + a.str() + " exceeds upper end " + b.str());
+  if (c == 0) return Ball(0L);
+
+  long start = opt.initial_prec > 0 ? opt.initial_prec : opt.rel_goal_bits + 32;
+  start = std::min(std::max(start, 2L), opt.max_prec);
+
+  acb_calc_integrate_opt_t arb_opt;
+  acb_calc_integrate_opt_init(arb_opt);
+  arb_opt->eval_limit = opt.eval_limit;    // 0: Arb's default 1000*prec + prec^2
+  arb_opt->depth_limit = opt.depth_limit;  // 0: Arb's default 2*prec
+  // deg_limit 0 (Arb's default, scaled with the goal), depth-first subdivision.
+
+  Ball last;
+  bool converged = false;
+  long prec = start;
+  for (;;) {
+    const Ball ea = a.to_ball(prec), eb = b.to_ball(prec);
+    AcbVar ma, mb, res;
+    arb_set_arf(acb_realref(ma.v), arb_midref(ea.get()));  // exact dyadic midpoints
+    arb_set_arf(acb_realref(mb.v), arb_midref(eb.get()));
+
+    // Relative goal for Arb: the working precision (>= rel_goal_bits + 32 by
+    // default, i.e. guard bits for the sum over subintervals). Absolute
+    // tolerance: 2^-prec, or 2^-(abs_goal_bits + 32 + growth) when an
+    // absolute goal is set, tightened with the precision so a retry helps.
+    long tol_bits = prec;
+    if (opt.abs_goal_bits > 0) tol_bits = std::min(prec, opt.abs_goal_bits + 32 + (prec - start));
+    MagVar tol;
+    mag_set_ui_2exp_si(tol.v, 1, -tol_bits);
+
+    Context ctx{&f, nullptr};
+    const int status =
+        acb_calc_integrate(res.v, uniparam_quadrature_trampoline, &ctx, ma.v, mb.v, prec, tol.v, arb_opt, prec);
+    if (ctx.error) std::rethrow_exception(ctx.error);
+    // The enclosure is valid whatever the status; NO_CONVERGENCE only means
+    // it may be wide, which the goal check below sees.
+    converged = status == ARB_CALC_SUCCESS;
+
+    add_end_error(res.v, f, ea, prec);
+    add_end_error(res.v, f, eb, prec);
+
+    if (!arb_contains_zero(acb_imagref(res.v)))
+      throw DomainError("integrate: " + opt.what + " is not real: the integrand is not real-valued on [" +
+                        a.str() + ", " + b.str() + "]");
+    last = Ball(acb_realref(res.v));
+    if (meets_goal(last, opt)) return last;
+    if (prec >= opt.max_prec) break;
+    prec = prec > opt.max_prec / 2 ? opt.max_prec : 2 * prec;
+  }
+  throw BudgetExceeded("could not certify " + opt.what + " to " + goal_text(opt) + " within " +
+                       std::to_string(prec) + " bits of working precision (last enclosure " + last.str(10) +
+                       (converged ? "" : ", quadrature did not converge") + "); raise --max-prec");
+}
+
+}  // namespace uniparam

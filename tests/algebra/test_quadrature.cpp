@@ -1,0 +1,427 @@
+// Tests of uniparam/algebra/quadrature.hpp against exact rational integrals
+// and independent Arb values (arb_const_pi, arb_atan, arb_log, arb_sqrt).
+#include <acb.h>
+#include <arb.h>
+#include <arf.h>
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <random>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "uniparam/algebra/algebraic.hpp"
+#include "uniparam/algebra/quadrature.hpp"
+#include "uniparam/core/error.hpp"
+
+namespace uniparam {
+namespace {
+
+long iterations(long base) {
+  const char* m = std::getenv("UNIPARAM_TEST_MULTIPLIER");
+  long k = m ? std::atol(m) : 1;
+  return base * (k > 0 ? k : 1);
+}
+
+Rational to_rational(const arf_t x) {
+  Rational q;
+  arf_get_fmpq(q.get(), x);
+  return q;
+}
+
+/// rad <= 2^-bits * |mid|, decided exactly on rationals (independent of the
+/// mag arithmetic used by the implementation).
+bool meets_rel(const Ball& r, long bits) {
+  if (!r.is_finite()) return false;
+  arf_t rad;
+  arf_init(rad);
+  arf_set_mag(rad, arb_radref(r.get()));
+  Rational rr = to_rational(rad);
+  arf_clear(rad);
+  Rational mid = to_rational(arb_midref(r.get()));
+  if (mid.sign() < 0) mid = -mid;
+  Integer p;
+  fmpz_one(p.get());
+  fmpz_mul_2exp(p.get(), p.get(), static_cast<ulong>(bits));
+  return rr * Rational(p) <= mid;
+}
+
+bool meets_abs(const Ball& r, long bits) {
+  return r.is_finite() && mag_cmp_2exp_si(arb_radref(r.get()), -bits) <= 0;
+}
+
+/// The balls share a point: the only way a correct enclosure and a correct
+/// reference value can relate.
+bool overlaps(const Ball& r, const arb_t ref) { return arb_overlaps(r.get(), ref); }
+
+/// p(t) = sum c[k] t^k by Horner; entire, so the ball evaluation certifies
+/// holomorphy by itself.
+Integrand poly_integrand(const std::vector<long>& c) {
+  return [c](acb_t out, const acb_t z, bool, long prec) {
+    acb_zero(out);
+    for (auto it = c.rbegin(); it != c.rend(); ++it) {
+      acb_mul(out, out, z, prec);
+      acb_add_si(out, out, *it, prec);
+    }
+  };
+}
+
+Rational power(const Rational& x, long e) {
+  Rational r(1);
+  for (long i = 0; i < e; ++i) r = r * x;
+  return r;
+}
+
+Rational exact_poly_integral(const std::vector<long>& c, const Rational& a, const Rational& b) {
+  Rational s(0);
+  for (std::size_t k = 0; k < c.size(); ++k) {
+    const long e = static_cast<long>(k) + 1;
+    s = s + Rational(c[k]) * (power(b, e) - power(a, e)) / Rational(e);
+  }
+  return s;
+}
+
+/// 1/(1+t^2): a rational function; inversion of a ball containing 0 gives a
+/// non-finite result, so poles are detected by the evaluation itself.
+void one_over_one_plus_square(acb_t out, const acb_t z, bool, long prec) {
+  acb_mul(out, z, z, prec);
+  acb_add_ui(out, out, 1, prec);
+  acb_inv(out, out, prec);
+}
+
+std::string str(const std::vector<long>& c) {
+  std::string s = "[";
+  for (long x : c) s += std::to_string(x) + " ";
+  return s + "]";
+}
+
+// ---------------------------------------------------------------------------
+
+TEST(Quadrature, PolynomialsAtRationalEndsContainExactIntegral) {
+  const char* seed_env = std::getenv("UNIPARAM_TEST_SEED");
+  const unsigned seed = seed_env ? static_cast<unsigned>(std::strtoul(seed_env, nullptr, 10)) : 20240611u;
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<long> coef(-9, 9), num(-30, 30), den(1, 12), deg(0, 7);
+  const long n = iterations(30);
+  for (long it = 0; it < n; ++it) {
+    std::vector<long> c(static_cast<std::size_t>(deg(rng)) + 1);
+    for (long& x : c) x = coef(rng);
+    Rational a(num(rng), den(rng)), b(num(rng), den(rng));
+    if (b < a) std::swap(a, b);
+    if (a == b) continue;
+    const Rational exact = exact_poly_integral(c, a, b);
+    QuadratureOptions opt;
+    opt.rel_goal_bits = (it % 2 == 0) ? 53 : 200;
+    if (exact.is_zero()) opt.abs_goal_bits = opt.rel_goal_bits;
+    SCOPED_TRACE("seed " + std::to_string(seed) + " iteration " + std::to_string(it) + " poly " + str(c) +
+                 " on [" + a.str() + ", " + b.str() + "] exact " + exact.str());
+    const Ball r = integrate(poly_integrand(c), a, b, opt);
+    EXPECT_TRUE(r.contains(exact)) << r.str(30);
+    if (exact.is_zero())
+      EXPECT_TRUE(meets_abs(r, opt.abs_goal_bits)) << r.str(30);
+    else
+      EXPECT_TRUE(meets_rel(r, opt.rel_goal_bits)) << r.str(30);
+  }
+}
+
+TEST(Quadrature, NonDyadicRationalEnds) {
+  // f = 1 on [1/3, 2/3]: both ends have a radius, the integral is 1/3.
+  {
+    QuadratureOptions opt;
+    const Ball r = integrate(poly_integrand({1}), Rational(1, 3), Rational(2, 3), opt);
+    EXPECT_TRUE(r.contains(Rational(1, 3))) << r.str(30);
+    EXPECT_TRUE(meets_rel(r, opt.rel_goal_bits));
+  }
+  // 1/t on [1/3, 3] = 2 log 3, checked against arb_log.
+  for (long bits : {53L, 200L}) {
+    QuadratureOptions opt;
+    opt.rel_goal_bits = bits;
+    Integrand inv = [](acb_t out, const acb_t z, bool, long prec) { acb_inv(out, z, prec); };
+    const Ball r = integrate(inv, Rational(1, 3), Rational(3), opt);
+    arb_t ref;
+    arb_init(ref);
+    arb_set_ui(ref, 9);
+    arb_log(ref, ref, 4 * bits);
+    EXPECT_TRUE(overlaps(r, ref)) << r.str(70);
+    EXPECT_TRUE(meets_rel(r, bits)) << r.str(70);
+    arb_clear(ref);
+  }
+}
+
+TEST(Quadrature, ArctanIntegralContainsQuarterPi) {
+  for (long bits : {53L, 200L}) {
+    QuadratureOptions opt;
+    opt.rel_goal_bits = bits;
+    long analytic_calls = 0, plain_calls = 0;
+    Integrand f = [&](acb_t out, const acb_t z, bool analytic, long prec) {
+      (analytic ? analytic_calls : plain_calls)++;
+      one_over_one_plus_square(out, z, analytic, prec);
+    };
+    const Ball r = integrate(f, Rational(0), Rational(1), opt);
+    arb_t pi4;
+    arb_init(pi4);
+    arb_const_pi(pi4, 4 * bits);
+    arb_mul_2exp_si(pi4, pi4, -2);
+    EXPECT_TRUE(overlaps(r, pi4)) << r.str(70);
+    EXPECT_TRUE(meets_rel(r, bits)) << r.str(70);
+    arb_clear(pi4);
+    // Arb's order 1 (Gauss-Legendre error bounds) and order 0 (direct
+    // evaluation) both reach the Integrand, as analytic = true / false.
+    EXPECT_GT(analytic_calls, 0);
+    EXPECT_GT(plain_calls, 0);
+  }
+}
+
+TEST(Quadrature, NearbyComplexPole) {
+  // 10^6 / (10^6 t^2 + 1) has poles at +-i/1000; its integral over [0, 1] is
+  // 1000 atan(1000).
+  Integrand f = [](acb_t out, const acb_t z, bool, long prec) {
+    acb_mul(out, z, z, prec);
+    acb_mul_ui(out, out, 1000000, prec);
+    acb_add_ui(out, out, 1, prec);
+    acb_inv(out, out, prec);
+    acb_mul_ui(out, out, 1000000, prec);
+  };
+  for (long bits : {53L, 200L}) {
+    QuadratureOptions opt;
+    opt.rel_goal_bits = bits;
+    const Ball r = integrate(f, Rational(0), Rational(1), opt);
+    arb_t ref;
+    arb_init(ref);
+    arb_set_ui(ref, 1000);
+    arb_atan(ref, ref, 4 * bits);
+    arb_mul_ui(ref, ref, 1000, 4 * bits);
+    EXPECT_TRUE(overlaps(r, ref)) << r.str(70);
+    EXPECT_TRUE(meets_rel(r, bits)) << r.str(70);
+    arb_clear(ref);
+  }
+}
+
+TEST(Quadrature, AlgebraicEnds) {
+  const RealAlgebraic half_sqrt2(Poly(std::vector<long>{-1, 0, 2}), Rational(0), Rational(1));  // sqrt(2)/2
+  const RealAlgebraic cbrt2(Poly(std::vector<long>{-2, 0, 0, 1}), Rational(1), Rational(2));    // 2^(1/3)
+  for (long bits : {53L, 200L}) {
+    QuadratureOptions opt;
+    opt.rel_goal_bits = bits;
+    // int_0^{sqrt(2)/2} t dt = 1/4
+    Ball r = integrate(poly_integrand({0, 1}), Rational(0), half_sqrt2, opt);
+    EXPECT_TRUE(r.contains(Rational(1, 4))) << r.str(70);
+    EXPECT_TRUE(meets_rel(r, bits));
+    // int_1^{2^(1/3)} 3 t^2 dt = 2 - 1 = 1
+    r = integrate(poly_integrand({0, 0, 3}), Rational(1), cbrt2, opt);
+    EXPECT_TRUE(r.contains(Rational(1))) << r.str(70);
+    EXPECT_TRUE(meets_rel(r, bits));
+    // int_{sqrt(2)/2}^{2^(1/3)} 1 dt = 2^(1/3) - sqrt(2)/2, against arb_root_ui/arb_sqrt
+    r = integrate(poly_integrand({1}), half_sqrt2, cbrt2, opt);
+    arb_t ref, s;
+    arb_init(ref);
+    arb_init(s);
+    arb_set_ui(ref, 2);
+    arb_root_ui(ref, ref, 3, 4 * bits);
+    arb_sqrt_ui(s, 2, 4 * bits);
+    arb_mul_2exp_si(s, s, -1);
+    arb_sub(ref, ref, s, 4 * bits);
+    EXPECT_TRUE(overlaps(r, ref)) << r.str(70);
+    EXPECT_TRUE(meets_rel(r, bits));
+    // int_0^{sqrt(2)/2} t^2 dt = sqrt(2)/12
+    r = integrate(poly_integrand({0, 0, 1}), Rational(0), half_sqrt2, opt);
+    arb_sqrt_ui(ref, 2, 4 * bits);
+    arb_div_ui(ref, ref, 12, 4 * bits);
+    EXPECT_TRUE(overlaps(r, ref)) << r.str(70);
+    EXPECT_TRUE(meets_rel(r, bits));
+    arb_clear(ref);
+    arb_clear(s);
+  }
+}
+
+TEST(Quadrature, KinkInsideIntervalNeverMissesTrueValue) {
+  // |3t - 1| / 3 = |t - 1/3|: not holomorphic at 1/3; acb_real_abs with the
+  // analytic flag answers indeterminate on balls containing 1/3.
+  // int_0^1 |t - 1/3| dt = (1/3)^2/2 + (2/3)^2/2 = 5/18.
+  Integrand f = [](acb_t out, const acb_t z, bool analytic, long prec) {
+    acb_mul_ui(out, z, 3, prec);
+    acb_sub_ui(out, out, 1, prec);
+    acb_real_abs(out, out, analytic ? 1 : 0, prec);
+    acb_div_ui(out, out, 3, prec);
+  };
+  for (long bits : {20L, 53L}) {
+    QuadratureOptions opt;
+    opt.rel_goal_bits = bits;
+    opt.max_prec = 1024;
+    try {
+      const Ball r = integrate(f, Rational(0), Rational(1), opt);
+      EXPECT_TRUE(r.contains(Rational(5, 18))) << r.str(30);
+      EXPECT_TRUE(meets_rel(r, bits)) << r.str(30);
+    } catch (const BudgetExceeded& e) {
+      SUCCEED() << e.what();  // allowed by the contract; a wrong ball is not
+    }
+  }
+  // Same with the kink at an algebraic end's neighbourhood: int_0^{sqrt(2)/2}.
+  // = 1/18 + (sqrt(2)/2 - 1/3)^2 / 2, checked with arb_sqrt.
+  const RealAlgebraic half_sqrt2(Poly(std::vector<long>{-1, 0, 2}), Rational(0), Rational(1));
+  QuadratureOptions opt;
+  opt.rel_goal_bits = 40;
+  opt.max_prec = 1024;
+  try {
+    const Ball r = integrate(f, Rational(0), half_sqrt2, opt);
+    arb_t ref, t;
+    arb_init(ref);
+    arb_init(t);
+    arb_sqrt_ui(ref, 2, 256);
+    arb_mul_2exp_si(ref, ref, -1);
+    arb_set_ui(t, 1);
+    arb_div_ui(t, t, 3, 256);
+    arb_sub(ref, ref, t, 256);
+    arb_mul(ref, ref, ref, 256);
+    arb_mul_2exp_si(ref, ref, -1);
+    arb_set_ui(t, 1);
+    arb_div_ui(t, t, 18, 256);
+    arb_add(ref, ref, t, 256);
+    EXPECT_TRUE(overlaps(r, ref)) << r.str(30);
+    EXPECT_TRUE(meets_rel(r, 40));
+    arb_clear(ref);
+    arb_clear(t);
+  } catch (const BudgetExceeded& e) {
+    SUCCEED() << e.what();
+  }
+}
+
+TEST(Quadrature, AbsoluteGoalForZeroIntegral) {
+  // int_{-1}^{1} t^3 dt = 0: only an absolute goal can be met.
+  QuadratureOptions opt;
+  opt.abs_goal_bits = 60;
+  const Ball r = integrate(poly_integrand({0, 0, 0, 1}), Rational(-1), Rational(1), opt);
+  EXPECT_TRUE(r.contains(Rational(0))) << r.str(30);
+  EXPECT_TRUE(meets_abs(r, 60)) << r.str(30);
+}
+
+TEST(Quadrature, BudgetExceededWhenMaxPrecIsTiny) {
+  std::set<long> precs;
+  Integrand f = [&](acb_t out, const acb_t z, bool analytic, long prec) {
+    precs.insert(prec);
+    one_over_one_plus_square(out, z, analytic, prec);
+  };
+  QuadratureOptions opt;
+  opt.rel_goal_bits = 53;
+  opt.max_prec = 24;
+  opt.what = "test arc length";
+  try {
+    integrate(f, Rational(0), Rational(1), opt);
+    FAIL() << "53 bits certified with 24 bits of working precision";
+  } catch (const BudgetExceeded& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("test arc length"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("53 bits"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("24 bits"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("--max-prec"), std::string::npos) << msg;
+  }
+  ASSERT_FALSE(precs.empty());
+  EXPECT_LE(*precs.rbegin(), 24);
+
+  // The precision doubles from initial_prec and the last attempt is made at
+  // exactly max_prec, never above.
+  precs.clear();
+  opt.rel_goal_bits = 100000;  // unreachable
+  opt.initial_prec = 40;
+  opt.max_prec = 200;
+  EXPECT_THROW(integrate(f, Rational(0), Rational(1), opt), BudgetExceeded);
+  EXPECT_EQ(*precs.begin(), 40);
+  EXPECT_EQ(*precs.rbegin(), 200);
+  EXPECT_TRUE(precs.count(80) && precs.count(160));
+}
+
+TEST(Quadrature, EvalLimitTooSmallIsBudgetNotWrongAnswer) {
+  Integrand f = [](acb_t out, const acb_t z, bool, long prec) {
+    acb_mul(out, z, z, prec);
+    acb_mul_ui(out, out, 1000000, prec);
+    acb_add_ui(out, out, 1, prec);
+    acb_inv(out, out, prec);
+    acb_mul_ui(out, out, 1000000, prec);
+  };
+  QuadratureOptions opt;
+  opt.eval_limit = 3;
+  opt.max_prec = 256;
+  EXPECT_THROW(integrate(f, Rational(0), Rational(1), opt), BudgetExceeded);
+}
+
+TEST(Quadrature, PoleOnTheSegmentIsBudgetNotAFiniteBall) {
+  // 1/(2t - 1) has a pole at 1/2 in [0, 1]: no enclosure can be finite.
+  Integrand f = [](acb_t out, const acb_t z, bool, long prec) {
+    acb_mul_2exp_si(out, z, 1);
+    acb_sub_ui(out, out, 1, prec);
+    acb_inv(out, out, prec);
+  };
+  QuadratureOptions opt;
+  opt.max_prec = 200;
+  EXPECT_THROW(integrate(f, Rational(0), Rational(1), opt), BudgetExceeded);
+}
+
+TEST(Quadrature, DegenerateAndReversedSegments) {
+  long calls = 0;
+  Integrand f = [&](acb_t out, const acb_t, bool, long) {
+    ++calls;
+    acb_indeterminate(out);
+  };
+  const Ball z = integrate(f, Rational(1, 3), Rational(1, 3));
+  EXPECT_TRUE(z.certainly_zero());
+  EXPECT_TRUE(z.is_exact());
+  // The same algebraic number from two isolating intervals: still exactly 0.
+  const RealAlgebraic x(Poly(std::vector<long>{-1, 0, 2}), Rational(0), Rational(1));
+  const RealAlgebraic y(Poly(std::vector<long>{-1, 0, 2}), Rational(1, 2), Rational(3, 4));
+  const Ball w = integrate(f, x, y);
+  EXPECT_TRUE(w.certainly_zero());
+  EXPECT_TRUE(w.is_exact());
+  EXPECT_EQ(calls, 0);
+  EXPECT_THROW(integrate(f, Rational(1), Rational(0)), InvalidArgument);
+  EXPECT_THROW(integrate(f, x, Rational(0)), InvalidArgument);
+}
+
+TEST(Quadrature, InvalidArguments) {
+  EXPECT_THROW(integrate(Integrand(), Rational(0), Rational(1)), InvalidArgument);
+  QuadratureOptions opt;
+  opt.max_prec = 1;
+  EXPECT_THROW(integrate(poly_integrand({1}), Rational(0), Rational(1), opt), InvalidArgument);
+  opt = QuadratureOptions();
+  opt.rel_goal_bits = -1;
+  EXPECT_THROW(integrate(poly_integrand({1}), Rational(0), Rational(1), opt), InvalidArgument);
+}
+
+TEST(Quadrature, IntegrandExceptionsCrossTheCCallback) {
+  long calls = 0, calls_after_throw = 0;
+  bool thrown = false;
+  Integrand f = [&](acb_t out, const acb_t z, bool analytic, long prec) {
+    if (thrown) ++calls_after_throw;
+    if (++calls == 5) {
+      thrown = true;
+      throw DomainError("pole of the test integrand");
+    }
+    one_over_one_plus_square(out, z, analytic, prec);
+  };
+  try {
+    integrate(f, Rational(0), Rational(1));
+    FAIL() << "exception swallowed";
+  } catch (const DomainError& e) {
+    EXPECT_STREQ(e.what(), "pole of the test integrand");
+  }
+  EXPECT_EQ(calls_after_throw, 0);
+
+  // An exception from the end-point bound (non-dyadic end) propagates too.
+  // g throws only on a thin real ball around 1/3: the end-point enclosure.
+  Integrand g = [](acb_t out, const acb_t z, bool analytic, long prec) {
+    const Rational third(1, 3);
+    if (!analytic && arb_is_zero(acb_imagref(z)) && arb_contains_fmpq(acb_realref(z), third.get()) &&
+        mag_cmp_2exp_si(arb_radref(acb_realref(z)), -20) < 0)
+      throw InvalidArgument("end point evaluation");
+    one_over_one_plus_square(out, z, analytic, prec);
+  };
+  EXPECT_THROW(integrate(g, Rational(0), Rational(1, 3)), InvalidArgument);
+}
+
+TEST(Quadrature, NonRealIntegrandIsDomainError) {
+  Integrand f = [](acb_t out, const acb_t, bool, long) { acb_onei(out); };
+  EXPECT_THROW(integrate(f, Rational(0), Rational(1)), DomainError);
+}
+
+}  // namespace
+}  // namespace uniparam
