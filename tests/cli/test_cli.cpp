@@ -6,7 +6,7 @@
 #include "support/run.hpp"
 #include "uniparam/uniparam.hpp"
 
-using uniparam::testing::run_uniparam;
+using uniparam::test_support::run_uniparam;
 
 namespace {
 

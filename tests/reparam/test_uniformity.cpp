@@ -184,15 +184,15 @@ TEST(Uniformity, OptionsAreValidated) {
 // original and of the exactly composed curve must overlap.
 TEST(UniformityProperty, MeanIsInvariantUnderMoebiusReparameterization) {
   std::mt19937_64 rng(20261122);
-  const int iters = testing::iterations(12);
+  const int iters = test_support::iterations(12);
   std::uniform_int_distribution<long> ad(1, 9);
   for (int it = 0; it < iters; ++it) {
     const long deg = 2 + it % 4;
     std::vector<RatFunc> comps;
     for (int k = 0; k < 2 + it % 2; ++k) {
-      Poly num = testing::random_poly(rng, deg, 9);
+      Poly num = test_support::random_poly(rng, deg, 9);
       // denominators positive on [0, 1]: 10 + t^2 * small
-      Poly den = Poly(20) + testing::random_poly(rng, 1, 3) * Poly::t();
+      Poly den = Poly(20) + test_support::random_poly(rng, 1, 3) * Poly::t();
       comps.emplace_back(num, den);
     }
     Curve c(comps);
@@ -202,7 +202,7 @@ TEST(UniformityProperty, MeanIsInvariantUnderMoebiusReparameterization) {
     RatFunc one_minus_a(Rational(1) - alpha), a(alpha);
     RatFunc r = one_minus_a * s / (one_minus_a * s + a * (RatFunc(1) - s));
     std::vector<RatFunc> composed;
-    for (const auto& x : comps) composed.push_back(testing::compose(x, r));
+    for (const auto& x : comps) composed.push_back(test_support::compose(x, r));
     Curve cr(composed);
     for (auto kind : {SpeedKind::Angular, SpeedKind::Parametric}) {
       auto u0 = uniformity(c, kind), u1 = uniformity(cr, kind);

@@ -10,7 +10,7 @@
 #include "uniparam/core/poly.hpp"
 #include "uniparam/core/ratfunc.hpp"
 
-namespace uniparam::testing {
+namespace uniparam::test_support {
 
 /// Iteration count for property tests: UNIPARAM_TEST_ITERS or the default.
 inline int iterations(int dflt) {
@@ -37,4 +37,4 @@ inline RatFunc compose(const RatFunc& f, const RatFunc& r) {
   return poly_at(f.num()) / poly_at(f.den());
 }
 
-}  // namespace uniparam::testing
+}  // namespace uniparam::test_support

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-namespace uniparam::testing {
+namespace uniparam::test_support {
 
 struct RunResult {
   int exit_code = -1;
@@ -50,4 +50,4 @@ inline RunResult run_uniparam(const std::vector<std::string>& args) {
   return r;
 }
 
-}  // namespace uniparam::testing
+}  // namespace uniparam::test_support
