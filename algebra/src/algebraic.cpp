@@ -1,0 +1,206 @@
+// Real algebraic numbers: exact rationals or a simple root of a squarefree
+// integer polynomial in an isolating interval, refined on demand.
+#include "uniparam/algebra/algebraic.hpp"
+
+#include <arb.h>
+#include <arb_fmpz_poly.h>
+#include <mag.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "root_refine.hpp"
+#include "uniparam/core/decimal.hpp"
+#include "uniparam/core/error.hpp"
+
+namespace uniparam {
+namespace {
+
+using detail::exact_sign;
+using detail::floor_log2;
+
+/// Largest refinement (bits) any loop here asks for before giving up.
+constexpr long kMaxBits = 1L << 20;
+
+/// d*t - n for q = n/d (primitive, positive leading coefficient).
+Poly linear_poly(const Rational& q) { return Poly(std::vector<Integer>{Integer(0) - q.num(), q.den()}); }
+
+Rational abs(const Rational& x) { return x.sign() < 0 ? -x : x; }
+
+/// Bits b with hi - lo <= 2^-b already (a starting point for refinement).
+long current_bits(const RealAlgebraic& x) {
+  if (x.is_rational()) return kMaxBits;
+  return -floor_log2(x.hi() - x.lo());
+}
+
+/// Sign of x - q, exact.
+int compare_rational(const RealAlgebraic& x, const Rational& q) {
+  if (x.is_rational()) {
+    const Rational& v = x.rational();
+    return v < q ? -1 : (q < v ? 1 : 0);
+  }
+  if (q <= x.lo()) return 1;  // x > lo >= q
+  if (x.hi() <= q) return -1;
+  const int s = exact_sign(x.poly(), q);
+  if (s == 0) return 0;  // unreachable for an irrational x
+  // Same sign as at lo: the only root of poly in (lo, hi) lies in (q, hi).
+  return s == exact_sign(x.poly(), x.lo()) ? 1 : -1;
+}
+
+}  // namespace
+
+RealAlgebraic::RealAlgebraic(const Rational& q) : poly_(linear_poly(q)), lo_(q), hi_(q) {}
+
+RealAlgebraic::RealAlgebraic(const IsolatedRoot& r) {
+  if (r.is_exact()) {
+    poly_ = linear_poly(r.lo);
+    lo_ = hi_ = r.lo;
+    return;
+  }
+  if (!(r.lo < r.hi)) throw InvalidArgument("isolated root with empty interval [" + r.lo.str() + ", " + r.hi.str() + "]");
+  Poly f = r.factor.primitive();
+  if (f.degree() < 1) throw InvalidArgument("isolated root of a constant polynomial");
+  const int sl = exact_sign(f, r.lo), sh = exact_sign(f, r.hi);
+  if (sl == 0 || sh == 0 || sl == sh)
+    throw InvalidArgument("(" + r.lo.str() + ", " + r.hi.str() + ") is not an isolating interval of " + f.str());
+  if (f.degree() == 1) {  // rational after all: keep it exact
+    const Rational q = -Rational(f.coeff(0)) / Rational(f.coeff(1));
+    poly_ = linear_poly(q);
+    lo_ = hi_ = q;
+    return;
+  }
+  poly_ = std::move(f);
+  lo_ = r.lo;
+  hi_ = r.hi;
+}
+
+RealAlgebraic::RealAlgebraic(const Poly& squarefree, const Rational& lo, const Rational& hi) {
+  if (squarefree.degree() < 1) throw InvalidArgument("an algebraic number needs a polynomial of degree >= 1");
+  if (!(lo < hi)) throw InvalidArgument("isolating interval (" + lo.str() + ", " + hi.str() + ") is empty");
+  if (gcd(squarefree, squarefree.derivative()).degree() > 0)
+    throw InvalidArgument(squarefree.str() + " is not squarefree");
+  if (exact_sign(squarefree, lo) == 0 || exact_sign(squarefree, hi) == 0)
+    throw InvalidArgument("an end of (" + lo.str() + ", " + hi.str() + ") is a root of " + squarefree.str());
+  std::vector<IsolatedRoot> roots = isolate_real_roots(squarefree, lo, hi);
+  if (roots.size() != 1)
+    throw InvalidArgument("(" + lo.str() + ", " + hi.str() + ") holds " + std::to_string(roots.size()) +
+                          " roots of " + squarefree.str() + ", not exactly one");
+  const IsolatedRoot& r = roots.front();
+  poly_ = r.is_exact() ? linear_poly(r.lo) : r.factor;  // the isolator makes rational roots exact
+  lo_ = r.lo;
+  hi_ = r.hi;
+}
+
+const Rational& RealAlgebraic::rational() const {
+  if (!is_rational()) throw InvalidArgument("RealAlgebraic::rational() on the irrational " + str());
+  return lo_;
+}
+
+void RealAlgebraic::refine(long bits) const {
+  if (is_rational()) return;
+  // An exact hit (impossible for an irrational root) would leave lo == hi,
+  // still a correct value.
+  detail::refine_isolating_interval(poly_, lo_, hi_, bits);
+}
+
+Ball RealAlgebraic::to_ball(long prec) const {
+  if (prec < 1) prec = 1;
+  for (long extra = 4; extra <= kMaxBits; extra *= 2) {
+    Ball b;
+    if (is_rational()) {
+      b = Ball(lo_, prec + extra);
+    } else {
+      refine(prec + extra);
+      b = detail::interval_ball(lo_, hi_, prec + 2 * extra + 16);
+    }
+    // Check the contract rad <= 2^-prec * max(1, |x|) on the ball itself.
+    mag_t bound;
+    mag_init(bound);
+    arb_get_mag_lower(bound, b.get());
+    if (mag_cmp_2exp_si(bound, 0) < 0) mag_one(bound);
+    mag_mul_2exp_si(bound, bound, -prec);
+    const bool ok = mag_cmp(arb_radref(b.get()), bound) <= 0;
+    mag_clear(bound);
+    if (ok) return b;
+  }
+  throw BudgetExceeded("could not enclose " + str() + " to " + std::to_string(prec) + " bits");
+}
+
+int RealAlgebraic::sign() const {
+  const int s = compare_rational(*this, Rational(0));
+  // 0 separates the interval: keep the half holding the number (0 is not a
+  // root of poly_ there, since the number is irrational).
+  if (!is_rational() && lo_.sign() < 0 && hi_.sign() > 0) {
+    if (s > 0) lo_ = Rational(0);
+    else hi_ = Rational(0);
+  }
+  return s;
+}
+
+std::string RealAlgebraic::decimal(long digits) const {
+  if (digits < 1) throw InvalidArgument("decimal: at least one significant digit is needed");
+  if (is_rational()) return decimal_string(lo_, digits);
+  sign();  // now 0 is not in [lo, hi] (0 may be an end)
+  for (long b = std::max(8L, current_bits(*this)); lo_.is_zero() || hi_.is_zero(); b *= 2) {
+    if (b > kMaxBits) throw BudgetExceeded("could not bound " + str() + " away from 0");
+    refine(b);
+  }
+  if (is_rational()) return decimal_string(lo_, digits);
+  const Rational m = std::min(abs(lo_), abs(hi_));
+  // width <= m 10^-digits / 16: with the rounding of the midpoint the
+  // printed value is within one unit of its last digit.
+  refine(-floor_log2(m) + digits * 3322 / 1000 + 6);
+  if (is_rational()) return decimal_string(lo_, digits);
+  return decimal_string((lo_ + hi_) * Rational(1, 2), digits);
+}
+
+std::string RealAlgebraic::str() const {
+  if (is_rational()) return lo_.str();
+  return "root of " + poly_.str() + " in [" + lo_.str() + ", " + hi_.str() + "]";
+}
+
+int compare(const RealAlgebraic& x, const RealAlgebraic& y) {
+  if (x.is_rational()) return -compare_rational(y, x.rational());
+  if (y.is_rational()) return compare_rational(x, y.rational());
+  if (x.hi() <= y.lo()) return -1;
+  if (y.hi() <= x.lo()) return 1;
+  // Overlap: x == y iff gcd(x.poly, y.poly) has a root in the intersection
+  // (L, H). Its ends are non-roots of one of the polys, hence of g, and g has
+  // at most one (simple) root there: a sign change decides.
+  const Rational L = std::max(x.lo(), y.lo()), H = std::min(x.hi(), y.hi());
+  const Poly g = gcd(x.poly(), y.poly());
+  if (g.degree() >= 1 && exact_sign(g, L) != exact_sign(g, H)) return 0;
+  // Distinct: refine both until the intervals separate.
+  for (long b = std::max(8L, std::max(current_bits(x), current_bits(y)) + 1); b <= kMaxBits; b *= 2) {
+    x.refine(b);
+    y.refine(b);
+    if (x.is_rational() || y.is_rational()) return compare(x, y);
+    if (x.hi() <= y.lo()) return -1;
+    if (y.hi() <= x.lo()) return 1;
+  }
+  throw BudgetExceeded("could not separate " + x.str() + " and " + y.str() + " within " + std::to_string(kMaxBits) +
+                       " bits");
+}
+
+int sign_at(const Poly& p, const RealAlgebraic& x) {
+  if (p.is_zero()) return 0;
+  if (x.is_rational()) return exact_sign(p, x.rational());
+  const Poly g = gcd(p, x.poly());  // divides x.poly: lo, hi are not its roots
+  if (g.degree() >= 1 && exact_sign(g, x.lo()) != exact_sign(g, x.hi())) return 0;
+  // p(x) != 0: evaluate on shrinking enclosures until the sign is certain.
+  for (long b = std::max(64L, current_bits(x)); b <= kMaxBits; b *= 2) {
+    x.refine(b);
+    if (x.is_rational()) return exact_sign(p, x.rational());
+    const long prec = b + 32 + p.max_bits();
+    const Ball xb = detail::interval_ball(x.lo(), x.hi(), prec);
+    Ball v;
+    arb_fmpz_poly_evaluate_arb(v.get(), p.get(), xb.get(), prec);
+    if (v.certainly_positive()) return 1;
+    if (v.certainly_negative()) return -1;
+  }
+  throw BudgetExceeded("could not certify the sign of " + p.str() + " at " + x.str() + " within " +
+                       std::to_string(kMaxBits) + " bits");
+}
+
+}  // namespace uniparam

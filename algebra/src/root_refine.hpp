@@ -1,0 +1,39 @@
+// Private helpers of the algebra layer (not installed): exact signs of integer
+// polynomials at rational points and certified refinement of an isolating
+// interval. Implemented in real_roots.cpp; used by algebraic.cpp and
+// deflation.cpp.
+#pragma once
+
+#include "uniparam/core/ball.hpp"
+#include "uniparam/core/number.hpp"
+#include "uniparam/core/poly.hpp"
+
+namespace uniparam::detail {
+
+/// Exact sign (-1, 0, 1) of f(x). Evaluates in Arb at increasing precision
+/// and falls back to exact rational evaluation when the ball contains 0.
+int exact_sign(const Poly& f, const Rational& x);
+
+/// Refines an isolating interval of a simple root.
+/// \pre f squarefree (or at least: the root in (lo, hi) is simple), lo < hi,
+///      f(lo) != 0, f(hi) != 0 with opposite signs, exactly one root of f in
+///      (lo, hi).
+/// \post (lo, hi) only shrinks and keeps all these properties, and
+///       hi - lo <= 2^-bits; or an exact (dyadic) root r was met, in which
+///       case lo = hi = r and the function returns true.
+/// Newton steps in Arb propose a subinterval (quadratic interval refinement,
+/// Abbott), every accepted bracket is certified by exact sign tests;
+/// bisection is the fallback. Throws BudgetExceeded after a generous
+/// iteration cap.
+bool refine_isolating_interval(const Poly& f, Rational& lo, Rational& hi, long bits);
+
+/// A ball containing the closed interval [lo, hi] (working precision prec).
+Ball interval_ball(const Rational& lo, const Rational& hi, long prec);
+
+/// 2^e as an exact rational (e may be negative).
+Rational pow2(long e);
+
+/// floor(log2(w)) for a rational w > 0 (InvalidArgument otherwise).
+long floor_log2(const Rational& w);
+
+}  // namespace uniparam::detail
