@@ -24,6 +24,7 @@ Options read_options(const Args& a) {
 const std::vector<Command>& commands() {
   static const std::vector<Command> table = {
       {uniformity_spec(), &run_uniformity},
+      {radical_spec(), &run_radical},
   };
   return table;
 }

@@ -24,5 +24,9 @@ Options read_options(const Args& a);
 // One pair per command, defined in cmd_<name>.cpp.
 CommandSpec uniformity_spec();
 int run_uniformity(int argc, char** argv);
+CommandSpec radical_spec();
+int run_radical(int argc, char** argv);
+/// Parses --format text|latex|maple.
+Format parse_format(const std::string& s);
 
 }  // namespace uniparam::cli

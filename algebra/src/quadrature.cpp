@@ -121,7 +121,6 @@ Ball integrate(const Integrand& f, const RealAlgebraic& a, const RealAlgebraic& 
 
   acb_calc_integrate_opt_t arb_opt;
   acb_calc_integrate_opt_init(arb_opt);
-  arb_opt->eval_limit = opt.eval_limit;    // 0: Arb's default 1000*prec + prec^2
   arb_opt->depth_limit = opt.depth_limit;  // 0: Arb's default 2*prec
   // deg_limit 0 (Arb's default, scaled with the goal), depth-first subdivision.
 
@@ -129,6 +128,9 @@ Ball integrate(const Integrand& f, const RealAlgebraic& a, const RealAlgebraic& 
   bool converged = false;
   long prec = start;
   for (;;) {
+    // eval_limit 0: Arb's default (1000 prec + prec^2), capped so that one
+    // hopeless attempt at thousands of bits cannot run for hours.
+    arb_opt->eval_limit = opt.eval_limit > 0 ? opt.eval_limit : std::min(1000 * prec + prec * prec, 2000000L);
     const Ball ea = a.to_ball(prec), eb = b.to_ball(prec);
     AcbVar ma, mb, res;
     arb_set_arf(acb_realref(ma.v), arb_midref(ea.get()));  // exact dyadic midpoints

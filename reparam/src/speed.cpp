@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "uniparam/algebra/deflation.hpp"
 #include "uniparam/algebra/real_roots.hpp"
 #include "uniparam/core/error.hpp"
 
@@ -26,6 +27,19 @@ Poly gcd_all(const std::vector<Poly>& ps) {
 }  // namespace
 
 Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
+  for (const auto& x : c.components()) {
+    Component k;
+    Poly n = x.num(), q = x.den();
+    k.N = BallPoly(n);
+    k.N1 = BallPoly(n.derivative());
+    k.N2 = BallPoly(n.derivative().derivative());
+    k.Q = BallPoly(q);
+    k.Q1 = BallPoly(q.derivative());
+    k.Q2 = BallPoly(q.derivative().derivative());
+    k.d1 = x.derivative();
+    k.d2 = k.d1.derivative();
+    comp_.push_back(std::move(k));
+  }
   const auto& X = c.derivative_numerators();
   std::vector<Poly> N;
   if (kind == SpeedKind::Angular) {
@@ -75,30 +89,114 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
     g_h_.emplace_back(f.factor);
     g_m_.push_back(f.multiplicity);
     for (const auto& r : isolate_real_roots(f.factor, Rational(0), Rational(1)))
-      zeros_.push_back(SpeedZero{RealAlgebraic(r), f.multiplicity});
+      zeros_.push_back(SpeedZero{RealAlgebraic(r), f.multiplicity, g_h_.size() - 1});
   }
   std::sort(zeros_.begin(), zeros_.end(), [](const SpeedZero& a, const SpeedZero& b) { return a.t < b.t; });
+  for (std::size_t i = 0; i < zeros_.size(); ++i) zeros_[i].index = i;
   for (const auto& k : K_) K_b_.emplace_back(k);
 }
 
-int Speed::piece_sign(const RealAlgebraic& a, const RealAlgebraic& b) const {
-  if (!(a < b)) throw DomainError("piece_sign needs a < b");
+Speed::PieceSigns Speed::piece_signs(const RealAlgebraic& a, const RealAlgebraic& b) const {
+  if (!(a < b)) throw DomainError("piece_signs needs a < b");
   // A rational strictly between a and b.
-  a.refine(8);
-  b.refine(8);
-  long bits = 8;
-  while (!(a.hi() < b.lo())) {
-    bits *= 2;
-    if (bits > 1 << 16) throw BudgetExceeded("could not separate two piece ends");
+  Rational q;
+  if (a.is_rational() && b.is_rational()) {
+    q = (a.rational() + b.rational()) * Rational(1, 2);
+  } else {
+    long bits = 8;
     a.refine(bits);
     b.refine(bits);
+    while (!(a.hi() < b.lo())) {
+      bits *= 2;
+      if (bits > (1L << 16)) throw BudgetExceeded("could not separate two piece ends");
+      a.refine(bits);
+      b.refine(bits);
+    }
+    q = (a.hi() + b.lo()) * Rational(1, 2);
   }
-  Rational q = (a.hi() + b.lo()) * Rational(1, 2);
-  if (a.is_rational() && b.is_rational()) q = (a.rational() + b.rational()) * Rational(1, 2);
-  int sg = zero_ ? 1 : g_.sign_at(q);
-  int sd = D_.sign_at(q);
-  if (sg == 0 || sd == 0) throw DomainError("piece_sign: the speed vanishes inside the piece");
-  return sg * sd;
+  PieceSigns p;
+  if (zero_) return p;
+  const int sg = g_.sign_at(q), sd = D_.sign_at(q);
+  if (sg == 0 || sd == 0) throw DomainError("piece_signs: the speed vanishes inside the piece");
+  p.g = sg * sd;
+  if (kind_ == SpeedKind::Angular && comp_.size() == 2) {
+    Rational e = comp_[0].d1(q) * comp_[1].d2(q) - comp_[0].d2(q) * comp_[1].d1(q);
+    if (e.sign() == 0) throw DomainError("piece_signs: the speed vanishes inside the piece");
+    p.component = e.sign();
+  }
+  return p;
+}
+
+void Speed::eval_derivatives(acb_ptr d1, acb_ptr d2, const acb_t z, long prec) const {
+  acb_t n, n1, q, q1, a, v;
+  acb_init(n);
+  acb_init(n1);
+  acb_init(q);
+  acb_init(q1);
+  acb_init(a);
+  acb_init(v);
+  for (std::size_t i = 0; i < comp_.size(); ++i) {
+    const Component& k = comp_[i];
+    k.N.evaluate(n, z, prec);
+    k.N1.evaluate(n1, z, prec);
+    k.Q.evaluate(q, z, prec);
+    k.Q1.evaluate(q1, z, prec);
+    // A = N'Q - NQ', x' = A / Q^2
+    acb_mul(a, n1, q, prec);
+    acb_submul(a, n, q1, prec);
+    acb_mul(v, q, q, prec);
+    acb_div(d1 + i, a, v, prec);
+    if (d2) {
+      // x'' = (N''Q - NQ'') / Q^2 - 2 Q' A / Q^3
+      acb_t n2, q2, w;
+      acb_init(n2);
+      acb_init(q2);
+      acb_init(w);
+      k.N2.evaluate(n2, z, prec);
+      k.Q2.evaluate(q2, z, prec);
+      acb_mul(w, n2, q, prec);
+      acb_submul(w, n, q2, prec);
+      acb_div(w, w, v, prec);
+      acb_mul(n2, q1, a, prec);
+      acb_mul_2exp_si(n2, n2, 1);
+      acb_mul(v, v, q, prec);
+      acb_div(n2, n2, v, prec);
+      acb_sub(d2 + i, w, n2, prec);
+      acb_clear(n2);
+      acb_clear(q2);
+      acb_clear(w);
+    }
+  }
+  acb_clear(n);
+  acb_clear(n1);
+  acb_clear(q);
+  acb_clear(q1);
+  acb_clear(a);
+  acb_clear(v);
+}
+
+void Speed::eval_components(acb_t S, acb_t F, const acb_t z, long prec) const {
+  const slong n = static_cast<slong>(comp_.size());
+  acb_ptr d1 = _acb_vec_init(n);
+  acb_ptr d2 = kind_ == SpeedKind::Angular ? _acb_vec_init(n) : nullptr;
+  eval_derivatives(d1, d2, z, prec);
+  acb_zero(S);
+  for (slong i = 0; i < n; ++i) acb_addmul(S, d1 + i, d1 + i, prec);
+  if (d2) {
+    acb_t e;
+    acb_init(e);
+    acb_zero(F);
+    for (slong i = 0; i < n; ++i)
+      for (slong j = i + 1; j < n; ++j) {
+        acb_mul(e, d1 + i, d2 + j, prec);
+        acb_submul(e, d2 + i, d1 + j, prec);
+        if (n == 2) acb_set(F, e);
+        else acb_addmul(F, e, e, prec);
+      }
+    acb_clear(e);
+    _acb_vec_clear(d2, n);
+  }
+  _acb_vec_clear(d1, n);
 }
 
 void Speed::eval_g(acb_t out, const acb_t z, long prec) const {
@@ -146,29 +244,74 @@ void Speed::eval_cofactor(acb_t out, const acb_t z, bool analytic, long prec) co
   acb_clear(d);
 }
 
-void Speed::eval(acb_t out, const acb_t z, int s, bool analytic, long prec) const {
+void Speed::eval(acb_t out, const acb_t z, const PieceSigns& p, bool analytic, long prec) const {
   if (zero_) { acb_zero(out); return; }
-  acb_t g;
-  acb_init(g);
-  eval_g(g, z, prec);
-  eval_cofactor(out, z, analytic, prec);
-  acb_mul(out, out, g, prec);
-  if (s < 0) acb_neg(out, out);
-  acb_clear(g);
+  acb_t S, F;
+  acb_init(S);
+  acb_init(F);
+  eval_components(S, F, z, prec);
+  if (kind_ == SpeedKind::Angular) {
+    if (comp_.size() == 2) {
+      acb_div(out, F, S, prec);  // E / S: no square root in the plane
+      if (p.component < 0) acb_neg(out, out);
+    } else {
+      acb_sqrt_analytic(F, F, analytic, prec);
+      acb_div(out, F, S, prec);
+    }
+  } else {
+    acb_sqrt_analytic(out, S, analytic, prec);
+  }
+  if (!acb_is_finite(out)) {
+    // Near a zero of sigma the square root's branch point is in reach:
+    // the factored form s g R is analytic there.
+    acb_t g;
+    acb_init(g);
+    eval_g(g, z, prec);
+    eval_cofactor(out, z, analytic, prec);
+    acb_mul(out, out, g, prec);
+    if (p.g < 0) acb_neg(out, out);
+    acb_clear(g);
+  }
+  acb_clear(S);
+  acb_clear(F);
 }
 
 void Speed::eval_squared(acb_t out, const acb_t z, long prec) const {
   if (zero_) { acb_zero(out); return; }
-  acb_t g, v, d, s;
-  acb_init(g);
+  acb_t S, F;
+  acb_init(S);
+  acb_init(F);
+  eval_components(S, F, z, prec);
+  if (kind_ == SpeedKind::Angular) {
+    if (comp_.size() == 2) acb_mul(F, F, F, prec);
+    acb_div(out, F, S, prec);
+    acb_div(out, out, S, prec);
+    if (!acb_is_finite(out)) {
+      // p'(z) = 0 in reach (a cusp): F / S^2 is 0/0 there, while the
+      // factored form g^2 sum K^2 / D^2 has the common factor cancelled.
+      acb_t g;
+      acb_init(g);
+      eval_g(g, z, prec);
+      eval_sumK2_over_D2(out, z, prec);
+      acb_mul(out, out, g, prec);
+      acb_mul(out, out, g, prec);
+      acb_clear(g);
+    }
+  } else {
+    acb_set(out, S);
+  }
+  acb_clear(S);
+  acb_clear(F);
+}
+
+void Speed::eval_sumK2_over_D2(acb_t out, const acb_t z, long prec) const {
+  acb_t v, d;
   acb_init(v);
   acb_init(d);
-  acb_init(s);
-  eval_g(g, z, prec);
-  acb_zero(s);
+  acb_zero(out);
   for (const auto& k : K_b_) {
     k.evaluate(v, z, prec);
-    acb_addmul(s, v, v, prec);
+    acb_addmul(out, v, v, prec);
   }
   if (kind_ == SpeedKind::Angular) {
     acb_zero(d);
@@ -179,14 +322,81 @@ void Speed::eval_squared(acb_t out, const acb_t z, long prec) const {
   } else {
     W_b_.evaluate(d, z, prec);
   }
-  acb_mul(out, g, g, prec);
-  acb_mul(out, out, s, prec);
   acb_div(out, out, d, prec);
   acb_div(out, out, d, prec);
-  acb_clear(g);
   acb_clear(v);
   acb_clear(d);
-  acb_clear(s);
+}
+
+void Speed::eval_squared_over_zero(acb_t out, const acb_t z, const SpeedZero& zero, int side, int power,
+                                   long prec) const {
+  if (zero_) { acb_zero(out); return; }
+  const std::size_t j = zero.factor;
+  const int mu = zero.multiplicity;
+  if (power < 0 || power > 2 * mu) throw InvalidArgument("eval_squared_over_zero: power out of range");
+  {
+    // Away from gamma (relative to the ball's size) dividing is harmless:
+    // sigma^2 from the components, divided by (side (z - gamma))^power.
+    Ball gb = zero.t.to_ball(prec + 16);
+    acb_t w;
+    acb_init(w);
+    acb_sub_arb(w, z, gb.get(), prec);
+    if (side < 0) acb_neg(w, w);
+    mag_t lo, rad;
+    mag_init(lo);
+    mag_init(rad);
+    acb_get_mag_lower(lo, w);
+    mag_hypot(rad, arb_radref(acb_realref(w)), arb_radref(acb_imagref(w)));
+    mag_mul_2exp_si(rad, rad, 3);
+    const bool far = mag_cmp(lo, rad) > 0;
+    mag_clear(lo);
+    mag_clear(rad);
+    if (far) {
+      eval_squared(out, z, prec);
+      acb_pow_ui(w, w, static_cast<ulong>(power), prec);
+      acb_div(out, out, w, prec);
+      acb_clear(w);
+      return;
+    }
+    acb_clear(w);
+  }
+  if (zero.index >= zeros_.size() || zeros_[zero.index].factor != j)
+    throw InvalidArgument("eval_squared_over_zero: not a zero of this speed");
+  auto key = std::make_pair(zero.index, prec);
+  auto it = deflated_.find(key);
+  if (it == deflated_.end()) {
+    if (deflated_.size() > 64) deflated_.clear();
+    it = deflated_.emplace(key, deflate(g_sqf_.factors[j].factor, zero.t, 1, prec + 16)).first;
+  }
+  acb_t w, h, gamma;
+  acb_init(w);
+  acb_init(h);
+  acb_init(gamma);
+  // (side (z - gamma))^(2 mu - power)
+  Ball gb = zero.t.to_ball(prec + 16);
+  acb_set_arb(gamma, gb.get());
+  acb_sub(w, z, gamma, prec);
+  if (side < 0) acb_neg(w, w);
+  acb_pow_ui(w, w, static_cast<ulong>(2 * mu - power), prec);
+  // h_gamma(z)^(2 mu)
+  it->second.evaluate(h, z, prec);
+  acb_pow_ui(h, h, static_cast<ulong>(2 * mu), prec);
+  acb_mul(w, w, h, prec);
+  // (c g_1(z))^2 with g_1 the other squarefree factors
+  acb_set_fmpz(h, g_content_.get());
+  for (std::size_t i = 0; i < g_h_.size(); ++i) {
+    if (i == j) continue;
+    g_h_[i].evaluate(gamma, z, prec);
+    acb_pow_ui(gamma, gamma, static_cast<ulong>(g_m_[i]), prec);
+    acb_mul(h, h, gamma, prec);
+  }
+  acb_mul(w, w, h, prec);
+  acb_mul(w, w, h, prec);
+  eval_sumK2_over_D2(out, z, prec);
+  acb_mul(out, out, w, prec);
+  acb_clear(w);
+  acb_clear(h);
+  acb_clear(gamma);
 }
 
 }  // namespace uniparam

@@ -28,7 +28,7 @@ Ball integrate_speed(const Speed& s, const RealAlgebraic& a, const RealAlgebraic
     if (a < z.t && z.t < b) ends.push_back(z.t);
   ends.push_back(b);
   for (std::size_t i = 0; i + 1 < ends.size(); ++i) {
-    const int sign = s.piece_sign(ends[i], ends[i + 1]);
+    const Speed::PieceSigns sign = s.piece_signs(ends[i], ends[i + 1]);
     Integrand f = [&s, sign](acb_t out, const acb_t z, bool analytic, long prec) {
       s.eval(out, z, sign, analytic, prec);
     };
@@ -53,14 +53,22 @@ Ball integrate_speed_squared(const Speed& s, const RealAlgebraic& a, const RealA
   return integrate(f, a, b, qo);
 }
 
-UniformityResult uniformity(const Curve& c, SpeedKind kind, const Options& opt) {
-  validate(opt);
+void check_degree(const Curve& c, const Options& opt) {
   if (c.degree() > opt.max_degree)
     throw InvalidArgument("the curve has degree " + std::to_string(c.degree()) + ", above the limit " +
                           std::to_string(opt.max_degree) + " (raise it with --max-degree)");
-  Speed s(c, kind);
+}
+
+UniformityResult uniformity(const Curve& c, SpeedKind kind, const Options& opt) {
+  validate(opt);
+  check_degree(c, opt);
+  return uniformity(Speed(c, kind), opt);
+}
+
+UniformityResult uniformity(const Speed& s, const Options& opt) {
+  validate(opt);
   UniformityResult r;
-  r.kind = kind;
+  r.kind = s.kind();
   r.speed_squared = s.squared();
   r.zeros = s.zeros();
   r.identically_zero = s.identically_zero();

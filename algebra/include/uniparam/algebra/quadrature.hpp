@@ -31,7 +31,9 @@ struct QuadratureOptions {
   /// lowered to max_prec).
   long initial_prec = 0;    ///< 0: rel_goal_bits + 32
   long max_prec = 8192;
-  /// Forwarded to acb_calc_integrate (0: Arb's defaults scaled with prec).
+  /// Forwarded to acb_calc_integrate. eval_limit 0 means Arb's default
+  /// 1000 prec + prec^2 evaluations per attempt, capped at 2,000,000;
+  /// depth_limit 0 means Arb's default 2 * prec.
   long eval_limit = 0;
   long depth_limit = 0;
   /// Used in the BudgetExceeded message: what was being integrated.

@@ -4,7 +4,9 @@
 
 #include <acb.h>
 
+#include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "uniparam/algebra/algebraic.hpp"
@@ -25,6 +27,8 @@ SpeedKind parse_speed_kind(const std::string& s);
 struct SpeedZero {
   RealAlgebraic t;
   int multiplicity;
+  std::size_t factor = 0;  ///< index in Speed::g_factors().factors of the factor vanishing at t
+  std::size_t index = 0;   ///< position in Speed::zeros()
 };
 
 /// The speed sigma of a curve, in the factored form
@@ -58,23 +62,39 @@ class Speed {
   /// squarefree factorisation.
   const Poly& g() const { return g_; }
   const SquarefreeFactorization& g_factors() const { return g_sqf_; }
+  /// K_1, ..., K_m and D of the factored form.
+  const std::vector<Poly>& cofactors() const { return K_; }
+  const Poly& denominator() const { return D_; }
 
-  /// The sign s in {-1, +1} such that sigma = s * g * sqrt(sum K^2) / D on the
-  /// open interval (a, b), which must hold no zero of g and of D
-  /// (\pre a < b and no zero of sigma in (a, b); checked: DomainError).
-  int piece_sign(const RealAlgebraic& a, const RealAlgebraic& b) const;
+  /// Signs that fix sigma's analytic continuation on one piece (a, b) free of
+  /// zeros of sigma (\pre a < b, checked: DomainError).
+  struct PieceSigns {
+    int g = 1;          ///< sigma = g_sign * g * sqrt(sum K^2) / D on (a, b)
+    int component = 1;  ///< plane angular: sigma = component * (x'y'' - x''y') / (x'^2 + y'^2)
+  };
+  PieceSigns piece_signs(const RealAlgebraic& a, const RealAlgebraic& b) const;
 
-  /// out = s * g(z) * R(z) with R = sqrt(sum K(z)^2) / D(z): an enclosure of the
-  /// analytic continuation of sigma from a piece with sign s. With analytic,
-  /// out is indeterminate unless holomorphy on z is certified.
-  void eval(acb_t out, const acb_t z, int s, bool analytic, long prec) const;
-  /// out = sigma(z)^2 = g^2 sum K^2 / D^2 (analytic wherever D(z) != 0).
+  /// out = an enclosure of the analytic continuation of sigma from a piece
+  /// with signs `p`, at every point of the complex ball z. Evaluated from the
+  /// components x_i = N_i / Q_i and their derivatives (low degree, small
+  /// coefficients); where that cannot certify analyticity (the square root
+  /// near a zero of sigma), from the factored form g * R. With analytic, out
+  /// is indeterminate unless holomorphy on z is certified.
+  void eval(acb_t out, const acb_t z, const PieceSigns& p, bool analytic, long prec) const;
+  /// out = sigma(z)^2 (a rational function of the components' derivatives:
+  /// analytic wherever the curve has no pole and, for the angular speed,
+  /// p'(z) . p'(z) != 0).
   void eval_squared(acb_t out, const acb_t z, long prec) const;
-  /// out = R(z) = sqrt(sum K(z)^2) / D(z), the factor that never vanishes on
-  /// [0, 1] (sign of D included). Used with deflated g near zeros.
-  void eval_cofactor(acb_t out, const acb_t z, bool analytic, long prec) const;
-  /// out = g(z), evaluated from its squarefree factors.
-  void eval_g(acb_t out, const acb_t z, long prec) const;
+  /// out = sigma(z)^2 / (side * (z - gamma))^power for a zero (gamma, mu) of
+  /// sigma and 0 <= power <= 2 mu; side = +1 when the zero is the left end of
+  /// the piece (z > gamma), -1 when it is the right end. The removable
+  /// singularity is removed exactly (MATH.md section 4): g = c h^mu g_1 with
+  /// h(t) = (t - gamma) h_gamma(t), h_gamma deflated with ball coefficients (no
+  /// division), so
+  ///     out = (side (z - gamma))^(2 mu - power) h_gamma(z)^(2 mu) c^2 g_1(z)^2 sum K^2 / D^2,
+  /// analytic on the piece; no numerical cancellation near gamma.
+  void eval_squared_over_zero(acb_t out, const acb_t z, const SpeedZero& zero, int side, int power,
+                              long prec) const;
 
  private:
   SpeedKind kind_;
@@ -85,6 +105,20 @@ class Speed {
   SquarefreeFactorization g_sqf_;
   std::vector<Poly> K_;       // cofactors, gcd 1
   Poly D_;                    // exact D (for root checks and sign)
+  void eval_sumK2_over_D2(acb_t out, const acb_t z, long prec) const;
+  // the factored form: g(z) from its squarefree factors, R = sqrt(sum K^2) / D
+  void eval_g(acb_t out, const acb_t z, long prec) const;
+  void eval_cofactor(acb_t out, const acb_t z, bool analytic, long prec) const;
+  // x_i'(z) (and x_i''(z) when d2 is non-null) from the components
+  void eval_derivatives(acb_ptr d1, acb_ptr d2, const acb_t z, long prec) const;
+  // sum x_i'^2 and, for the angular speed, F = sum_{i<j} (x_i' x_j'' - x_i'' x_j')^2
+  // (plane: F is returned unsquared as E = x_1' x_2'' - x_1'' x_2')
+  void eval_components(acb_t S, acb_t F, const acb_t z, long prec) const;
+  struct Component {
+    BallPoly N, N1, N2, Q, Q1, Q2;  // numerator, denominator, derivatives
+    RatFunc d1, d2;                 // exact x', x'' (for signs)
+  };
+  std::vector<Component> comp_;
   // ball versions for evaluation
   Integer g_content_;          // g = content * prod h^m; content is 1 here but kept general
   std::vector<BallPoly> g_h_;  // squarefree factors of g
@@ -92,6 +126,8 @@ class Speed {
   std::vector<BallPoly> K_b_;
   std::vector<BallPoly> Y_b_;  // angular: D = sum Y^2; parametric: empty
   BallPoly W_b_;               // parametric: D = W
+  // h_gamma = h / (t - gamma) at a precision, per (zero index, prec): deflation cache
+  mutable std::map<std::pair<std::size_t, long>, BallPoly> deflated_;
 };
 
 }  // namespace uniparam

@@ -50,6 +50,10 @@ struct UniformityResult {
 ///         Options::max_prec; InvalidArgument for bad options or a curve above
 ///         Options::max_degree; DomainError for a non-regular curve.
 UniformityResult uniformity(const Curve& c, SpeedKind kind, const Options& opt = {});
+/// The same for an already built speed (the curve's degree is not checked).
+UniformityResult uniformity(const Speed& s, const Options& opt = {});
+/// Throws InvalidArgument when the curve's degree exceeds Options::max_degree.
+void check_degree(const Curve& c, const Options& opt);
 
 /// Bits of relative accuracy that give `digits` decimal digits with margin.
 long digits_to_bits(long digits);

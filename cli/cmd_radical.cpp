@@ -1,0 +1,141 @@
+// cli/cmd_radical.cpp -- `uniparam radical CURVE`: paper 002, Algorithm 1.
+#include <iostream>
+
+#include "commands.hpp"
+#include "report.hpp"
+#include "uniparam/reparam/formula.hpp"
+#include "uniparam/reparam/radical.hpp"
+
+namespace uniparam::cli {
+
+CommandSpec radical_spec() {
+  auto opts = common_options();
+  opts.push_back({"format", "F", "formulas of the pieces: text, latex or maple", "text"});
+  return {"radical",
+          "Optimal piecewise radical reparameterization r = phi o m (paper 002, Algorithm 1).",
+          "T holds 0, 1 and every zero of sigma * sigma' in (0, 1); phi lifts the zeros\n"
+          "of the speed by radicals (optimal S), m is the optimal piecewise Moebius map\n"
+          "on top (optimal alpha and Z). Prints T, S, Z, alpha, L, A, B, C, M, the pieces\n"
+          "of phi, m, r and p o r, and u before, after phi and after phi o m.\n"
+          "For a curve without zeros of the speed this is the C0 piecewise Moebius\n"
+          "reparameterization with T from sigma' = 0.",
+          {"CURVE"},
+          opts};
+}
+
+Format parse_format(const std::string& s) {
+  if (s == "text") return Format::Text;
+  if (s == "latex") return Format::Latex;
+  if (s == "maple") return Format::Maple;
+  throw InvalidArgument("unknown format '" + s + "' (expected text, latex or maple)");
+}
+
+int run_radical(int argc, char** argv) {
+  const CommandSpec spec = radical_spec();
+  Args a = parse_args(spec, argc, argv, 2);
+  if (a.help) { std::cout << help_text(spec); return 0; }
+  const Options opt = read_options(a);
+  const SpeedKind kind = parse_speed_kind(a.get("speed", "angular"));
+  const Format fmt = parse_format(a.get("format", "text"));
+  const Curve c = parse_curve(a.positional[0]);
+  const RadicalResult r = radical(c, kind, opt);
+  const long pd = printed_digits(opt.digits);
+  const auto formulas = radical_formulas(c, r, fmt, opt.digits);
+  const std::size_t N = r.pieces();
+
+  if (a.flag("json")) {
+    Json j = Json::object();
+    j.set("curve", Json::string(c.str()));
+    j.set("speed", Json::string(to_string(kind)));
+    j.set("digits", Json::number(opt.digits));
+    Json t = Json::array(), mult = Json::array();
+    for (const auto& b : r.T) {
+      t.push(json_algebraic(b.t, opt.digits));
+      mult.push(Json::number(static_cast<long>(b.multiplicity)));
+    }
+    j.set("t", t);
+    j.set("multiplicity", mult);
+    auto arr = [&](const std::vector<Ball>& v) {
+      Json x = Json::array();
+      for (const auto& b : v) x.push(json_ball(b, pd));
+      return x;
+    };
+    auto per_piece = [&](Ball PieceIntegrals::*m) {
+      Json x = Json::array();
+      for (const auto& p : r.integrals) x.push(json_ball(p.*m, pd));
+      return x;
+    };
+    j.set("s", arr(r.S));
+    j.set("z", arr(r.Z));
+    j.set("alpha", per_piece(&PieceIntegrals::alpha));
+    j.set("L", per_piece(&PieceIntegrals::L));
+    j.set("A", arr(r.A));
+    j.set("B", arr(r.B));
+    j.set("C", arr(r.C));
+    j.set("M", per_piece(&PieceIntegrals::M));
+    j.set("mu", json_ball(r.mu, pd));
+    j.set("u_before", json_ball(r.u_before, pd));
+    j.set("u_radical", json_ball(r.u_radical, pd));
+    j.set("u_after", json_ball(r.u_after, pd));
+    Json pieces = Json::array();
+    for (std::size_t i = 0; i < N; ++i) {
+      Json p = Json::object();
+      p.set("t_interval", Json::array().push(json_algebraic(r.T[i].t, opt.digits)).push(
+                              json_algebraic(r.T[i + 1].t, opt.digits)));
+      p.set("s_interval", Json::string(formulas[i].s_interval));
+      p.set("z_interval", Json::string(formulas[i].z_interval));
+      p.set("radical_index", Json::number(static_cast<long>(r.root_index(i))));
+      p.set("phi", Json::string(formulas[i].phi));
+      p.set("m", Json::string(formulas[i].m));
+      p.set("r", Json::string(formulas[i].r));
+      Json pr = Json::array();
+      for (const auto& s : formulas[i].p_r) pr.push(Json::string(s));
+      p.set("p_r", pr);
+      pieces.push(p);
+    }
+    j.set("pieces", pieces);
+    std::cout << j.dump(2) << "\n";
+    return 0;
+  }
+
+  std::cout << "curve      " << c.str() << "\nspeed      " << to_string(kind) << "\n";
+  if (r.identically_zero)
+    std::cout << "the angular speed is identically zero (a straight line): r = id, u = 1\n";
+  auto list = [&](const char* name, const std::vector<Ball>& v) {
+    std::cout << name;
+    for (std::size_t i = 0; i < v.size(); ++i) std::cout << (i ? ", " : "(") << v[i].mid_decimal(pd);
+    std::cout << ")\n";
+  };
+  std::cout << "T          (";
+  for (std::size_t i = 0; i < r.T.size(); ++i) std::cout << (i ? ", " : "") << text_algebraic(r.T[i].t, opt.digits);
+  std::cout << ")\nmult       (";
+  for (std::size_t i = 0; i < r.T.size(); ++i) std::cout << (i ? ", " : "") << r.T[i].multiplicity;
+  std::cout << ")\n";
+  list("S          ", r.S);
+  list("Z          ", r.Z);
+  std::vector<Ball> alpha, L, M;
+  for (const auto& p : r.integrals) { alpha.push_back(p.alpha); L.push_back(p.L); M.push_back(p.M); }
+  list("alpha      ", alpha);
+  list("L          ", L);
+  list("A          ", r.A);
+  list("B          ", r.B);
+  list("C          ", r.C);
+  list("M          ", M);
+  for (std::size_t i = 0; i < N; ++i) {
+    std::cout << "piece " << i << "    z in " << formulas[i].z_interval << ", s in " << formulas[i].s_interval << "\n"
+              << "  phi(s) = " << formulas[i].phi << "\n"
+              << "  m(z)   = " << formulas[i].m << "\n"
+              << "  r(z)   = " << formulas[i].r << "\n";
+    for (std::size_t k = 0; k < formulas[i].p_r.size(); ++k)
+      std::cout << "  p_" << k + 1 << "(r(z)) = " << formulas[i].p_r[k] << "\n";
+  }
+  std::cout << "mu         " << format_ball(r.mu, pd, Format::Text) << "\n"
+            << "u(p)       " << format_ball(r.u_before, pd, Format::Text) << "\n"
+            << "u(p o phi) " << format_ball(r.u_radical, pd, Format::Text) << "\n"
+            << "u(p o r)   " << format_ball(r.u_after, pd, Format::Text) << "\n"
+            << "(every number is certified to " << opt.digits
+            << " digits; the formulas print ball midpoints)\n";
+  return 0;
+}
+
+}  // namespace uniparam::cli

@@ -1,0 +1,34 @@
+// uniparam/reparam/formula.hpp -- the pieces of a reparameterization as
+// formulas (text, LaTeX, Maple), ready to paste elsewhere.
+//
+// Exact data (rational breakpoints) print exactly; certified balls print as
+// their midpoints with `digits` significant digits (the balls meet that
+// accuracy, so every printed digit but the last is correct).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "uniparam/core/printer.hpp"
+#include "uniparam/reparam/curve.hpp"
+#include "uniparam/reparam/radical.hpp"
+
+namespace uniparam {
+
+/// The formulas of one piece of r = phi o m on [z_i, z_{i+1}].
+struct PieceFormulas {
+  std::string s_interval, z_interval;  ///< "[s_i, s_{i+1}]", "[z_i, z_{i+1}]"
+  std::string phi;   ///< t = phi_i(s)
+  std::string m;     ///< s = m_i(z), a Moebius map (a z + b) / (c z + d)
+  std::string r;     ///< t = r_i(z)
+  std::vector<std::string> p_r;  ///< components of p(r_i(z))
+};
+
+/// Formulas of every piece of a radical (or piecewise Moebius) result.
+std::vector<PieceFormulas> radical_formulas(const Curve& c, const RadicalResult& r, Format f, long digits);
+
+/// A decimal for a ball's midpoint in the given format ("1.25e-30" becomes
+/// "1.25 \cdot 10^{-30}" in LaTeX, "1.25e-30" in text and Maple).
+std::string format_decimal(const Ball& b, long digits, Format f);
+
+}  // namespace uniparam

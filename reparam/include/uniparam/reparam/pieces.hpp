@@ -1,0 +1,58 @@
+// uniparam/reparam/pieces.hpp -- breakpoints and the per-piece integrals
+// shared by the radical and the Moebius methods (MATH.md sections 2-4).
+#pragma once
+
+#include <vector>
+
+#include "uniparam/algebra/algebraic.hpp"
+#include "uniparam/core/ball.hpp"
+#include "uniparam/reparam/speed.hpp"
+
+namespace uniparam {
+
+/// A breakpoint t_i with the multiplicity of sigma's zero there (0 if
+/// sigma(t_i) != 0).
+struct Breakpoint {
+  RealAlgebraic t;
+  int multiplicity = 0;
+  std::size_t factor = 0;  ///< for a zero: index of its squarefree factor of g
+  std::size_t zero_index = 0;  ///< for a zero: its position in Speed::zeros()
+
+  /// The zero of sigma at this breakpoint. \pre multiplicity > 0.
+  SpeedZero zero() const { return SpeedZero{t, multiplicity, factor, zero_index}; }
+};
+
+/// Which end of a piece is a zero of sigma (never both).
+enum class ZeroSide { None, Left, Right };
+
+/// T = (0, every zero of sigma * sigma' in (0, 1), 1) in increasing order,
+/// zeros of sigma marked with their multiplicities (MATH.md section 4). Two
+/// consecutive zeros of sigma get their rational midpoint inserted between
+/// them. For the angular speed of a line: T = (0, 1).
+std::vector<Breakpoint> critical_breakpoints(const Speed& s);
+
+/// Attaches the zero multiplicities of sigma to given breakpoints
+/// (0 = t_0 < ... < t_N = 1 checked: InvalidArgument otherwise).
+std::vector<Breakpoint> mark_zeros(const Speed& s, const std::vector<RealAlgebraic>& ts);
+
+/// The integrals of one piece [a, b] with local coordinate
+/// t~ = (t - a) / (b - a), the elementary radical map's local s~(t~)
+/// (t~^(mu+1) for a zero at the left end, 1 - (1 - t~)^(mu+1) at the right end,
+/// t~ otherwise) and rho = Delta s / (phi^-1)'(t) (Delta t / ((mu+1) t~^mu),
+/// Delta t / ((mu+1)(1 - t~)^mu), Delta t):
+///     A = int sigma^2 rho (1 - s~)^2,  B = int sigma^2 rho 2 s~ (1 - s~),
+///     C = int sigma^2 rho s~^2,        L = A + B + C = int sigma^2 rho.
+/// These are Delta s times the A_i, B_i, C_i of 002 section 3.4 (misprints
+/// corrected, MATH.md section 5), so they do not depend on S; for a piece
+/// without zeros they are Delta t times ImUp's A_i, B_i, C_i. Then
+/// M = B + 2 sqrt(A C) and alpha* = 1 / (1 + sqrt(C / A)).
+/// Every integrand is analytic on the closed piece: near a zero the removable
+/// singularity of sigma^2 / t~^mu is removed by exact deflation.
+struct PieceIntegrals {
+  Ball A, B, C, L, M, alpha;
+};
+
+PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakpoint& b, long rel_goal_bits,
+                               long max_prec);
+
+}  // namespace uniparam

@@ -1,0 +1,52 @@
+// uniparam/reparam/radical.hpp -- piecewise radical reparameterization
+// (paper 002, Algorithm 1; MATH.md section 4): r = phi o m, with phi the
+// elementary piecewise radical map that lifts the zeros of the speed and m
+// the optimal piecewise Moebius map on top.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "uniparam/reparam/pieces.hpp"
+#include "uniparam/reparam/uniformity.hpp"
+
+namespace uniparam {
+
+struct RadicalResult {
+  SpeedKind kind;
+  std::vector<Breakpoint> T;             ///< t_0 = 0 < ... < t_N = 1, zeros marked
+  std::vector<PieceIntegrals> integrals; ///< per piece: L, A, B, C (times Delta s), M, alpha
+  std::vector<Ball> S;                   ///< s_0 = 0 < ... < s_N = 1 (eq. 9: cumulative sqrt L)
+  std::vector<Ball> Z;                   ///< z_0 = 0 < ... < z_N = 1 (cumulative sqrt M)
+  std::vector<Ball> A, B, C;             ///< 002's A_k, B_k, C_k (the integrals / Delta s_k)
+  Ball mu;                               ///< int_0^1 sigma (invariant)
+  Ball u_before;                         ///< u(p)
+  Ball u_radical;                        ///< u(p o phi) = mu^2 / (sum sqrt L)^2
+  Ball u_after;                          ///< u(p o phi o m) = mu^2 / (sum sqrt M)^2
+  bool identically_zero = false;         ///< angular speed of a line: nothing to do, r = id
+
+  std::size_t pieces() const { return T.size() - 1; }
+  /// Exponent of the radical in piece i: mu + 1 when one end is a zero of
+  /// multiplicity mu, 1 otherwise; and which end.
+  int root_index(std::size_t i) const;
+  ZeroSide side(std::size_t i) const;
+};
+
+/// Runs Algorithm 1 of paper 002 with certified numbers.
+/// \post every Ball meets Options::digits; T exact.
+/// \throws as uniformity().
+RadicalResult radical(const Curve& c, SpeedKind kind, const Options& opt = {});
+
+/// Enclosure of r(z) for z in [0, 1] (the ball may straddle a joint: both
+/// pieces are evaluated and the union returned).
+Ball radical_eval_r(const RadicalResult& r, const Ball& z, long prec);
+/// Enclosure of sigma_{p o r}(z) = sigma_p(r(z)) r'(z), the reparameterized
+/// speed, evaluated from the formulas of the pieces.
+Ball radical_eval_speed(const RadicalResult& r, const Speed& s, const Ball& z, long prec);
+
+/// Independent check of the whole chain: mu^2 / int_0^1 sigma_{p o r}(z)^2 dz,
+/// integrating the reparameterized speed built from the pieces of r directly
+/// in z (certified quadrature, `digits` digits).
+Ball radical_direct_uniformity(const RadicalResult& r, const Speed& s, long digits, long max_prec);
+
+}  // namespace uniparam

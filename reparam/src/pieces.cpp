@@ -1,0 +1,157 @@
+#include "uniparam/reparam/pieces.hpp"
+
+#include <algorithm>
+
+#include "uniparam/algebra/quadrature.hpp"
+#include "uniparam/algebra/real_roots.hpp"
+#include "uniparam/core/error.hpp"
+
+namespace uniparam {
+
+namespace {
+
+// Numerator of (sigma^2)' / g, up to the positive factor 1/D^3:
+// (g^2 Q / D^2)' = g (2 g' Q D + g Q' D - 2 g Q D') / D^3 with Q = sum K^2.
+// Its roots in (0, 1) are the critical points of sigma that are not zeros.
+Poly critical_numerator(const Speed& s) {
+  const Poly& g = s.g();
+  Poly D = s.denominator();
+  Poly Q(0);
+  for (const auto& k : s.cofactors()) Q = Q + k * k;
+  return Poly(2) * g.derivative() * Q * D + g * Q.derivative() * D - Poly(2) * g * Q * D.derivative();
+}
+
+}  // namespace
+
+std::vector<Breakpoint> mark_zeros(const Speed& s, const std::vector<RealAlgebraic>& ts) {
+  if (ts.size() < 2 || !(ts.front() == RealAlgebraic(0)) || !(ts.back() == RealAlgebraic(1)))
+    throw InvalidArgument("breakpoints must start at 0 and end at 1");
+  std::vector<Breakpoint> out;
+  for (std::size_t i = 0; i < ts.size(); ++i) {
+    if (i > 0 && !(ts[i - 1] < ts[i])) throw InvalidArgument("breakpoints must be strictly increasing");
+    Breakpoint b{ts[i], 0, 0, 0};
+    for (const auto& z : s.zeros())
+      if (z.t == ts[i]) { b.multiplicity = z.multiplicity; b.factor = z.factor; b.zero_index = z.index; }
+    out.push_back(b);
+  }
+  return out;
+}
+
+std::vector<Breakpoint> critical_breakpoints(const Speed& s) {
+  std::vector<RealAlgebraic> ts{RealAlgebraic(0), RealAlgebraic(1)};
+  if (!s.identically_zero()) {
+    for (const auto& z : s.zeros()) ts.push_back(z.t);
+    Poly P = critical_numerator(s);
+    if (!P.is_zero())
+      for (const auto& r : isolate_real_roots(P, Rational(0), Rational(1))) ts.emplace_back(r);
+  }
+  std::sort(ts.begin(), ts.end(), [](const RealAlgebraic& x, const RealAlgebraic& y) { return x < y; });
+  std::vector<RealAlgebraic> uniq;
+  for (auto& t : ts)
+    if (uniq.empty() || !(uniq.back() == t)) uniq.push_back(t);
+  std::vector<Breakpoint> bp = mark_zeros(s, uniq);
+  // Never two zeros of sigma in a row (Rolle excludes it inside (0, 1), but
+  // keep the rule of MATH.md section 4 unconditional).
+  std::vector<Breakpoint> out;
+  for (auto& b : bp) {
+    if (!out.empty() && out.back().multiplicity > 0 && b.multiplicity > 0) {
+      const RealAlgebraic& x = out.back().t;
+      x.refine(16);
+      b.t.refine(16);
+      Rational mid = (x.hi() + b.t.lo()) * Rational(1, 2);
+      out.push_back(Breakpoint{RealAlgebraic(mid), 0, 0, 0});
+    }
+    out.push_back(b);
+  }
+  return out;
+}
+
+PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakpoint& b, long rel_goal_bits,
+                               long max_prec) {
+  if (a.multiplicity > 0 && b.multiplicity > 0)
+    throw DomainError("a piece may not have zeros of the speed at both ends");
+  PieceIntegrals r;
+  if (s.identically_zero()) {
+    r.A = r.B = r.C = r.L = r.M = Ball(0);
+    r.alpha = Ball(Rational(1, 2), 64);
+    return r;
+  }
+  const ZeroSide side = a.multiplicity > 0 ? ZeroSide::Left : b.multiplicity > 0 ? ZeroSide::Right : ZeroSide::None;
+  const int mu = side == ZeroSide::Left ? a.multiplicity : side == ZeroSide::Right ? b.multiplicity : 0;
+  const SpeedZero zero = side == ZeroSide::Left ? a.zero() : side == ZeroSide::Right ? b.zero() : SpeedZero{a.t, 0};
+
+  // f_k(t) = sigma^2 rho w_k(s~): k = 0, 1, 2 for (1-s~)^2, 2 s~(1-s~), s~^2.
+  auto make = [&](int k) -> Integrand {
+    return [&s, &a, &b, side, mu, zero, k](acb_t out, const acb_t z, bool, long prec) {
+      acb_t ta, dt, tt, st, w;
+      acb_init(ta);
+      acb_init(dt);
+      acb_init(tt);
+      acb_init(st);
+      acb_init(w);
+      Ball ab = a.t.to_ball(prec + 16), bb = b.t.to_ball(prec + 16);
+      acb_set_arb(ta, ab.get());
+      arb_sub(acb_realref(dt), bb.get(), ab.get(), prec + 16);
+      arb_zero(acb_imagref(dt));
+      acb_sub(tt, z, ta, prec);
+      acb_div(tt, tt, dt, prec);  // t~
+      if (side == ZeroSide::None) {
+        s.eval_squared(out, z, prec);
+        acb_mul(out, out, dt, prec);  // rho = Delta t
+        acb_set(st, tt);
+      } else {
+        // sigma^2 rho = Delta t^(mu+1) / (mu+1) * sigma^2 / (side (t - gamma))^mu
+        s.eval_squared_over_zero(out, z, zero, side == ZeroSide::Left ? 1 : -1, mu, prec);
+        acb_pow_ui(w, dt, static_cast<ulong>(mu + 1), prec);
+        acb_mul(out, out, w, prec);
+        acb_div_ui(out, out, static_cast<ulong>(mu + 1), prec);
+        if (side == ZeroSide::Left) {
+          acb_pow_ui(st, tt, static_cast<ulong>(mu + 1), prec);
+        } else {
+          acb_sub_ui(w, tt, 1, prec);
+          acb_neg(w, w);  // 1 - t~
+          acb_pow_ui(w, w, static_cast<ulong>(mu + 1), prec);
+          acb_sub_ui(st, w, 1, prec);
+          acb_neg(st, st);
+        }
+      }
+      // weight
+      acb_sub_ui(w, st, 1, prec);
+      acb_neg(w, w);  // 1 - s~
+      if (k == 0) acb_mul(w, w, w, prec);
+      else if (k == 1) { acb_mul(w, w, st, prec); acb_mul_2exp_si(w, w, 1); }
+      else acb_mul(w, st, st, prec);
+      acb_mul(out, out, w, prec);
+      acb_clear(ta);
+      acb_clear(dt);
+      acb_clear(tt);
+      acb_clear(st);
+      acb_clear(w);
+    };
+  };
+  QuadratureOptions qo;
+  qo.rel_goal_bits = rel_goal_bits;
+  qo.max_prec = max_prec;
+  Ball* outs[3] = {&r.A, &r.B, &r.C};
+  const char* names[3] = {"A", "B", "C"};
+  for (int k = 0; k < 3; ++k) {
+    qo.what = std::string("the piece integral ") + names[k];
+    *outs[k] = integrate(make(k), a.t, b.t, qo);
+  }
+  const long prec = 2 * rel_goal_bits + 64;
+  arb_add(r.L.get(), r.A.get(), r.B.get(), prec);
+  arb_add(r.L.get(), r.L.get(), r.C.get(), prec);
+  // M = B + 2 sqrt(A C), alpha = 1 / (1 + sqrt(C / A))
+  Ball t;
+  arb_mul(t.get(), r.A.get(), r.C.get(), prec);
+  arb_sqrt(t.get(), t.get(), prec);
+  arb_mul_2exp_si(t.get(), t.get(), 1);
+  arb_add(r.M.get(), r.B.get(), t.get(), prec);
+  arb_div(t.get(), r.C.get(), r.A.get(), prec);
+  arb_sqrt(t.get(), t.get(), prec);
+  arb_add_ui(t.get(), t.get(), 1, prec);
+  arb_inv(r.alpha.get(), t.get(), prec);
+  return r;
+}
+
+}  // namespace uniparam

@@ -1,0 +1,339 @@
+#include "uniparam/reparam/radical.hpp"
+
+#include "uniparam/algebra/quadrature.hpp"
+#include "uniparam/core/error.hpp"
+
+namespace uniparam {
+
+int RadicalResult::root_index(std::size_t i) const {
+  if (T[i].multiplicity > 0) return T[i].multiplicity + 1;
+  if (T[i + 1].multiplicity > 0) return T[i + 1].multiplicity + 1;
+  return 1;
+}
+
+ZeroSide RadicalResult::side(std::size_t i) const {
+  if (T[i].multiplicity > 0) return ZeroSide::Left;
+  if (T[i + 1].multiplicity > 0) return ZeroSide::Right;
+  return ZeroSide::None;
+}
+
+namespace {
+
+// Cumulative normalised sums: out[0] = 0, out[N] = 1, out[i] = sum_{k<i} w_k / sum w.
+std::vector<Ball> cumulative(const std::vector<Ball>& w, const Ball& total, long prec) {
+  std::vector<Ball> out{Ball(0)};
+  Ball acc(0);
+  for (std::size_t k = 0; k + 1 < w.size(); ++k) {
+    arb_add(acc.get(), acc.get(), w[k].get(), prec);
+    Ball q;
+    arb_div(q.get(), acc.get(), total.get(), prec);
+    out.push_back(q);
+  }
+  out.push_back(Ball(1));
+  return out;
+}
+
+bool all_meet(const std::vector<Ball>& v, long digits) {
+  for (const auto& b : v)
+    if (!b.meets_digits(digits)) return false;
+  return true;
+}
+
+}  // namespace
+
+RadicalResult radical(const Curve& c, SpeedKind kind, const Options& opt) {
+  validate(opt);
+  check_degree(c, opt);
+  const Speed s(c, kind);
+  const UniformityResult base = uniformity(s, opt);
+  RadicalResult r;
+  r.kind = kind;
+  r.mu = base.mu;
+  r.u_before = base.u;
+  r.identically_zero = base.identically_zero;
+  r.T = critical_breakpoints(s);
+  const std::size_t N = r.T.size() - 1;
+  if (r.identically_zero) {
+    r.S = r.Z = {Ball(0), Ball(1)};
+    r.u_radical = r.u_after = Ball(1);
+    r.integrals.assign(1, piece_integrals(s, r.T[0], r.T[1], 64, opt.max_prec));
+    r.A = r.B = r.C = {Ball(0)};
+    return r;
+  }
+  for (long bits = digits_to_bits(opt.digits) + 8;; bits += 32) {
+    const long prec = 2 * bits + 64;
+    r.integrals.clear();
+    std::vector<Ball> sqrtL(N), sqrtM(N);
+    Ball sumL(0), sumM(0);
+    for (std::size_t i = 0; i < N; ++i) {
+      r.integrals.push_back(piece_integrals(s, r.T[i], r.T[i + 1], bits, opt.max_prec));
+      arb_sqrt(sqrtL[i].get(), r.integrals[i].L.get(), prec);
+      arb_sqrt(sqrtM[i].get(), r.integrals[i].M.get(), prec);
+      arb_add(sumL.get(), sumL.get(), sqrtL[i].get(), prec);
+      arb_add(sumM.get(), sumM.get(), sqrtM[i].get(), prec);
+    }
+    r.S = cumulative(sqrtL, sumL, prec);
+    r.Z = cumulative(sqrtM, sumM, prec);
+    r.A.clear();
+    r.B.clear();
+    r.C.clear();
+    for (std::size_t i = 0; i < N; ++i) {
+      Ball ds, x;
+      arb_sub(ds.get(), r.S[i + 1].get(), r.S[i].get(), prec);
+      arb_div(x.get(), r.integrals[i].A.get(), ds.get(), prec);
+      r.A.push_back(x);
+      arb_div(x.get(), r.integrals[i].B.get(), ds.get(), prec);
+      r.B.push_back(x);
+      arb_div(x.get(), r.integrals[i].C.get(), ds.get(), prec);
+      r.C.push_back(x);
+    }
+    Ball mu2;
+    arb_mul(mu2.get(), r.mu.get(), r.mu.get(), prec);
+    arb_mul(sumL.get(), sumL.get(), sumL.get(), prec);
+    arb_div(r.u_radical.get(), mu2.get(), sumL.get(), prec);
+    arb_mul(sumM.get(), sumM.get(), sumM.get(), prec);
+    arb_div(r.u_after.get(), mu2.get(), sumM.get(), prec);
+
+    const long d = opt.digits + 1;
+    bool ok = r.u_radical.meets_digits(d) && r.u_after.meets_digits(d) && all_meet(r.S, d) && all_meet(r.Z, d) &&
+              all_meet(r.A, d) && all_meet(r.B, d) && all_meet(r.C, d);
+    for (const auto& pi : r.integrals) ok = ok && pi.L.meets_digits(d) && pi.M.meets_digits(d) && pi.alpha.meets_digits(d);
+    if (ok) return r;
+    if (bits > opt.max_prec)
+      throw BudgetExceeded("could not certify the radical reparameterization to " + std::to_string(opt.digits) +
+                           " digits within " + std::to_string(opt.max_prec) +
+                           " bits of working precision (raise it with --max-prec)");
+  }
+}
+
+namespace {
+
+// Clamps a real ball to [0, 1].
+void clamp01(arb_t x, long prec) {
+  arf_t lo, hi;
+  arf_init(lo);
+  arf_init(hi);
+  arb_get_lbound_arf(lo, x, prec);
+  arb_get_ubound_arf(hi, x, prec);
+  if (arf_sgn(lo) < 0) arf_zero(lo);
+  if (arf_cmp_si(hi, 1) > 0) arf_one(hi);
+  if (arf_cmp(lo, hi) > 0) arf_set(lo, hi);
+  arb_set_interval_arf(x, lo, hi, prec);
+  arf_clear(lo);
+  arf_clear(hi);
+}
+
+// Local Moebius x = (1-a) zt / ((1-a) zt + a (1-zt)) and its derivative dx/dzt
+// = a (1-a) / den^2, on complex balls.
+void moebius(acb_t x, acb_t dx, const acb_t zt, const arb_t alpha, long prec) {
+  acb_t a, b, den;
+  acb_init(a);
+  acb_init(b);
+  acb_init(den);
+  acb_set_arb(a, alpha);
+  acb_sub_ui(b, a, 1, prec);
+  acb_neg(b, b);             // 1 - a
+  acb_mul(x, b, zt, prec);   // (1-a) zt
+  acb_sub_ui(den, zt, 1, prec);
+  acb_neg(den, den);         // 1 - zt
+  acb_mul(den, den, a, prec);
+  acb_add(den, den, x, prec);
+  if (dx) {
+    acb_mul(dx, a, b, prec);
+    acb_div(dx, dx, den, prec);
+    acb_div(dx, dx, den, prec);
+  }
+  acb_div(x, x, den, prec);
+  acb_clear(a);
+  acb_clear(b);
+  acb_clear(den);
+}
+
+// Principal k-th root; for a ball containing 0 (where Arb's root is
+// indeterminate) the disk |w| <= sup|x|^(1/k), which contains every k-th root.
+void root_enclosure(acb_t out, const acb_t x, int k, long prec) {
+  if (k == 1) { acb_set(out, x); return; }
+  if (!acb_contains_zero(x)) { acb_root_ui(out, x, static_cast<ulong>(k), prec); return; }
+  arb_t m;
+  arb_init(m);
+  acb_abs(m, x, prec);
+  arb_get_ubound_arf(arb_midref(m), m, prec);
+  mag_zero(arb_radref(m));
+  if (arb_is_zero(m)) {  // x == 0 exactly (Arb's root of 0 is not finite)
+    acb_zero(out);
+    arb_clear(m);
+    return;
+  }
+  arb_root_ui(m, m, static_cast<ulong>(k), prec);
+  mag_t r;
+  mag_init(r);
+  arb_get_mag(r, m);
+  acb_zero(out);
+  mag_set(arb_radref(acb_realref(out)), r);
+  mag_set(arb_radref(acb_imagref(out)), r);
+  mag_clear(r);
+  arb_clear(m);
+}
+
+// psi(x) of the elementary radical piece; returns false when analytic is
+// requested and the root's branch cut cannot be excluded.
+bool psi(acb_t out, const acb_t x, ZeroSide side, int k, bool analytic, long prec) {
+  if (side == ZeroSide::None) { acb_set(out, x); return true; }
+  acb_t base;
+  acb_init(base);
+  if (side == ZeroSide::Left) acb_set(base, x);
+  else { acb_sub_ui(base, x, 1, prec); acb_neg(base, base); }
+  bool ok = !analytic || arb_is_positive(acb_realref(base));
+  root_enclosure(out, base, k, prec);
+  if (side == ZeroSide::Right) { acb_sub_ui(out, out, 1, prec); acb_neg(out, out); }
+  acb_clear(base);
+  return ok;
+}
+
+}  // namespace
+
+Ball radical_eval_r(const RadicalResult& r, const Ball& z, long prec) {
+  Ball result;
+  bool any = false;
+  for (std::size_t i = 0; i < r.pieces(); ++i) {
+    // pieces whose [Z_i, Z_{i+1}] may meet z
+    Ball lo = r.Z[i], hi = r.Z[i + 1];
+    if (arb_lt(z.get(), lo.get()) || arb_gt(z.get(), hi.get())) continue;
+    Ball dz, zt, dt, ta = r.T[i].t.to_ball(prec), tb = r.T[i + 1].t.to_ball(prec);
+    arb_sub(dz.get(), hi.get(), lo.get(), prec);
+    arb_sub(zt.get(), z.get(), lo.get(), prec);
+    arb_div(zt.get(), zt.get(), dz.get(), prec);
+    clamp01(zt.get(), prec);
+    arb_sub(dt.get(), tb.get(), ta.get(), prec);
+    acb_t x, y, zc;
+    acb_init(x);
+    acb_init(y);
+    acb_init(zc);
+    acb_set_arb(zc, zt.get());
+    moebius(x, nullptr, zc, r.integrals[i].alpha.get(), prec);
+    psi(y, x, r.side(i), r.root_index(i), false, prec);
+    Ball v;
+    arb_set(v.get(), acb_realref(y));
+    arb_mul(v.get(), v.get(), dt.get(), prec);
+    arb_add(v.get(), v.get(), ta.get(), prec);
+    if (!any) result = v;
+    else arb_union(result.get(), result.get(), v.get(), prec);
+    any = true;
+    acb_clear(x);
+    acb_clear(y);
+    acb_clear(zc);
+  }
+  if (!any) throw InvalidArgument("radical_eval_r: z must lie in [0, 1]");
+  return result;
+}
+
+namespace {
+
+// [sigma_p(t) * Delta t * psi'(x)]^2 at t = t_i + Delta t psi(x), piece i, from
+// the local Moebius coordinate x. With a zero at an end the singular factors
+// cancel exactly (002, Theorem 7): the value is
+// Shat(t) (Delta t^(mu+1) / (mu+1))^2 with Shat = sigma^2 / (t - gamma)^(2 mu).
+bool radical_speed_sq_local(acb_t out, const RadicalResult& r, const Speed& s, std::size_t i, const acb_t x,
+                            bool analytic, long prec) {
+  Ball ta = r.T[i].t.to_ball(prec + 16), tb = r.T[i + 1].t.to_ball(prec + 16);
+  acb_t y, t, dt;
+  acb_init(y);
+  acb_init(t);
+  acb_init(dt);
+  const ZeroSide side = r.side(i);
+  const int k = r.root_index(i);
+  bool ok = psi(y, x, side, k, analytic, prec);
+  arb_sub(acb_realref(dt), tb.get(), ta.get(), prec);
+  acb_mul(t, y, dt, prec);
+  acb_add_arb(t, t, ta.get(), prec);
+  if (side == ZeroSide::None) {
+    s.eval_squared(out, t, prec);
+    acb_mul(out, out, dt, prec);
+    acb_mul(out, out, dt, prec);
+  } else {
+    const Breakpoint& zb = side == ZeroSide::Left ? r.T[i] : r.T[i + 1];
+    s.eval_squared_over_zero(out, t, zb.zero(), side == ZeroSide::Left ? 1 : -1, 2 * zb.multiplicity, prec);
+    acb_pow_ui(y, dt, static_cast<ulong>(k), prec);
+    acb_div_ui(y, y, static_cast<ulong>(k), prec);
+    acb_mul(out, out, y, prec);
+    acb_mul(out, out, y, prec);
+  }
+  acb_clear(y);
+  acb_clear(t);
+  acb_clear(dt);
+  return ok;
+}
+
+}  // namespace
+
+Ball radical_eval_speed(const RadicalResult& r, const Speed& s, const Ball& z, long prec) {
+  Ball result;
+  bool any = false;
+  for (std::size_t i = 0; i < r.pieces(); ++i) {
+    Ball lo = r.Z[i], hi = r.Z[i + 1];
+    if (arb_lt(z.get(), lo.get()) || arb_gt(z.get(), hi.get())) continue;
+    Ball dz, zt;
+    arb_sub(dz.get(), hi.get(), lo.get(), prec);
+    arb_sub(zt.get(), z.get(), lo.get(), prec);
+    arb_div(zt.get(), zt.get(), dz.get(), prec);
+    clamp01(zt.get(), prec);
+    acb_t x, dx, zc, v;
+    acb_init(x);
+    acb_init(dx);
+    acb_init(zc);
+    acb_init(v);
+    acb_set_arb(zc, zt.get());
+    moebius(x, dx, zc, r.integrals[i].alpha.get(), prec);
+    radical_speed_sq_local(v, r, s, i, x, false, prec);
+    Ball w;
+    arb_sqrt(w.get(), acb_realref(v), prec);
+    arb_mul(w.get(), w.get(), acb_realref(dx), prec);
+    arb_div(w.get(), w.get(), dz.get(), prec);
+    if (!any) result = w;
+    else arb_union(result.get(), result.get(), w.get(), prec);
+    any = true;
+    acb_clear(x);
+    acb_clear(dx);
+    acb_clear(zc);
+    acb_clear(v);
+  }
+  if (!any) throw InvalidArgument("radical_eval_speed: z must lie in [0, 1]");
+  return result;
+}
+
+Ball radical_direct_uniformity(const RadicalResult& r, const Speed& s, long digits, long max_prec) {
+  if (r.identically_zero) return Ball(1);
+  const long bits = digits_to_bits(digits);
+  const long prec = 2 * bits + 64;
+  Ball total(0);
+  for (std::size_t i = 0; i < r.pieces(); ++i) {
+    // int_{Z_i}^{Z_{i+1}} sigma_{p o r}^2 dz = (1 / Delta z) int_0^1 F(x(zt)) x'(zt)^2 dzt
+    Integrand f = [&r, &s, i](acb_t out, const acb_t zt, bool analytic, long p) {
+      acb_t x, dx;
+      acb_init(x);
+      acb_init(dx);
+      moebius(x, dx, zt, r.integrals[i].alpha.get(), p);
+      if (!radical_speed_sq_local(out, r, s, i, x, analytic, p)) acb_indeterminate(out);
+      else {
+        acb_mul(out, out, dx, p);
+        acb_mul(out, out, dx, p);
+      }
+      acb_clear(x);
+      acb_clear(dx);
+    };
+    QuadratureOptions qo;
+    qo.rel_goal_bits = bits;
+    qo.max_prec = max_prec;
+    qo.what = "the direct integral of the reparameterized speed";
+    Ball piece = integrate(f, RealAlgebraic(0), RealAlgebraic(1), qo), dz;
+    arb_sub(dz.get(), r.Z[i + 1].get(), r.Z[i].get(), prec);
+    arb_div(piece.get(), piece.get(), dz.get(), prec);
+    arb_add(total.get(), total.get(), piece.get(), prec);
+  }
+  Ball u;
+  arb_mul(u.get(), r.mu.get(), r.mu.get(), prec);
+  arb_div(u.get(), u.get(), total.get(), prec);
+  return u;
+}
+
+}  // namespace uniparam
