@@ -1,5 +1,6 @@
 // cli/cmd_radical.cpp -- `uniparam radical CURVE`: paper 002, Algorithm 1.
 #include <iostream>
+#include <optional>
 
 #include "commands.hpp"
 #include "report.hpp"
@@ -11,6 +12,7 @@ namespace uniparam::cli {
 CommandSpec radical_spec() {
   auto opts = common_options();
   opts.push_back({"format", "F", "formulas of the pieces: text, latex or maple", "text"});
+  opts.push_back({"at", "Z", "also evaluate r(z), p(r(z)) and the new speed at a rational z in [0, 1]", ""});
   return {"radical",
           "Optimal piecewise radical reparameterization r = phi o m (paper 002, Algorithm 1).",
           "T holds 0, 1 and every zero of sigma * sigma' in (0, 1); phi lifts the zeros\n"
@@ -38,7 +40,31 @@ int run_radical(int argc, char** argv) {
   const SpeedKind kind = parse_speed_kind(a.get("speed", "angular"));
   const Format fmt = parse_format(a.get("format", "text"));
   const Curve c = parse_curve(a.positional[0]);
+  std::optional<Rational> at;
+  if (a.has("at")) {
+    at = Rational::parse(a.get("at", ""));
+    if (*at < Rational(0) || *at > Rational(1)) throw InvalidArgument("--at must lie in [0, 1], got " + at->str());
+  }
   const RadicalResult r = radical(c, kind, opt);
+  // Certified values at z = --at, to the requested digits.
+  struct AtValues { Ball r, speed; std::vector<Ball> point; };
+  std::optional<AtValues> atv;
+  if (at) {
+    const Speed s(c, kind);
+    for (long prec = digits_to_bits(opt.digits) + 32;; prec *= 2) {
+      const Ball z(*at, prec);
+      AtValues v{radical_eval_r(r, z, prec), radical_eval_speed(r, s, z, prec), radical_eval_point(c, r, z, prec)};
+      bool ok = v.r.meets_digits(opt.digits + 1) && v.speed.meets_digits(opt.digits + 1);
+      for (const auto& b : v.point) ok = ok && b.meets_digits(opt.digits + 1);
+      if (ok || prec > opt.max_prec) {
+        if (!ok)
+          throw BudgetExceeded("could not certify r(z) at --at " + at->str() + " to " + std::to_string(opt.digits) +
+                               " digits (the breakpoints and alpha are known to that accuracy only)");
+        atv = std::move(v);
+        break;
+      }
+    }
+  }
   const long pd = printed_digits(opt.digits);
   const auto formulas = radical_formulas(c, r, fmt, opt.digits);
   const std::size_t N = r.pieces();
@@ -94,6 +120,16 @@ int run_radical(int argc, char** argv) {
       pieces.push(p);
     }
     j.set("pieces", pieces);
+    if (atv) {
+      Json e = Json::object();
+      e.set("z", json_rational(*at, pd));
+      e.set("r", json_ball(atv->r, pd));
+      Json pt = Json::array();
+      for (const auto& b : atv->point) pt.push(json_ball(b, pd));
+      e.set("p_r", pt);
+      e.set("speed", json_ball(atv->speed, pd));
+      j.set("at", e);
+    }
     std::cout << j.dump(2) << "\n";
     return 0;
   }
@@ -133,7 +169,14 @@ int run_radical(int argc, char** argv) {
             << "u(p)       " << format_ball(r.u_before, pd, Format::Text) << "\n"
             << "u(p o phi) " << format_ball(r.u_radical, pd, Format::Text) << "\n"
             << "u(p o r)   " << format_ball(r.u_after, pd, Format::Text) << "\n"
-            << "(every number is certified to " << opt.digits
+            ;
+  if (atv) {
+    std::cout << "at z = " << at->str() << ": r(z) = " << format_ball(atv->r, pd, Format::Text) << "\n  p(r(z)) = (";
+    for (std::size_t k = 0; k < atv->point.size(); ++k)
+      std::cout << (k ? ", " : "") << format_ball(atv->point[k], pd, Format::Text);
+    std::cout << ")\n  speed of p o r = " << format_ball(atv->speed, pd, Format::Text) << "\n";
+  }
+  std::cout << "(every number is certified to " << opt.digits
             << " digits; the formulas print ball midpoints)\n";
   return 0;
 }

@@ -86,3 +86,37 @@ TEST(Cli, BadInputGivesClearErrorAndNonZeroExit) {
     EXPECT_TRUE(r.out.empty()) << "no partial result on error: " << r.out;
   }
 }
+
+TEST(Cli, RadicalJsonHasEveryKeyAndContainsTheReferenceValues) {
+  auto r = run_uniparam({"radical", "(t, t^3)", "--json", "--digits", "30", "--at", "1/2"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* key : {"\"t\"", "\"multiplicity\"", "\"s\"", "\"z\"", "\"alpha\"", "\"L\"", "\"A\"", "\"B\"", "\"C\"",
+                          "\"M\"", "\"mu\"", "\"u_before\"", "\"u_radical\"", "\"u_after\"", "\"pieces\"", "\"phi\"",
+                          "\"m\"", "\"r\"", "\"p_r\"", "\"at\""})
+    EXPECT_NE(r.out.find(key), std::string::npos) << key;
+  std::string mid, rad;
+  ASSERT_TRUE(certified_real(r.out, "u_after", mid, rad)) << r.out;
+  uniparam::Rational m = uniparam::Rational::parse(mid), d = uniparam::Rational::parse(rad);
+  uniparam::Rational ref = uniparam::Rational::parse("0.996507782374800406168303796755");
+  uniparam::Rational slack = uniparam::Rational::parse("1e-30");
+  EXPECT_LE(m - d - slack, ref);
+  EXPECT_GE(m + d + slack, ref);
+  EXPECT_LE(d, uniparam::Rational::parse("1e-30"));
+}
+
+TEST(Cli, RadicalFormatsAndErrors) {
+  auto latex = run_uniparam({"radical", "(t, t^3)", "--format", "latex"});
+  ASSERT_EQ(latex.exit_code, 0) << latex.err;
+  EXPECT_NE(latex.out.find("\\sqrt{"), std::string::npos);
+  auto maple = run_uniparam({"radical", "(t, t^3)", "--format", "maple"});
+  ASSERT_EQ(maple.exit_code, 0) << maple.err;
+  EXPECT_NE(maple.out.find("^(1/2)"), std::string::npos);
+  auto bad = run_uniparam({"radical", "(t, t^3)", "--format", "pdf"});
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("unknown format"), std::string::npos);
+  auto at = run_uniparam({"radical", "(t, t^3)", "--at", "3/2"});
+  EXPECT_EQ(at.exit_code, 2);
+  auto param = run_uniparam({"radical", "(t^2, t^3)", "--speed", "parametric"});
+  EXPECT_EQ(param.exit_code, 0) << param.err;
+  EXPECT_NE(param.out.find("mult       (1, 0"), std::string::npos) << param.out;
+}

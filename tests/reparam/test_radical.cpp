@@ -172,3 +172,24 @@ TEST(Radical, StraightLineIsLeftAlone) {
   EXPECT_TRUE(r.u_after.contains(Rational(1)));
   EXPECT_EQ(r.pieces(), 1u);
 }
+
+TEST(Radical, PointsOfTheReparameterizedCurveAreCertified) {
+  const Curve c = parse_curve("(t, t^3)");
+  const RadicalResult r = radical(c, SpeedKind::Angular);
+  // r maps the joints z_i to the breakpoints t_i, so p(r(z_i)) = p(t_i).
+  for (std::size_t i = 0; i < r.T.size(); ++i) {
+    auto pt = radical_eval_point(c, r, r.Z[i], 128);
+    ASSERT_EQ(pt.size(), 2u);
+    Ball t = r.T[i].t.to_ball(128), t3;
+    arb_pow_ui(t3.get(), t.get(), 3, 128);
+    EXPECT_TRUE(arb_overlaps(pt[0].get(), t.get()));
+    EXPECT_TRUE(arb_overlaps(pt[1].get(), t3.get()));
+  }
+  // r is increasing: certified at sample points.
+  Ball prev = radical_eval_r(r, Ball(0), 128);
+  for (int k = 1; k <= 32; ++k) {
+    Ball cur = radical_eval_r(r, Ball(Rational(k, 32), 128), 128);
+    EXPECT_TRUE(arb_lt(prev.get(), cur.get())) << k;
+    prev = cur;
+  }
+}

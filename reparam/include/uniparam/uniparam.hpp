@@ -5,6 +5,9 @@
 //   uniparam::Options o;            // o.digits = 15, budgets
 //   auto r = uniparam::uniformity(c, uniparam::SpeedKind::Angular, o);
 //   std::cout << r.u.str(20);       // certified ball
+//   auto rad = uniparam::radical(c, uniparam::SpeedKind::Angular, o);
+//   rad.u_after;                    // u(p o phi o m), certified
+//   uniparam::radical_eval_r(rad, uniparam::Ball(uniparam::Rational(1, 2), 128), 128);
 //
 // Every number is exact (Rational, RatFunc, RealAlgebraic) or a Ball proven to
 // contain the true value. Errors are exceptions derived from uniparam::Error:
@@ -25,6 +28,9 @@
 #include "uniparam/core/printer.hpp"
 #include "uniparam/core/ratfunc.hpp"
 #include "uniparam/reparam/curve.hpp"
+#include "uniparam/reparam/formula.hpp"
+#include "uniparam/reparam/pieces.hpp"
+#include "uniparam/reparam/radical.hpp"
 #include "uniparam/reparam/speed.hpp"
 #include "uniparam/reparam/uniformity.hpp"
 

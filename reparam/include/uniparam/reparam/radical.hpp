@@ -44,6 +44,10 @@ Ball radical_eval_r(const RadicalResult& r, const Ball& z, long prec);
 /// speed, evaluated from the formulas of the pieces.
 Ball radical_eval_speed(const RadicalResult& r, const Speed& s, const Ball& z, long prec);
 
+/// Enclosures of the components of p(r(z)), the reparameterized curve's
+/// point at z in [0, 1] (c must be the curve r was computed for).
+std::vector<Ball> radical_eval_point(const Curve& c, const RadicalResult& r, const Ball& z, long prec);
+
 /// Independent check of the whole chain: mu^2 / int_0^1 sigma_{p o r}(z)^2 dz,
 /// integrating the reparameterized speed built from the pieces of r directly
 /// in z (certified quadrature, `digits` digits).
