@@ -212,35 +212,20 @@ void Speed::eval_g(acb_t out, const acb_t z, long prec) const {
 }
 
 void Speed::eval_cofactor(acb_t out, const acb_t z, bool analytic, long prec) const {
-  acb_t s, v, d;
+  acb_t s, d;
   acb_init(s);
-  acb_init(v);
   acb_init(d);
   // numerator: sqrt(sum K^2); a single cofactor is a nonzero integer constant.
   if (K_b_.size() == 1) {
     K_b_[0].evaluate(s, z, prec);
     if (arb_is_negative(acb_realref(s)) && arb_is_zero(acb_imagref(s))) acb_neg(s, s);
   } else {
-    acb_zero(s);
-    for (const auto& k : K_b_) {
-      k.evaluate(v, z, prec);
-      acb_addmul(s, v, v, prec);
-    }
+    eval_sumK2(s, z, prec);
     acb_sqrt_analytic(s, s, analytic, prec);
   }
-  // denominator D, from its factors
-  if (kind_ == SpeedKind::Angular) {
-    acb_zero(d);
-    for (const auto& y : Y_b_) {
-      y.evaluate(v, z, prec);
-      acb_addmul(d, v, v, prec);
-    }
-  } else {
-    W_b_.evaluate(d, z, prec);
-  }
+  eval_D(d, z, prec);
   acb_div(out, s, d, prec);
   acb_clear(s);
-  acb_clear(v);
   acb_clear(d);
 }
 
@@ -304,27 +289,39 @@ void Speed::eval_squared(acb_t out, const acb_t z, long prec) const {
   acb_clear(F);
 }
 
-void Speed::eval_sumK2_over_D2(acb_t out, const acb_t z, long prec) const {
-  acb_t v, d;
+void Speed::eval_sumK2(acb_t out, const acb_t z, long prec) const {
+  acb_t v;
   acb_init(v);
-  acb_init(d);
   acb_zero(out);
   for (const auto& k : K_b_) {
     k.evaluate(v, z, prec);
     acb_addmul(out, v, v, prec);
   }
-  if (kind_ == SpeedKind::Angular) {
-    acb_zero(d);
-    for (const auto& y : Y_b_) {
-      y.evaluate(v, z, prec);
-      acb_addmul(d, v, v, prec);
-    }
-  } else {
-    W_b_.evaluate(d, z, prec);
-  }
-  acb_div(out, out, d, prec);
-  acb_div(out, out, d, prec);
   acb_clear(v);
+}
+
+void Speed::eval_D(acb_t out, const acb_t z, long prec) const {
+  if (kind_ == SpeedKind::Parametric) {
+    W_b_.evaluate(out, z, prec);
+    return;
+  }
+  acb_t v;
+  acb_init(v);
+  acb_zero(out);
+  for (const auto& y : Y_b_) {  // D = sum Y_i^2, from the factors Y_i
+    y.evaluate(v, z, prec);
+    acb_addmul(out, v, v, prec);
+  }
+  acb_clear(v);
+}
+
+void Speed::eval_sumK2_over_D2(acb_t out, const acb_t z, long prec) const {
+  acb_t d;
+  acb_init(d);
+  eval_sumK2(out, z, prec);
+  eval_D(d, z, prec);
+  acb_div(out, out, d, prec);
+  acb_div(out, out, d, prec);
   acb_clear(d);
 }
 

@@ -6,26 +6,13 @@
 #include <cstring>
 
 #include "uniparam/reparam/radical.hpp"
+#include "support/reference.hpp"
 #include "uniparam/uniparam.hpp"
 
 using namespace uniparam;
 
 namespace {
 
-bool contains_ref(const Ball& b, const char* decimal, long ref_digits) {
-  Ball r;
-  arb_set_str(r.get(), decimal, 256);
-  mag_t m;
-  mag_init(m);
-  // one unit of the reference's last printed decimal
-  const char* dot = std::strchr(decimal, '.');
-  const long decimals = dot ? static_cast<long>(std::strlen(dot + 1)) : 0;
-  mag_set_ui_2exp_si(m, 1, -static_cast<slong>(decimals * 3.3219280948873623) + 1);
-  (void)ref_digits;
-  arb_add_error_mag(r.get(), m);
-  mag_clear(m);
-  return arb_overlaps(b.get(), r.get());
-}
 
 }  // namespace
 
@@ -41,24 +28,24 @@ TEST(Radical, RunningExampleMatchesReferenceValuesAt30Digits) {
   // t_1 = 27^(-1/4) exactly: a root of 27 t^4 - 1.
   EXPECT_EQ(sign_at(Poly(std::vector<long>{-1, 0, 0, 0, 27}), r.T[1].t), 0);
   const long d = 30;
-  EXPECT_TRUE(contains_ref(r.mu, "1.249045772398254425829917077281", d));
-  EXPECT_TRUE(contains_ref(r.u_before, "0.845695243153366341883011346954", d));
-  EXPECT_TRUE(contains_ref(r.integrals[0].L, "0.276149947019518154216173188137", d));
-  EXPECT_TRUE(contains_ref(r.integrals[1].L, "0.590279575143189635488639654483", d));
-  EXPECT_TRUE(contains_ref(r.S[1], "0.406168831108629768655940029023", d));
-  EXPECT_TRUE(contains_ref(r.u_radical, "0.932019351227728622029065116125", d));
-  EXPECT_TRUE(contains_ref(r.A[0], "0.257527855578109157004177949541", d));
-  EXPECT_TRUE(contains_ref(r.B[0], "0.229215810648925481482561967406", d));
-  EXPECT_TRUE(contains_ref(r.C[0], "0.193145891683581867753133462156", d));
-  EXPECT_TRUE(contains_ref(r.A[1], "0.517982180256045372477228084291", d));
-  EXPECT_TRUE(contains_ref(r.B[1], "0.316652946386679794846275379578", d));
-  EXPECT_TRUE(contains_ref(r.C[1], "0.159384059391562820188836381580", d));
-  EXPECT_TRUE(contains_ref(r.integrals[0].M, "0.274272465295050174093452161519", d));
-  EXPECT_TRUE(contains_ref(r.integrals[1].M, "0.529288527718361753759590666857", d));
-  EXPECT_TRUE(contains_ref(r.integrals[0].alpha, "0.535898384862245412945107316988", d));
-  EXPECT_TRUE(contains_ref(r.integrals[1].alpha, "0.643207280514345359287585612170", d));
-  EXPECT_TRUE(contains_ref(r.Z[1], "0.418555543917801150534662317152", d));
-  EXPECT_TRUE(contains_ref(r.u_after, "0.996507782374800406168303796755", d));
+  EXPECT_TRUE(test_support::contains_ref(r.mu, "1.249045772398254425829917077281"));
+  EXPECT_TRUE(test_support::contains_ref(r.u_before, "0.845695243153366341883011346954"));
+  EXPECT_TRUE(test_support::contains_ref(r.integrals[0].L, "0.276149947019518154216173188137"));
+  EXPECT_TRUE(test_support::contains_ref(r.integrals[1].L, "0.590279575143189635488639654483"));
+  EXPECT_TRUE(test_support::contains_ref(r.S[1], "0.406168831108629768655940029023"));
+  EXPECT_TRUE(test_support::contains_ref(r.u_radical, "0.932019351227728622029065116125"));
+  EXPECT_TRUE(test_support::contains_ref(r.A[0], "0.257527855578109157004177949541"));
+  EXPECT_TRUE(test_support::contains_ref(r.B[0], "0.229215810648925481482561967406"));
+  EXPECT_TRUE(test_support::contains_ref(r.C[0], "0.193145891683581867753133462156"));
+  EXPECT_TRUE(test_support::contains_ref(r.A[1], "0.517982180256045372477228084291"));
+  EXPECT_TRUE(test_support::contains_ref(r.B[1], "0.316652946386679794846275379578"));
+  EXPECT_TRUE(test_support::contains_ref(r.C[1], "0.159384059391562820188836381580"));
+  EXPECT_TRUE(test_support::contains_ref(r.integrals[0].M, "0.274272465295050174093452161519"));
+  EXPECT_TRUE(test_support::contains_ref(r.integrals[1].M, "0.529288527718361753759590666857"));
+  EXPECT_TRUE(test_support::contains_ref(r.integrals[0].alpha, "0.535898384862245412945107316988"));
+  EXPECT_TRUE(test_support::contains_ref(r.integrals[1].alpha, "0.643207280514345359287585612170"));
+  EXPECT_TRUE(test_support::contains_ref(r.Z[1], "0.418555543917801150534662317152"));
+  EXPECT_TRUE(test_support::contains_ref(r.u_after, "0.996507782374800406168303796755"));
   for (const Ball* b : {&r.mu, &r.u_radical, &r.u_after, &r.S[1], &r.Z[1]}) EXPECT_TRUE(b->meets_digits(d));
 }
 

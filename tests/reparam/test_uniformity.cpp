@@ -7,6 +7,7 @@
 #include <random>
 
 #include "support/curves.hpp"
+#include "support/reference.hpp"
 #include "uniparam/uniparam.hpp"
 
 using namespace uniparam;
@@ -21,19 +22,6 @@ Ball ref(const char* decimal, long prec = 256) {
 
 // True when the ball contains the reference value, which is given to `ref_digits`
 // digits: the reference is widened by half a unit of its last digit.
-bool contains_ref(const Ball& b, const char* decimal, long ref_digits) {
-  Ball r = ref(decimal);
-  mag_t m;
-  mag_init(m);
-  // one unit of the reference's last printed decimal
-  const char* dot = std::strchr(decimal, '.');
-  const long decimals = dot ? static_cast<long>(std::strlen(dot + 1)) : 0;
-  mag_set_ui_2exp_si(m, 1, -static_cast<slong>(decimals * 3.3219280948873623) + 1);
-  (void)ref_digits;
-  arb_add_error_mag(r.get(), m);
-  mag_clear(m);
-  return arb_overlaps(b.get(), r.get());
-}
 
 struct Reference {
   const char* curve;
@@ -58,8 +46,8 @@ TEST_P(ReferenceValues, AngularMuAndUContainReferenceAndMeetDigits) {
     Options o;
     o.digits = digits;
     auto res = uniformity(parse_curve(r.curve), SpeedKind::Angular, o);
-    EXPECT_TRUE(contains_ref(res.mu, r.mu, r.ref_digits)) << r.curve << " mu " << res.mu.str(40);
-    EXPECT_TRUE(contains_ref(res.u, r.u, r.ref_digits)) << r.curve << " u " << res.u.str(40);
+    EXPECT_TRUE(test_support::contains_ref(res.mu, r.mu)) << r.curve << " mu " << res.mu.str(40);
+    EXPECT_TRUE(test_support::contains_ref(res.u, r.u)) << r.curve << " u " << res.u.str(40);
     EXPECT_TRUE(res.mu.meets_digits(digits)) << res.mu.str(40);
     EXPECT_TRUE(res.u.meets_digits(digits)) << res.u.str(40);
   }

@@ -106,6 +106,8 @@ class Speed {
   std::vector<Poly> K_;       // cofactors, gcd 1
   Poly D_;                    // exact D (for root checks and sign)
   void eval_sumK2_over_D2(acb_t out, const acb_t z, long prec) const;
+  void eval_sumK2(acb_t out, const acb_t z, long prec) const;  // sum K_k(z)^2
+  void eval_D(acb_t out, const acb_t z, long prec) const;      // D(z), from Y_i or W
   // the factored form: g(z) from its squarefree factors, R = sqrt(sum K^2) / D
   void eval_g(acb_t out, const acb_t z, long prec) const;
   void eval_cofactor(acb_t out, const acb_t z, bool analytic, long prec) const;
