@@ -42,8 +42,10 @@ Json json_algebraic(const RealAlgebraic& x, long digits) {
 std::string text_algebraic(const RealAlgebraic& x, long digits) {
   if (x.is_rational()) return x.rational().str();
   auto [lo, hi] = short_interval(x);
-  return x.decimal(printed_digits(digits)) + " (root of " + x.poly().str() + " in (" + lo.str() + ", " + hi.str() +
-         "))";
+  std::string poly = x.poly().str();
+  if (poly.size() > 80)  // the full polynomial is in the JSON output
+    poly = "a polynomial of degree " + std::to_string(x.poly().degree()) + " (see --json)";
+  return x.decimal(printed_digits(digits)) + " (root of " + poly + " in (" + lo.str() + ", " + hi.str() + "))";
 }
 
 Json json_ratfunc(const RatFunc& r) {
