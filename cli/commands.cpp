@@ -25,6 +25,7 @@ const std::vector<Command>& commands() {
   static const std::vector<Command> table = {
       {uniformity_spec(), &run_uniformity},
       {radical_spec(), &run_radical},
+      {moebius_spec(), &run_moebius},
   };
   return table;
 }

@@ -26,6 +26,8 @@ CommandSpec uniformity_spec();
 int run_uniformity(int argc, char** argv);
 CommandSpec radical_spec();
 int run_radical(int argc, char** argv);
+CommandSpec moebius_spec();
+int run_moebius(int argc, char** argv);
 /// Parses --format text|latex|maple.
 Format parse_format(const std::string& s);
 

@@ -21,6 +21,7 @@ const char* kMainHelp =
     "commands:\n"
     "  uniformity CURVE   exact speed^2, zeros of the speed in [0,1], certified mu and u\n"
     "  radical CURVE      optimal piecewise radical reparameterization (lifts zeros)\n"
+    "  moebius CURVE      optimal Moebius map, or C0 piecewise with --breakpoints\n"
     "\n"
     "CURVE is a tuple of rational functions of t, e.g. \"(t, t^3)\" or\n"
     "\"((1-t^2)/(1+t^2), 2t/(1+t^2), t)\"; decimals are read exactly (0.1 = 1/10).\n"

@@ -120,3 +120,20 @@ TEST(Cli, RadicalFormatsAndErrors) {
   EXPECT_EQ(param.exit_code, 0) << param.err;
   EXPECT_NE(param.out.find("mult       (1, 0"), std::string::npos) << param.out;
 }
+
+TEST(Cli, MoebiusOptimalAlphaOfTheQuarterCircleIsTwoMinusSqrtTwo) {
+  auto r = run_uniparam({"moebius", "((1-t^2)/(1+t^2), 2t/(1+t^2))", "--json", "--digits", "20"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* key : {"\"alpha\"", "\"mu\"", "\"u_before\"", "\"u_after\"", "\"continuity\""})
+    EXPECT_NE(r.out.find(key), std::string::npos) << key;
+  std::string mid, rad;
+  ASSERT_TRUE(certified_real(r.out, "u_after", mid, rad)) << r.out;
+  uniparam::Rational m = uniparam::Rational::parse(mid), d = uniparam::Rational::parse(rad);
+  uniparam::Rational ref = uniparam::Rational::parse("0.9977912002415711604419615");
+  uniparam::Rational slack = uniparam::Rational::parse("1e-25");
+  EXPECT_LE(m - d - slack, ref);
+  EXPECT_GE(m + d + slack, ref);
+  auto bad = run_uniparam({"moebius", "(t, t^2)", "--breakpoints", "0,1/2,1/3,1"});
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("increasing"), std::string::npos) << bad.err;
+}

@@ -29,6 +29,7 @@
 #include "uniparam/core/ratfunc.hpp"
 #include "uniparam/reparam/curve.hpp"
 #include "uniparam/reparam/formula.hpp"
+#include "uniparam/reparam/moebius.hpp"
 #include "uniparam/reparam/pieces.hpp"
 #include "uniparam/reparam/radical.hpp"
 #include "uniparam/reparam/speed.hpp"

@@ -1,0 +1,63 @@
+// uniparam/reparam/moebius.hpp -- the C0 piecewise Moebius reparameterization
+// with fixed breakpoints (ImUp's MoebiusTransformation for N = 1 and
+// ReparameterizationN with the breakpoints given; MATH.md sections 2-3).
+#pragma once
+
+#include <vector>
+
+#include "uniparam/algebra/algebraic.hpp"
+#include "uniparam/core/ball.hpp"
+#include "uniparam/reparam/pieces.hpp"
+#include "uniparam/reparam/uniformity.hpp"
+
+namespace uniparam {
+
+/// Result of the C0 piecewise Moebius method on fixed breakpoints T. Piece i
+/// maps [s_i, s_{i+1}] onto [t_i, t_{i+1}] by the Moebius map (2.1) with
+/// parameter integrals[i].alpha; the pieces join continuously (C0).
+struct MoebiusResult {
+  SpeedKind kind;
+  /// t_0 = 0 < ... < t_N = 1 exactly as given. Every multiplicity is 0: the
+  /// rational method integrates every piece without radical ends, even where
+  /// sigma vanishes at a breakpoint (see speed_vanishes).
+  std::vector<Breakpoint> T;
+  /// Per piece [t_i, t_{i+1}], ZeroSide::None: A, B, C = Delta t_i times
+  /// ImUp's A_i, B_i, C_i; L = A + B + C; M = B + 2 sqrt(A C) (ImUp's M_i);
+  /// alpha = 1 / (1 + sqrt(C / A)), the optimal Moebius parameter (2.2).
+  std::vector<PieceIntegrals> integrals;
+  /// s_0 = 0 < ... < s_N = 1: s_i = sum_{k<i} sqrt M_k / sum_k sqrt M_k (3.1).
+  /// For an identically zero speed, s_i = t_i (r = id).
+  std::vector<Ball> S;
+  Ball mu;        ///< int_0^1 sigma (invariant under reparameterization)
+  Ball u_before;  ///< u(p)
+  Ball u_after;   ///< u(p o r) = mu^2 / (sum sqrt M)^2 (1 when identically_zero)
+  bool identically_zero = false;  ///< angular speed of a line: u = 1, alpha = 1/2, r = id
+  /// True when sigma has a zero in [0, 1] (Speed::zeros() not empty). Rational
+  /// pieces cannot lift such a zero (MATH.md section 3): the result is still
+  /// the optimal C0 piecewise Moebius map for T, but u_after stays below 1.
+  bool speed_vanishes = false;
+
+  std::size_t pieces() const { return T.size() - 1; }
+};
+
+/// The optimal C0 piecewise Moebius reparameterization for the fixed
+/// breakpoints T (in t): on each piece the optimal alpha_i of (2.2), and the
+/// optimal S of (3.1).
+/// \pre T = (0 = t_0 < t_1 < ... < t_N = 1), N >= 1 (checked).
+/// \post T of the result is the given T (multiplicities 0); every Ball of the
+///       result (mu, u_before, u_after, S, and each piece's A, B, C, L, M,
+///       alpha) contains the true value and meets Options::digits;
+///       u_after >= u_before mathematically (the Moebius map with alpha = 1/2
+///       and s_i = t_i is the identity, and the result is optimal).
+/// \throws InvalidArgument for a bad T, bad options or a curve above
+///         Options::max_degree; DomainError for a non-regular curve or a
+///         speed infinite in [0, 1]; BudgetExceeded if the accuracy cannot be
+///         reached within Options::max_prec.
+MoebiusResult moebius_c0(const Curve& c, SpeedKind kind, const std::vector<RealAlgebraic>& T,
+                         const Options& opt = {});
+
+/// The single optimal Moebius transformation (N = 1): moebius_c0 with
+/// T = (0, 1). Same contract.
+MoebiusResult moebius_optimal(const Curve& c, SpeedKind kind, const Options& opt = {});
+
+}  // namespace uniparam
