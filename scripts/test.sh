@@ -6,7 +6,7 @@
 # anything fails.
 #
 #   scripts/test.sh               # everything
-#   scripts/test.sh -R algebra    # extra arguments go to ctest
+#   scripts/test.sh -R Radical    # extra arguments go to ctest (GoogleTest names)
 #
 # Environment: UNIPARAM_BUILD_DIR (default: build), UNIPARAM_JOBS (default:
 # nproc), UNIPARAM_TEST_TIMEOUT (seconds per test without its own TIMEOUT;

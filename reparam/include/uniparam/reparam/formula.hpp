@@ -3,7 +3,8 @@
 //
 // Exact data (rational breakpoints) print exactly; certified balls print as
 // their midpoints with `digits` significant digits (the balls meet that
-// accuracy, so every printed digit but the last is correct).
+// accuracy; the printed coefficients are rounded values, not enclosures: use the
+// JSON output or the evaluation functions of radical.hpp for certified numbers).
 #pragma once
 
 #include <string>
