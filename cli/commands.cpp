@@ -17,7 +17,7 @@ Options read_options(const Args& a) {
   Options o;
   o.digits = a.get_long("digits", o.digits, 1, 10000);
   o.max_prec = a.get_long("max-prec", o.max_prec, 64, 1L << 24);
-  o.max_degree = a.get_long("max-degree", o.max_degree, 1, 1000000);
+  o.max_degree = a.get_long("max-degree", o.max_degree, 1, 20000);  // the parser refuses degrees above 20000
   return o;
 }
 
