@@ -8,6 +8,11 @@
 
 #include "uniparam/core/error.hpp"
 #include "uniparam/core/number.hpp"
+#include "uniparam/core/ball.hpp"
+#include "uniparam/core/poly.hpp"
+#include "uniparam/core/ratfunc.hpp"
+
+#include <type_traits>
 
 namespace uniparam {
 namespace {
@@ -166,3 +171,11 @@ TEST(Rational, OrderingAndArithmetic) {
 
 }  // namespace
 }  // namespace uniparam
+
+// No implicit (or explicit) conversion from double into an exact or ball type.
+static_assert(!std::is_convertible_v<double, uniparam::Rational>, "double must not convert to Rational");
+static_assert(!std::is_constructible_v<uniparam::Rational, double>, "no Rational from double");
+static_assert(!std::is_constructible_v<uniparam::Integer, double>, "no Integer from double");
+static_assert(!std::is_constructible_v<uniparam::Poly, double>, "no Poly from double");
+static_assert(!std::is_constructible_v<uniparam::RatFunc, double>, "no RatFunc from double");
+static_assert(!std::is_constructible_v<uniparam::Ball, double>, "no Ball from double");

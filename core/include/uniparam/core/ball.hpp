@@ -20,6 +20,7 @@ class Ball {
   /// The exact integer x.
   explicit Ball(long x) noexcept { arb_init(v_); arb_set_si(v_, x); }
   explicit Ball(int x) noexcept : Ball(static_cast<long>(x)) {}  // beats the arb_t overload for 0
+  Ball(double) = delete;  // a double is not an enclosure of the number it was meant to be
   /// An enclosure of x rounded to prec bits (exact when representable).
   Ball(const Rational& x, long prec) noexcept { arb_init(v_); arb_set_fmpq(v_, x.get(), prec); }
   explicit Ball(const Integer& x) noexcept { arb_init(v_); arb_set_fmpz(v_, x.get()); }

@@ -18,6 +18,7 @@ class Integer {
   Integer() noexcept { fmpz_init(v_); }
   Integer(long x) noexcept { fmpz_init_set_si(v_, x); }  // NOLINT: exact
   Integer(int x) noexcept : Integer(static_cast<long>(x)) {}  // NOLINT: beats the fmpz_t overload for 0
+  Integer(double) = delete;  // no silent rounding: parse the decimal text instead
   /// Parses a decimal integer (optional leading '-'); throws InvalidArgument.
   explicit Integer(const std::string& decimal);
   explicit Integer(const fmpz_t x) noexcept { fmpz_init_set(v_, x); }
@@ -53,6 +54,7 @@ class Rational {
   Rational() noexcept { fmpq_init(v_); }
   Rational(long x) noexcept { fmpq_init(v_); fmpq_set_si(v_, x, 1); }  // NOLINT: exact
   Rational(int x) noexcept : Rational(static_cast<long>(x)) {}  // NOLINT: beats the fmpq_t overload for 0
+  Rational(double) = delete;  // 0.1 is 1/10 only via Rational::parse("0.1")
   /// num/den; throws DomainError when den == 0.
   Rational(const Integer& num, const Integer& den);
   Rational(long num, long den);

@@ -17,6 +17,7 @@ class Poly {
   /// The constant c.
   Poly(long c) noexcept { fmpz_poly_init(v_); fmpz_poly_set_si(v_, c); }  // NOLINT: exact
   Poly(int c) noexcept : Poly(static_cast<long>(c)) {}  // NOLINT: beats the fmpz_poly_t overload for 0
+  Poly(double) = delete;
   /// Coefficients from low to high degree.
   explicit Poly(const std::vector<Integer>& coeffs_low_to_high);
   explicit Poly(const std::vector<long>& coeffs_low_to_high);

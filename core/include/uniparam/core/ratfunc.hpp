@@ -18,6 +18,7 @@ class RatFunc {
   RatFunc() noexcept { fmpz_poly_q_init(v_); }
   RatFunc(long c) noexcept { fmpz_poly_q_init(v_); fmpz_poly_q_set_si(v_, c); }  // NOLINT: exact
   RatFunc(int c) noexcept : RatFunc(static_cast<long>(c)) {}  // NOLINT: beats the pointer overload for 0
+  RatFunc(double) = delete;
   explicit RatFunc(const Rational& c);
   explicit RatFunc(const Poly& p);
   /// num/den canonicalised; throws DomainError when den is zero.
