@@ -106,6 +106,7 @@ void RealAlgebraic::refine(long bits) const {
 
 Ball RealAlgebraic::to_ball(long prec) const {
   if (prec < 1) prec = 1;
+  if (prec <= ball_prec_) return ball_;  // meets every smaller precision too
   for (long extra = 4; extra <= kMaxBits; extra *= 2) {
     Ball b;
     if (is_rational()) {
@@ -122,7 +123,11 @@ Ball RealAlgebraic::to_ball(long prec) const {
     mag_mul_2exp_si(bound, bound, -prec);
     const bool ok = mag_cmp(arb_radref(b.get()), bound) <= 0;
     mag_clear(bound);
-    if (ok) return b;
+    if (ok) {
+      ball_ = b;
+      ball_prec_ = prec;
+      return b;
+    }
   }
   throw BudgetExceeded("could not enclose " + str() + " to " + std::to_string(prec) + " bits");
 }

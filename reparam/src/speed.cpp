@@ -199,11 +199,12 @@ void Speed::eval_components(acb_t S, acb_t F, const acb_t z, long prec) const {
   _acb_vec_clear(d1, n);
 }
 
-void Speed::eval_g(acb_t out, const acb_t z, long prec) const {
+void Speed::eval_g(acb_t out, const acb_t z, long prec, std::size_t skip) const {
   acb_t h;
   acb_init(h);
   acb_set_fmpz(out, g_content_.get());
   for (std::size_t i = 0; i < g_h_.size(); ++i) {
+    if (i == skip) continue;
     g_h_[i].evaluate(h, z, prec);
     acb_pow_ui(h, h, static_cast<ulong>(g_m_[i]), prec);
     acb_mul(out, out, h, prec);
@@ -331,69 +332,50 @@ void Speed::eval_squared_over_zero(acb_t out, const acb_t z, const SpeedZero& ze
   const std::size_t j = zero.factor;
   const int mu = zero.multiplicity;
   if (power < 0 || power > 2 * mu) throw InvalidArgument("eval_squared_over_zero: power out of range");
-  {
-    // Away from gamma (relative to the ball's size) dividing is harmless:
-    // sigma^2 from the components, divided by (side (z - gamma))^power.
-    Ball gb = zero.t.to_ball(prec + 16);
-    acb_t w;
-    acb_init(w);
-    acb_sub_arb(w, z, gb.get(), prec);
-    if (side < 0) acb_neg(w, w);
-    mag_t lo, rad;
-    mag_init(lo);
-    mag_init(rad);
-    acb_get_mag_lower(lo, w);
-    mag_hypot(rad, arb_radref(acb_realref(w)), arb_radref(acb_imagref(w)));
-    mag_mul_2exp_si(rad, rad, 3);
-    const bool far = mag_cmp(lo, rad) > 0;
-    mag_clear(lo);
-    mag_clear(rad);
-    if (far) {
-      eval_squared(out, z, prec);
-      acb_pow_ui(w, w, static_cast<ulong>(power), prec);
-      acb_div(out, out, w, prec);
-      acb_clear(w);
-      return;
-    }
-    acb_clear(w);
-  }
   if (zero.index >= zeros_.size() || zeros_[zero.index].factor != j)
     throw InvalidArgument("eval_squared_over_zero: not a zero of this speed");
-  auto key = std::make_pair(zero.index, prec);
-  auto it = deflated_.find(key);
-  if (it == deflated_.end()) {
-    if (deflated_.size() > 64) deflated_.clear();
-    it = deflated_.emplace(key, deflate(g_sqf_.factors[j].factor, zero.t, 1, prec + 16)).first;
-  }
-  acb_t w, h, gamma;
+  acb_t w, h;
   acb_init(w);
   acb_init(h);
-  acb_init(gamma);
-  // (side (z - gamma))^(2 mu - power)
-  Ball gb = zero.t.to_ball(prec + 16);
-  acb_set_arb(gamma, gb.get());
-  acb_sub(w, z, gamma, prec);
+  // w = side (z - gamma)
+  const Ball gb = zero.t.to_ball(prec + 16);
+  acb_sub_arb(w, z, gb.get(), prec);
   if (side < 0) acb_neg(w, w);
-  acb_pow_ui(w, w, static_cast<ulong>(2 * mu - power), prec);
-  // h_gamma(z)^(2 mu)
-  it->second.evaluate(h, z, prec);
-  acb_pow_ui(h, h, static_cast<ulong>(2 * mu), prec);
-  acb_mul(w, w, h, prec);
-  // (c g_1(z))^2 with g_1 the other squarefree factors
-  acb_set_fmpz(h, g_content_.get());
-  for (std::size_t i = 0; i < g_h_.size(); ++i) {
-    if (i == j) continue;
-    g_h_[i].evaluate(gamma, z, prec);
-    acb_pow_ui(gamma, gamma, static_cast<ulong>(g_m_[i]), prec);
-    acb_mul(h, h, gamma, prec);
+  // Away from gamma relative to the ball's size (|w| > 8 rad w), dividing is
+  // harmless: sigma^2 from the components, divided by w^power.
+  mag_t lo, rad;
+  mag_init(lo);
+  mag_init(rad);
+  acb_get_mag_lower(lo, w);
+  mag_hypot(rad, arb_radref(acb_realref(w)), arb_radref(acb_imagref(w)));
+  mag_mul_2exp_si(rad, rad, 3);
+  const bool far = mag_cmp(lo, rad) > 0;
+  mag_clear(lo);
+  mag_clear(rad);
+  if (far) {
+    eval_squared(out, z, prec);
+    acb_pow_ui(w, w, static_cast<ulong>(power), prec);
+    acb_div(out, out, w, prec);
+  } else {
+    // Near gamma: out = w^(2 mu - power) h_gamma(z)^(2 mu) (c g_1(z))^2 sum K^2 / D^2.
+    auto key = std::make_pair(zero.index, prec);
+    auto it = deflated_.find(key);
+    if (it == deflated_.end()) {
+      if (deflated_.size() > 64) deflated_.clear();
+      it = deflated_.emplace(key, deflate(g_sqf_.factors[j].factor, zero.t, 1, prec + 16)).first;
+    }
+    acb_pow_ui(w, w, static_cast<ulong>(2 * mu - power), prec);
+    it->second.evaluate(h, z, prec);
+    acb_pow_ui(h, h, static_cast<ulong>(2 * mu), prec);
+    acb_mul(w, w, h, prec);
+    eval_g(h, z, prec, j);  // c g_1(z): g without the factor vanishing at gamma
+    acb_mul(w, w, h, prec);
+    acb_mul(w, w, h, prec);
+    eval_sumK2_over_D2(out, z, prec);
+    acb_mul(out, out, w, prec);
   }
-  acb_mul(w, w, h, prec);
-  acb_mul(w, w, h, prec);
-  eval_sumK2_over_D2(out, z, prec);
-  acb_mul(out, out, w, prec);
   acb_clear(w);
   acb_clear(h);
-  acb_clear(gamma);
 }
 
 }  // namespace uniparam

@@ -41,6 +41,7 @@ class RealAlgebraic {
   /// Shrinks the interval until hi - lo <= 2^-bits (no-op for rationals).
   void refine(long bits) const;
   /// Ball containing the number with radius <= 2^-prec * max(1, |x|).
+  /// Memoised: a request at or below the last precision costs a copy.
   Ball to_ball(long prec) const;
   /// Exact sign.
   int sign() const;
@@ -55,6 +56,11 @@ class RealAlgebraic {
  private:
   Poly poly_;
   mutable Rational lo_, hi_;
+  // The last enclosure handed out and the precision it meets. The number never
+  // changes, so it stays valid; integrands ask for the same precision many
+  // thousand times per quadrature.
+  mutable Ball ball_;
+  mutable long ball_prec_ = -1;
 };
 
 /// Exact comparison: -1, 0, 1. Equality is decided exactly (gcd of the two

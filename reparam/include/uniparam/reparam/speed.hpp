@@ -108,8 +108,9 @@ class Speed {
   void eval_sumK2_over_D2(acb_t out, const acb_t z, long prec) const;
   void eval_sumK2(acb_t out, const acb_t z, long prec) const;  // sum K_k(z)^2
   void eval_D(acb_t out, const acb_t z, long prec) const;      // D(z), from Y_i or W
-  // the factored form: g(z) from its squarefree factors, R = sqrt(sum K^2) / D
-  void eval_g(acb_t out, const acb_t z, long prec) const;
+  // the factored form: g(z) from its squarefree factors (leaving out factor
+  // `skip`, if given), R = sqrt(sum K^2) / D
+  void eval_g(acb_t out, const acb_t z, long prec, std::size_t skip = static_cast<std::size_t>(-1)) const;
   void eval_cofactor(acb_t out, const acb_t z, bool analytic, long prec) const;
   // x_i'(z) (and x_i''(z) when d2 is non-null) from the components
   void eval_derivatives(acb_ptr d1, acb_ptr d2, const acb_t z, long prec) const;
