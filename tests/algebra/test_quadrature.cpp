@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "support/iterations.hpp"
 #include "uniparam/algebra/algebraic.hpp"
 #include "uniparam/algebra/quadrature.hpp"
 #include "uniparam/core/error.hpp"
@@ -18,11 +19,7 @@
 namespace uniparam {
 namespace {
 
-long iterations(long base) {
-  const char* m = std::getenv("UNIPARAM_TEST_MULTIPLIER");
-  long k = m ? std::atol(m) : 1;
-  return base * (k > 0 ? k : 1);
-}
+using test_support::iterations;
 
 Rational to_rational(const arf_t x) {
   Rational q;

@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "support/iterations.hpp"
 #include "uniparam/algebra/real_roots.hpp"
 #include "uniparam/algebra/squarefree.hpp"
 #include "uniparam/core/ball.hpp"
@@ -24,12 +25,7 @@
 namespace uniparam {
 namespace {
 
-/// Iteration counts scale with UNIPARAM_TEST_ITERS (a positive multiplier).
-long iterations(long base) {
-  const char* m = std::getenv("UNIPARAM_TEST_ITERS");
-  const long k = m ? std::atol(m) : 1;
-  return base * (k > 0 ? k : 1);
-}
+using test_support::iterations;
 
 Integer pow_int(long base, unsigned long e) {
   Integer r;

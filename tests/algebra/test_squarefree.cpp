@@ -8,18 +8,14 @@
 #include <string>
 #include <vector>
 
+#include "support/iterations.hpp"
 #include "uniparam/algebra/squarefree.hpp"
 #include "uniparam/core/error.hpp"
 
 namespace uniparam {
 namespace {
 
-/// Iteration counts scale with UNIPARAM_TEST_ITERS (a positive multiplier).
-long iterations(long base) {
-  const char* m = std::getenv("UNIPARAM_TEST_ITERS");
-  const long k = m ? std::atol(m) : 1;
-  return base * (k > 0 ? k : 1);
-}
+using test_support::iterations;
 
 Poly constant(const Integer& c) { return Poly(std::vector<Integer>{c}); }
 

@@ -20,24 +20,33 @@ bool certified_real(const std::string& json, const std::string& key, std::string
   return true;
 }
 
+// The JSON value of `key` is a certified real whose interval [mid - rad,
+// mid + rad], read exactly, contains the reference `ref` (rounded to its last
+// digit, hence `ref_slack`), and whose rad <= 10^-digits (all values here are
+// below 1 in magnitude or near it).
+::testing::AssertionResult encloses(const std::string& json, const std::string& key, const char* ref,
+                                    const char* ref_slack, long digits) {
+  std::string mid, rad;
+  if (!certified_real(json, key, mid, rad)) return ::testing::AssertionFailure() << "no certified real " << key;
+  using uniparam::Rational;
+  const Rational m = Rational::parse(mid), d = Rational::parse(rad), r = Rational::parse(ref),
+                 slack = Rational::parse(ref_slack);
+  if (m - d - slack > r || m + d + slack < r)
+    return ::testing::AssertionFailure() << key << " = " << mid << " +/- " << rad << " misses " << ref;
+  if (d > Rational::parse("1e-" + std::to_string(digits)))
+    return ::testing::AssertionFailure() << key << " radius " << rad << " above 1e-" << digits;
+  return ::testing::AssertionSuccess();
+}
+
 }  // namespace
 
 TEST(Cli, UniformityJsonMeetsTheCertifiedRealContract) {
   for (long digits : {5L, 15L, 30L}) {
     auto r = run_uniparam({"uniformity", "(t, t^3)", "--json", "--digits", std::to_string(digits)});
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    std::string mid, rad;
-    ASSERT_TRUE(certified_real(r.out, "u", mid, rad)) << r.out;
-    // [mid - rad, mid + rad] read exactly must contain the reference value and
-    // rad <= 10^-digits * max(1, |mid|).
-    uniparam::Rational m = uniparam::Rational::parse(mid), d = uniparam::Rational::parse(rad);
-    uniparam::Rational ref = uniparam::Rational::parse("0.845695243153366341883011346954");
-    uniparam::Rational slack = uniparam::Rational::parse("1e-30");
-    EXPECT_LE(m - d - slack, ref) << mid << " +/- " << rad;
-    EXPECT_GE(m + d + slack, ref) << mid << " +/- " << rad;
-    uniparam::Rational bound = uniparam::Rational::parse("1e-" + std::to_string(digits));
-    EXPECT_LE(d, bound) << rad;
-    ASSERT_TRUE(certified_real(r.out, "mu", mid, rad)) << r.out;
+    EXPECT_TRUE(encloses(r.out, "u", "0.845695243153366341883011346954", "1e-30", digits));
+    // mu > 1: the radius bound scales with |mid|, so check it against 10^-(digits-1).
+    EXPECT_TRUE(encloses(r.out, "mu", "1.249045772398254425829917077281", "1e-30", digits - 1));
   }
 }
 
@@ -94,14 +103,7 @@ TEST(Cli, RadicalJsonHasEveryKeyAndContainsTheReferenceValues) {
                           "\"M\"", "\"mu\"", "\"u_before\"", "\"u_radical\"", "\"u_after\"", "\"pieces\"", "\"phi\"",
                           "\"m\"", "\"r\"", "\"p_r\"", "\"at\""})
     EXPECT_NE(r.out.find(key), std::string::npos) << key;
-  std::string mid, rad;
-  ASSERT_TRUE(certified_real(r.out, "u_after", mid, rad)) << r.out;
-  uniparam::Rational m = uniparam::Rational::parse(mid), d = uniparam::Rational::parse(rad);
-  uniparam::Rational ref = uniparam::Rational::parse("0.996507782374800406168303796755");
-  uniparam::Rational slack = uniparam::Rational::parse("1e-30");
-  EXPECT_LE(m - d - slack, ref);
-  EXPECT_GE(m + d + slack, ref);
-  EXPECT_LE(d, uniparam::Rational::parse("1e-30"));
+  EXPECT_TRUE(encloses(r.out, "u_after", "0.996507782374800406168303796755", "1e-30", 30));
 }
 
 TEST(Cli, RadicalFormatsAndErrors) {
@@ -126,13 +128,7 @@ TEST(Cli, MoebiusOptimalAlphaOfTheQuarterCircleIsTwoMinusSqrtTwo) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* key : {"\"alpha\"", "\"mu\"", "\"u_before\"", "\"u_after\"", "\"continuity\""})
     EXPECT_NE(r.out.find(key), std::string::npos) << key;
-  std::string mid, rad;
-  ASSERT_TRUE(certified_real(r.out, "u_after", mid, rad)) << r.out;
-  uniparam::Rational m = uniparam::Rational::parse(mid), d = uniparam::Rational::parse(rad);
-  uniparam::Rational ref = uniparam::Rational::parse("0.9977912002415711604419615");
-  uniparam::Rational slack = uniparam::Rational::parse("1e-25");
-  EXPECT_LE(m - d - slack, ref);
-  EXPECT_GE(m + d + slack, ref);
+  EXPECT_TRUE(encloses(r.out, "u_after", "0.9977912002415711604419615", "1e-25", 20));
   auto bad = run_uniparam({"moebius", "(t, t^2)", "--breakpoints", "0,1/2,1/3,1"});
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("increasing"), std::string::npos) << bad.err;

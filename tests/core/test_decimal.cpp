@@ -11,6 +11,7 @@
 #include <random>
 #include <string>
 
+#include "support/iterations.hpp"
 #include "uniparam/core/ball.hpp"
 #include "uniparam/core/decimal.hpp"
 #include "uniparam/core/error.hpp"
@@ -19,11 +20,7 @@
 namespace uniparam {
 namespace {
 
-long test_iterations(long fallback) {
-  const char* s = std::getenv("UNIPARAM_TEST_ITERS");
-  const long v = s ? std::strtol(s, nullptr, 10) : 0;
-  return v > 0 ? v : fallback;
-}
+using test_support::iterations;
 
 Rational pow10(long k) {
   Integer p;
@@ -104,7 +101,7 @@ Ball random_ball(std::mt19937_64& rng) {
 
 TEST(Decimal, StringRoundsToNearestProperty) {
   std::mt19937_64 rng(12345);
-  const long iters = test_iterations(200);
+  const long iters = iterations(200);
   for (long it = 0; it < iters; ++it) {
     const Rational q = random_rational(rng);
     const long sig = std::uniform_int_distribution<long>(1, 30)(rng);
@@ -125,7 +122,7 @@ TEST(Decimal, StringRoundsToNearestProperty) {
 
 TEST(Decimal, UpperRoundsUpWithTwoDigitsProperty) {
   std::mt19937_64 rng(999);
-  const long iters = test_iterations(200);
+  const long iters = iterations(200);
   for (long it = 0; it < iters; ++it) {
     const Rational q = abs(random_rational(rng));
     SCOPED_TRACE("iteration " + std::to_string(it) + ": q = " + q.str());
@@ -173,7 +170,7 @@ TEST(Decimal, ScientificNotationOutsideTheExponentRange) {
 
 TEST(Decimal, EnclosureContainsTheBallProperty) {
   std::mt19937_64 rng(4242);
-  const long iters = test_iterations(200);
+  const long iters = iterations(200);
   for (long it = 0; it < iters; ++it) {
     const Ball b = random_ball(rng);
     const long sig = std::uniform_int_distribution<long>(1, 25)(rng);
@@ -197,7 +194,7 @@ TEST(Decimal, EnclosureContainsTheBallProperty) {
 
 TEST(Decimal, EnclosureOfRationalBallsContainsTheRational) {
   std::mt19937_64 rng(31337);
-  const long iters = test_iterations(200);
+  const long iters = iterations(200);
   for (long it = 0; it < iters; ++it) {
     const Rational q = random_rational(rng);
     const long prec = std::uniform_int_distribution<long>(10, 300)(rng);

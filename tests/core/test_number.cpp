@@ -6,6 +6,7 @@
 #include <random>
 #include <string>
 
+#include "support/iterations.hpp"
 #include "uniparam/core/error.hpp"
 #include "uniparam/core/number.hpp"
 #include "uniparam/core/ball.hpp"
@@ -17,11 +18,7 @@
 namespace uniparam {
 namespace {
 
-long test_iterations(long fallback) {
-  const char* s = std::getenv("UNIPARAM_TEST_ITERS");
-  const long v = s ? std::strtol(s, nullptr, 10) : 0;
-  return v > 0 ? v : fallback;
-}
+using test_support::iterations;
 
 Integer pow10(long k) {
   Integer p;
@@ -68,7 +65,7 @@ TEST(Integer, ArithmeticMatchesDecimalStrings) {
 
 TEST(Integer, StringRoundTripProperty) {
   std::mt19937_64 rng(20240601);
-  const long iters = test_iterations(200);
+  const long iters = iterations(200);
   for (long it = 0; it < iters; ++it) {
     std::string s = random_digits(rng, 60);
     s.erase(0, std::min(s.find_first_not_of('0'), s.size() - 1));  // canonical: no leading zeros
@@ -135,7 +132,7 @@ TEST(Rational, DivisionByZeroIsADomainError) {
 
 TEST(Rational, StringRoundTripAndDecimalProperty) {
   std::mt19937_64 rng(77);
-  const long iters = test_iterations(200);
+  const long iters = iterations(200);
   std::uniform_int_distribution<int> small(0, 12);
   for (long it = 0; it < iters; ++it) {
     SCOPED_TRACE("iteration " + std::to_string(it));

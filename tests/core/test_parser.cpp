@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "support/iterations.hpp"
 #include "uniparam/core/error.hpp"
 #include "uniparam/core/parser.hpp"
 #include "uniparam/core/printer.hpp"
@@ -19,11 +20,7 @@
 namespace uniparam {
 namespace {
 
-long test_iterations(long fallback) {
-  const char* s = std::getenv("UNIPARAM_TEST_ITERS");
-  const long v = s ? std::strtol(s, nullptr, 10) : 0;
-  return v > 0 ? v : fallback;
-}
+using test_support::iterations;
 
 const RatFunc T = RatFunc::t();
 RatFunc q(long a, long b = 1) { return RatFunc(Rational(a, b)); }
@@ -47,7 +44,7 @@ Poly random_poly(std::mt19937_64& rng, int max_degree, int max_digits) {
 
 TEST(Parser, RoundTripsRandomRationalFunctionsProperty) {
   std::mt19937_64 rng(2024);
-  const long iters = test_iterations(200);
+  const long iters = iterations(200);
   for (long it = 0; it < iters; ++it) {
     const Poly n = random_poly(rng, 8, 30);
     Poly d = random_poly(rng, 6, 30);
@@ -168,7 +165,7 @@ class ExprGen {
 TEST(Parser, RandomExpressionsMatchExactEvaluationProperty) {
   std::mt19937_64 rng(7);
   ExprGen gen(rng);
-  const long iters = test_iterations(200);
+  const long iters = iterations(200);
   for (long it = 0; it < iters; ++it) {
     const Expr e = gen.gen(5);
     SCOPED_TRACE("iteration " + std::to_string(it) + " (seed 7): " + e.text);
@@ -466,7 +463,7 @@ TEST(Parser, FuzzOnlyThrowsUniparamErrors) {
   ParseLimits lim;
   lim.max_degree = 60;
   lim.max_exponent = 12;
-  const long iters = test_iterations(200) * 20;
+  const long iters = iterations(200) * 20;
   long ok = 0;
   for (long it = 0; it < iters; ++it) {
     std::string s;

@@ -10,6 +10,7 @@
 #include <random>
 #include <string>
 
+#include "support/iterations.hpp"
 #include "uniparam/core/decimal.hpp"
 #include "uniparam/core/error.hpp"
 #include "uniparam/core/parser.hpp"
@@ -18,11 +19,7 @@
 namespace uniparam {
 namespace {
 
-long test_iterations(long fallback) {
-  const char* s = std::getenv("UNIPARAM_TEST_ITERS");
-  const long v = s ? std::strtol(s, nullptr, 10) : 0;
-  return v > 0 ? v : fallback;
-}
+using test_support::iterations;
 
 const RatFunc T = RatFunc::t();
 RatFunc q(long a, long b = 1) { return RatFunc(Rational(a, b)); }
@@ -144,7 +141,7 @@ TEST(Printer, Polynomials) {
 
 TEST(Printer, TextPolynomialsAgreeWithPolyStrAndParseBack) {
   std::mt19937_64 rng(5);
-  const long iters = test_iterations(200);
+  const long iters = iterations(200);
   std::uniform_int_distribution<long> coef(-1000000, 1000000), deg(0, 7);
   for (long it = 0; it < iters; ++it) {
     std::vector<long> c;
@@ -244,7 +241,7 @@ TEST(Json, Escaping) {
 
 TEST(Json, EscapingRoundTripsProperty) {
   std::mt19937_64 rng(8259);
-  const long iters = test_iterations(200);
+  const long iters = iterations(200);
   for (long it = 0; it < iters; ++it) {
     std::string s;
     for (int i = static_cast<int>(rng() % 40); i > 0; --i) {
@@ -304,7 +301,7 @@ TEST(Json, PreconditionsAreChecked) {
 
 TEST(Json, BallContractProperty) {
   std::mt19937_64 rng(1729);
-  const long iters = test_iterations(200);
+  const long iters = iterations(200);
   for (long it = 0; it < iters; ++it) {
     // A ball around a random rational, widened by a random radius.
     Integer num(static_cast<long>(rng() % 2000000001) - 1000000000), den(1 + static_cast<long>(rng() % 1000000));
@@ -340,7 +337,7 @@ TEST(Json, RationalContractProperty) {
   EXPECT_EQ(json_rational(Rational(3, 4), 5).dump(-1), "{\"mid\":\"0.75\",\"rad\":\"0\",\"exact\":\"3/4\"}");
   EXPECT_EQ(json_rational(Rational(-7), 5).dump(-1), "{\"mid\":\"-7\",\"rad\":\"0\",\"exact\":\"-7\"}");
   std::mt19937_64 rng(144);
-  const long iters = test_iterations(200);
+  const long iters = iterations(200);
   for (long it = 0; it < iters; ++it) {
     const Rational x(Integer(static_cast<long>(rng() % 2000001) - 1000000), Integer(1 + static_cast<long>(rng() % 100000)));
     const long sig = 1 + static_cast<long>(rng() % 20);

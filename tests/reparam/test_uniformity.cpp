@@ -14,26 +14,16 @@ using namespace uniparam;
 
 namespace {
 
-Ball ref(const char* decimal, long prec = 256) {
-  Ball b;
-  arb_set_str(b.get(), decimal, prec);
-  return b;
-}
-
-// True when the ball contains the reference value, which is given to `ref_digits`
-// digits: the reference is widened by half a unit of its last digit.
-
 struct Reference {
   const char* curve;
   const char* mu;
   const char* u;
-  long ref_digits;
 };
 
 const Reference kRefs[] = {
-    {"(t, t^3)", "1.249045772398254425829917077281", "0.845695243153366341883011346954", 30},
-    {"(t, t^2)", "1.107148717794090503017065", "0.8133094424199794137403804", 25},
-    {"((1-t^2)/(1+t^2), 2t/(1+t^2))", "1.570796326794896619231322", "0.9597808564432393298507263", 25},
+    {"(t, t^3)", "1.249045772398254425829917077281", "0.845695243153366341883011346954"},
+    {"(t, t^2)", "1.107148717794090503017065", "0.8133094424199794137403804"},
+    {"((1-t^2)/(1+t^2), 2t/(1+t^2))", "1.570796326794896619231322", "0.9597808564432393298507263"},
 };
 
 }  // namespace

@@ -7,16 +7,11 @@
 #include <string>
 #include <vector>
 
+#include "support/iterations.hpp"
 #include "uniparam/core/poly.hpp"
 #include "uniparam/core/ratfunc.hpp"
 
 namespace uniparam::test_support {
-
-/// Iteration count for property tests: UNIPARAM_TEST_ITERS or the default.
-inline int iterations(int dflt) {
-  const char* e = std::getenv("UNIPARAM_TEST_ITERS");
-  return e ? std::max(1, std::atoi(e)) : dflt;
-}
 
 /// Random polynomial of exact degree `deg` with coefficients in [-bound, bound].
 inline Poly random_poly(std::mt19937_64& rng, long deg, long bound) {
