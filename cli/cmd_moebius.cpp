@@ -46,7 +46,7 @@ int run_moebius(int argc, char** argv) {
   const Options opt = read_options(a);
   const SpeedKind kind = parse_speed_kind(a.get("speed", "angular"));
   const std::vector<RealAlgebraic> T = parse_breakpoints(a.get("breakpoints", "0,1"));
-  const Curve c = parse_curve(a.positional[0]);
+  const Curve c = read_curve(a);
   const MoebiusResult r = moebius_c0(c, kind, T, opt);
   const long pd = printed_digits(opt.digits);
   if (a.flag("json")) {

@@ -39,7 +39,7 @@ int run_radical(int argc, char** argv) {
   const Options opt = read_options(a);
   const SpeedKind kind = parse_speed_kind(a.get("speed", "angular"));
   const Format fmt = parse_format(a.get("format", "text"));
-  const Curve c = parse_curve(a.positional[0]);
+  const Curve c = read_curve(a);
   std::optional<Rational> at;
   if (a.has("at")) {
     at = Rational::parse(a.get("at", ""));

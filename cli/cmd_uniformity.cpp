@@ -23,7 +23,7 @@ int run_uniformity(int argc, char** argv) {
   if (a.help) { std::cout << help_text(spec); return 0; }
   const Options opt = read_options(a);
   const SpeedKind kind = parse_speed_kind(a.get("speed", "angular"));
-  const Curve c = parse_curve(a.positional[0]);
+  const Curve c = read_curve(a);
   const UniformityResult r = uniformity(c, kind, opt);
   const long pd = printed_digits(opt.digits);
   const char* sq = kind == SpeedKind::Angular ? "omega^2" : "|p'|^2";

@@ -21,6 +21,8 @@ Options read_options(const Args& a) {
   return o;
 }
 
+Curve read_curve(const Args& a) { return parse_curve(a.positional.at(0)); }
+
 const std::vector<Command>& commands() {
   static const std::vector<Command> table = {
       {uniformity_spec(), &run_uniformity},

@@ -20,6 +20,10 @@ const std::vector<Command>& commands();
 std::vector<OptionSpec> common_options();
 /// Reads --digits, --max-prec, --max-degree (validated ranges).
 Options read_options(const Args& a);
+/// The curve a command works on: its CURVE argument (every command reads its
+/// curve through here, so new ways of giving one apply to all commands).
+/// \throws ParseError, DomainError as Curve::parse.
+Curve read_curve(const Args& a);
 
 // One pair per command, defined in cmd_<name>.cpp.
 CommandSpec uniformity_spec();
