@@ -39,4 +39,18 @@ std::string Ball::rad_decimal() const {
 
 std::string Ball::str(long digits) const { return detail::take_flint_string(arb_get_str(v_, digits, 0)); }
 
+void clamp_unit(arb_t x, long prec) {
+  arf_t lo, hi;
+  arf_init(lo);
+  arf_init(hi);
+  arb_get_lbound_arf(lo, x, prec);
+  arb_get_ubound_arf(hi, x, prec);
+  if (arf_sgn(lo) < 0) arf_zero(lo);
+  if (arf_cmp_si(hi, 1) > 0) arf_one(hi);
+  if (arf_cmp(lo, hi) > 0) arf_set(lo, hi);
+  arb_set_interval_arf(x, lo, hi, prec);
+  arf_clear(lo);
+  arf_clear(hi);
+}
+
 }  // namespace uniparam

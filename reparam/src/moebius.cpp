@@ -2,9 +2,126 @@
 
 #include <string>
 
+#include "uniparam/core/ball_poly.hpp"
 #include "uniparam/core/error.hpp"
 
 namespace uniparam {
+
+const char* to_string(Continuity c) { return c == Continuity::C0 ? "C0" : "C1"; }
+
+namespace {
+
+// Piece i of r at the real ball s: t (and dt/ds) from (2.1) in local
+// coordinates, s~ clamped to [0, 1] (s is known to meet the piece).
+void piece_eval(Ball* t, Ball* dt, const MoebiusResult& r, std::size_t i, const Ball& s, long prec) {
+  Ball ds, st, ta = r.T[i].t.to_ball(prec), tb = r.T[i + 1].t.to_ball(prec), h;
+  arb_sub(ds.get(), r.S[i + 1].get(), r.S[i].get(), prec);
+  arb_sub(st.get(), s.get(), r.S[i].get(), prec);
+  arb_div(st.get(), st.get(), ds.get(), prec);
+  clamp_unit(st.get(), prec);  // only the part of s inside the piece maps through it
+  arb_sub(h.get(), tb.get(), ta.get(), prec);
+  const Ball& a = r.alpha[i];
+  Ball oma, den, num, q;
+  arb_sub_si(oma.get(), a.get(), 1, prec);
+  arb_neg(oma.get(), oma.get());  // 1 - alpha
+  // den = (1 - alpha) s~ + alpha (1 - s~) = alpha + (1 - 2 alpha) s~
+  Ball c12;
+  arb_mul_2exp_si(c12.get(), a.get(), 1);
+  arb_sub_si(c12.get(), c12.get(), 1, prec);
+  arb_neg(c12.get(), c12.get());
+  arb_mul(den.get(), c12.get(), st.get(), prec);
+  arb_add(den.get(), den.get(), a.get(), prec);
+  if (t) {
+    arb_mul(num.get(), oma.get(), st.get(), prec);
+    arb_div(q.get(), num.get(), den.get(), prec);
+    arb_mul(q.get(), q.get(), h.get(), prec);
+    arb_add(t->get(), ta.get(), q.get(), prec);
+  }
+  if (dt) {
+    // dt/ds = (h / ds) alpha (1 - alpha) / den^2
+    arb_mul(q.get(), a.get(), oma.get(), prec);
+    arb_div(q.get(), q.get(), den.get(), prec);
+    arb_div(q.get(), q.get(), den.get(), prec);
+    arb_mul(q.get(), q.get(), h.get(), prec);
+    arb_div(dt->get(), q.get(), ds.get(), prec);
+  }
+}
+
+// Calls f(i) for every piece whose [s_i, s_{i+1}] meets s; InvalidArgument if none.
+template <class F>
+void for_pieces_at(const MoebiusResult& r, const Ball& s, const char* who, F f) {
+  Ball zero(0), one(1);
+  if (arb_lt(s.get(), zero.get()) || arb_gt(s.get(), one.get()) || !arb_is_finite(s.get()))
+    throw InvalidArgument(std::string(who) + ": s must lie in [0, 1]");
+  bool any = false;
+  for (std::size_t i = 0; i < r.pieces(); ++i) {
+    if (arb_lt(s.get(), r.S[i].get()) || arb_gt(s.get(), r.S[i + 1].get())) continue;
+    f(i);
+    any = true;
+  }
+  if (!any) throw InvalidArgument(std::string(who) + ": s must lie in [0, 1]");
+}
+
+void unite(Ball& acc, bool& any, const Ball& v, long prec) {
+  if (!any) acc = v;
+  else arb_union(acc.get(), acc.get(), v.get(), prec);
+  any = true;
+}
+
+}  // namespace
+
+Ball moebius_eval_r(const MoebiusResult& r, const Ball& s, long prec) {
+  Ball out;
+  bool any = false;
+  for_pieces_at(r, s, "moebius_eval_r", [&](std::size_t i) {
+    Ball t;
+    piece_eval(&t, nullptr, r, i, s, prec);
+    unite(out, any, t, prec);
+  });
+  return out;
+}
+
+Ball moebius_eval_dr(const MoebiusResult& r, const Ball& s, long prec) {
+  Ball out;
+  bool any = false;
+  for_pieces_at(r, s, "moebius_eval_dr", [&](std::size_t i) {
+    Ball d;
+    piece_eval(nullptr, &d, r, i, s, prec);
+    unite(out, any, d, prec);
+  });
+  return out;
+}
+
+Ball moebius_eval_speed(const MoebiusResult& r, const Speed& sp, const Ball& s, long prec) {
+  Ball out;
+  bool any = false;
+  for_pieces_at(r, s, "moebius_eval_speed", [&](std::size_t i) {
+    Ball t, d, v;
+    piece_eval(&t, &d, r, i, s, prec);
+    acb_t z, w;
+    acb_init(z);
+    acb_init(w);
+    acb_set_arb(z, t.get());
+    sp.eval_squared(w, z, prec);
+    arb_sqrtpos(v.get(), acb_realref(w), prec);
+    arb_mul(v.get(), v.get(), d.get(), prec);
+    acb_clear(z);
+    acb_clear(w);
+    unite(out, any, v, prec);
+  });
+  return out;
+}
+
+std::vector<Ball> moebius_eval_point(const Curve& c, const MoebiusResult& r, const Ball& s, long prec) {
+  const Ball t = moebius_eval_r(r, s, prec);
+  std::vector<Ball> out;
+  for (const auto& x : c.components()) {
+    Ball n = BallPoly(x.num())(t, prec), d = BallPoly(x.den())(t, prec), v;
+    arb_div(v.get(), n.get(), d.get(), prec);
+    out.push_back(v);
+  }
+  return out;
+}
 
 MoebiusResult moebius_c0(const Curve& c, SpeedKind kind, const std::vector<RealAlgebraic>& T,
                          const Options& opt) {
@@ -33,6 +150,7 @@ MoebiusResult moebius_c0(const Curve& c, SpeedKind kind, const std::vector<RealA
       r.S.push_back(i == 0 ? Ball(0) : i == N ? Ball(1) : r.T[i].t.to_ball(prec));
     for (std::size_t i = 0; i < N; ++i) r.integrals.push_back(piece_integrals(s, r.T[i], r.T[i + 1], 64, opt.max_prec));
     r.u_after = Ball(1);
+    for (const auto& p : r.integrals) r.alpha.push_back(p.alpha);
     return r;
   }
 
@@ -67,7 +185,11 @@ MoebiusResult moebius_c0(const Curve& c, SpeedKind kind, const std::vector<RealA
     for (const auto& pi : r.integrals)
       ok = ok && pi.A.meets_digits(d) && pi.B.meets_digits(d) && pi.C.meets_digits(d) && pi.L.meets_digits(d) &&
            pi.M.meets_digits(d) && pi.alpha.meets_digits(d);
-    if (ok) return r;
+    if (ok) {
+      r.alpha.clear();
+      for (const auto& p : r.integrals) r.alpha.push_back(p.alpha);
+      return r;
+    }
     if (bits > opt.max_prec)
       throw BudgetExceeded("could not certify the piecewise Moebius reparameterization to " +
                            std::to_string(opt.digits) + " digits within " + std::to_string(opt.max_prec) +

@@ -109,19 +109,6 @@ RadicalResult radical(const Curve& c, SpeedKind kind, const Options& opt) {
 namespace {
 
 // Clamps a real ball to [0, 1].
-void clamp01(arb_t x, long prec) {
-  arf_t lo, hi;
-  arf_init(lo);
-  arf_init(hi);
-  arb_get_lbound_arf(lo, x, prec);
-  arb_get_ubound_arf(hi, x, prec);
-  if (arf_sgn(lo) < 0) arf_zero(lo);
-  if (arf_cmp_si(hi, 1) > 0) arf_one(hi);
-  if (arf_cmp(lo, hi) > 0) arf_set(lo, hi);
-  arb_set_interval_arf(x, lo, hi, prec);
-  arf_clear(lo);
-  arf_clear(hi);
-}
 
 // Local Moebius x = (1-a) zt / ((1-a) zt + a (1-zt)) and its derivative dx/dzt
 // = a (1-a) / den^2, on complex balls.
@@ -203,7 +190,7 @@ Ball radical_eval_r(const RadicalResult& r, const Ball& z, long prec) {
     arb_sub(dz.get(), hi.get(), lo.get(), prec);
     arb_sub(zt.get(), z.get(), lo.get(), prec);
     arb_div(zt.get(), zt.get(), dz.get(), prec);
-    clamp01(zt.get(), prec);
+    clamp_unit(zt.get(), prec);
     arb_sub(dt.get(), tb.get(), ta.get(), prec);
     acb_t x, y, zc;
     acb_init(x);
@@ -276,7 +263,7 @@ Ball radical_eval_speed(const RadicalResult& r, const Speed& s, const Ball& z, l
     arb_sub(dz.get(), hi.get(), lo.get(), prec);
     arb_sub(zt.get(), z.get(), lo.get(), prec);
     arb_div(zt.get(), zt.get(), dz.get(), prec);
-    clamp01(zt.get(), prec);
+    clamp_unit(zt.get(), prec);
     acb_t x, dx, zc, v;
     acb_init(x);
     acb_init(dx);

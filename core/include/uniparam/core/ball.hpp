@@ -58,4 +58,9 @@ class Ball {
   arb_t v_;
 };
 
+/// Replaces the real ball x by a ball enclosing its intersection with [0, 1]
+/// (by the nearest end when they do not meet). For enclosing a monotone map's
+/// argument that is known to lie in [0, 1].
+void clamp_unit(arb_t x, long prec);
+
 }  // namespace uniparam

@@ -15,8 +15,14 @@ namespace uniparam {
 /// Result of the C0 piecewise Moebius method on fixed breakpoints T. Piece i
 /// maps [s_i, s_{i+1}] onto [t_i, t_{i+1}] by the Moebius map (2.1) with
 /// parameter integrals[i].alpha; the pieces join continuously (C0).
+/// How the pieces of a piecewise Moebius map join.
+enum class Continuity { C0, C1 };
+/// "C0" / "C1".
+const char* to_string(Continuity c);
+
 struct MoebiusResult {
   SpeedKind kind;
+  Continuity continuity = Continuity::C0;
   /// t_0 = 0 < ... < t_N = 1 exactly as given. Every multiplicity is 0: the
   /// rational method integrates every piece without radical ends, even where
   /// sigma vanishes at a breakpoint (see speed_vanishes).
@@ -28,6 +34,9 @@ struct MoebiusResult {
   /// s_0 = 0 < ... < s_N = 1: s_i = sum_{k<i} sqrt M_k / sum_k sqrt M_k (3.1).
   /// For an identically zero speed, s_i = t_i (r = id).
   std::vector<Ball> S;
+  /// The Moebius parameter of each piece as used by the map: integrals[i].alpha
+  /// for C0 (optimal per piece), the C1-constrained optimum for C1.
+  std::vector<Ball> alpha;
   Ball mu;        ///< int_0^1 sigma (invariant under reparameterization)
   Ball u_before;  ///< u(p)
   Ball u_after;   ///< u(p o r) = mu^2 / (sum sqrt M)^2 (1 when identically_zero)
@@ -59,5 +68,16 @@ MoebiusResult moebius_c0(const Curve& c, SpeedKind kind, const std::vector<RealA
 /// The single optimal Moebius transformation (N = 1): moebius_c0 with
 /// T = (0, 1). Same contract.
 MoebiusResult moebius_optimal(const Curve& c, SpeedKind kind, const Options& opt = {});
+
+/// Enclosure of r(s) for s in [0, 1] (a real ball; where s overlaps a joint
+/// s_i, the union of both pieces' values). InvalidArgument if s misses [0, 1].
+Ball moebius_eval_r(const MoebiusResult& r, const Ball& s, long prec);
+/// Enclosure of r'(s) (the union of one-sided values at a C0 joint).
+Ball moebius_eval_dr(const MoebiusResult& r, const Ball& s, long prec);
+/// Enclosure of sigma_{p o r}(s) = sigma_p(r(s)) r'(s); `sp` must be the speed
+/// r was computed for.
+Ball moebius_eval_speed(const MoebiusResult& r, const Speed& sp, const Ball& s, long prec);
+/// Enclosures of the components of p(r(s)) (c must be the curve of r).
+std::vector<Ball> moebius_eval_point(const Curve& c, const MoebiusResult& r, const Ball& s, long prec);
 
 }  // namespace uniparam
