@@ -70,6 +70,15 @@ void unite(Ball& acc, bool& any, const Ball& v, long prec) {
 
 }  // namespace
 
+MoebiusResult reparam_c0(const Curve& c, SpeedKind kind, long N, const Options& opt) {
+  if (N < 1 || N > 1000) throw InvalidArgument("the number of pieces must be in [1, 1000], got " + std::to_string(N));
+  std::vector<RealAlgebraic> T;
+  for (long i = 0; i <= N; ++i) T.emplace_back(Rational(Integer(i), Integer(N)));
+  MoebiusResult r = moebius_c0(c, kind, T, opt);
+  r.optimiser.used = true;
+  return r;
+}
+
 Ball moebius_eval_r(const MoebiusResult& r, const Ball& s, long prec) {
   Ball out;
   bool any = false;

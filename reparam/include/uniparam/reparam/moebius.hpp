@@ -7,6 +7,7 @@
 
 #include "uniparam/algebra/algebraic.hpp"
 #include "uniparam/core/ball.hpp"
+#include "uniparam/core/number.hpp"
 #include "uniparam/reparam/pieces.hpp"
 #include "uniparam/reparam/uniformity.hpp"
 
@@ -46,6 +47,32 @@ struct MoebiusResult {
   /// the optimal C0 piecewise Moebius map for T, but u_after stays below 1.
   bool speed_vanishes = false;
 
+  /// Set by reparam_c0 (N pieces): how the local optimiser over T ended.
+  struct Optimiser {
+    bool used = false;
+    long iterations = 0;
+    Ball phi_equal;   ///< Phi = sum sqrt M_i at the equally spaced T (certified)
+    Ball phi;         ///< Phi at the returned T (certified); never above phi_equal's midpoint
+    /// max_j |dPhi/dt_j| * (t_{j+1} - t_{j-1}) / Phi at the returned T: a
+    /// relative measure of how far from stationary the optimiser stopped
+    /// (floating point, uncertified, for information).
+    double stationarity = 0;
+  } optimiser;
+
+  /// Set by reparam_c1: the target uniformity and whether u_after >= target
+  /// is certified (u_after's lower bound is at least the target).
+  struct Target {
+    bool used = false;
+    Rational value;
+    bool reached = false;
+    long rounds = 0;  ///< refinement rounds of T after the first construction
+  } target;
+
+  /// Set by make_rational: r has exactly these rational data (T, S, alpha);
+  /// every Ball above then describes this exact map.
+  bool rational = false;
+  std::vector<Rational> T_exact, S_exact, alpha_exact;
+
   std::size_t pieces() const { return T.size() - 1; }
 };
 
@@ -68,6 +95,16 @@ MoebiusResult moebius_c0(const Curve& c, SpeedKind kind, const std::vector<RealA
 /// The single optimal Moebius transformation (N = 1): moebius_c0 with
 /// T = (0, 1). Same contract.
 MoebiusResult moebius_optimal(const Curve& c, SpeedKind kind, const Options& opt = {});
+
+/// ImUp's ReparameterizationN: the C0 piecewise Moebius map with N pieces,
+/// its breakpoints T chosen by a local optimiser of Phi(T) = sum sqrt M_i
+/// started from the equally spaced T, then the optimal alpha and S for that T.
+/// \pre 1 <= N <= 1000 (checked: InvalidArgument).
+/// \post as moebius_c0 for the returned T (rational breakpoints); u_after is
+///       at least the u_after of the equally spaced T up to the balls' radii;
+///       optimiser.used is true.
+/// \throws as moebius_c0.
+MoebiusResult reparam_c0(const Curve& c, SpeedKind kind, long N, const Options& opt = {});
 
 /// Enclosure of r(s) for s in [0, 1] (a real ball; where s overlaps a joint
 /// s_i, the union of both pieces' values). InvalidArgument if s misses [0, 1].
