@@ -28,6 +28,7 @@ const std::vector<Command>& commands() {
       {uniformity_spec(), &run_uniformity},
       {radical_spec(), &run_radical},
       {moebius_spec(), &run_moebius},
+      {reparam_spec(), &run_reparam},
   };
   return table;
 }

@@ -32,6 +32,14 @@ CommandSpec radical_spec();
 int run_radical(int argc, char** argv);
 CommandSpec moebius_spec();
 int run_moebius(int argc, char** argv);
+CommandSpec reparam_spec();
+int run_reparam(int argc, char** argv);
+/// --format, --rational, --rational-digits of the Moebius commands.
+std::vector<OptionSpec> moebius_output_options();
+/// "0,1/3,2/3,1" -> breakpoints (exact rationals; checked later by the method).
+std::vector<RealAlgebraic> parse_breakpoints(const std::string& list);
+/// Applies --rational / --rational-digits to a result.
+MoebiusResult finish_moebius(const Curve& c, const MoebiusResult& r, const Args& a, const Options& opt);
 /// Parses --format text|latex|maple.
 Format parse_format(const std::string& s);
 
