@@ -16,14 +16,20 @@ struct Command {
 const std::vector<Command>& commands();
 
 /// Options shared by the certified commands: --speed, --digits, --json,
-/// --max-prec, --max-degree.
+/// --max-prec, --max-degree, --control, --weights.
 std::vector<OptionSpec> common_options();
 /// Reads --digits, --max-prec, --max-degree (validated ranges).
 Options read_options(const Args& a);
-/// The curve a command works on: its CURVE argument (every command reads its
+/// The curve a command works on: its CURVE argument, or the Bezier curve of
+/// --control (and --weights) in the power basis (every command reads its
 /// curve through here, so new ways of giving one apply to all commands).
-/// \throws ParseError, DomainError as Curve::parse.
+/// \throws ParseError, DomainError as Curve::parse; InvalidArgument for
+///         --weights without --control and as read_bezier.
 Curve read_curve(const Args& a);
+/// The Bezier curve of --control and --weights (at most --max-degree + 1
+/// points). \throws ParseError, InvalidArgument as BezierCurve::parse;
+/// InvalidArgument when --control is missing.
+BezierCurve read_bezier(const Args& a);
 
 // One pair per command, defined in cmd_<name>.cpp.
 CommandSpec uniformity_spec();
@@ -40,6 +46,8 @@ std::vector<OptionSpec> moebius_output_options();
 std::vector<RealAlgebraic> parse_breakpoints(const std::string& list);
 /// Applies --rational / --rational-digits to a result.
 MoebiusResult finish_moebius(const Curve& c, const MoebiusResult& r, const Args& a, const Options& opt);
+CommandSpec bezier_spec();
+int run_bezier(int argc, char** argv);
 /// Parses --format text|latex|maple.
 Format parse_format(const std::string& s);
 
