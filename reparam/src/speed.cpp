@@ -73,6 +73,59 @@ void poly_eval(acb_t out, const BallPoly& p, const acb_t z, long prec) {
   mag_clear(r);
 }
 
+// p(z), p'(z) and, when d2 is non-null, p''(z) on a complex ball z. On a wide
+// ball, one Taylor shift c_k = p^(k)(m)/k! gives all three in centred form:
+//     p^(j)(z) in j! c_j + sum_{k > j} k!/(k-j)! |c_k| r^(k-j) * (unit disk).
+void poly_eval_d2(acb_t v, acb_t d1, acb_t d2, const BallPoly& p, const BallPoly& p1, const BallPoly& p2,
+                  const acb_t z, long prec) {
+  mag_t r;
+  mag_init(r);
+  mag_hypot(r, arb_radref(acb_realref(z)), arb_radref(acb_imagref(z)));
+  if (p.length() <= 2 || mag_cmp_2exp_si(r, -24) < 0) {
+    mag_clear(r);
+    p.evaluate(v, z, prec);
+    p1.evaluate(d1, z, prec);
+    if (d2) p2.evaluate(d2, z, prec);
+    return;
+  }
+  acb_t m;
+  acb_init(m);
+  arf_set(arb_midref(acb_realref(m)), arb_midref(acb_realref(z)));
+  arf_set(arb_midref(acb_imagref(m)), arb_midref(acb_imagref(z)));
+  acb_poly_t c;
+  acb_poly_init(c);
+  acb_poly_set_arb_poly(c, p.get());
+  acb_poly_taylor_shift(c, c, m, prec);
+  const slong n = acb_poly_length(c);
+  mag_t err, ck, f;
+  mag_init(err);
+  mag_init(ck);
+  mag_init(f);
+  acb_ptr outs[3] = {v, d1, d2};
+  for (int j = 0; j <= 2; ++j) {
+    acb_ptr out = outs[j];
+    if (!out) continue;
+    // err = sum_{k > j} k!/(k-j)! |c_k| r^(k-j), by Horner on upper bounds
+    mag_zero(err);
+    for (slong k = n - 1; k > j; --k) {
+      acb_get_mag(ck, acb_poly_get_coeff_ptr(c, k));
+      mag_set_ui(f, static_cast<ulong>(j == 0 ? 1 : j == 1 ? k : k * (k - 1)));
+      mag_mul(ck, ck, f);
+      mag_add(err, err, ck);
+      mag_mul(err, err, r);
+    }
+    if (n > j) acb_mul_ui(out, acb_poly_get_coeff_ptr(c, j), static_cast<ulong>(j == 2 ? 2 : 1), prec);
+    else acb_zero(out);
+    acb_add_error_mag(out, err);
+  }
+  mag_clear(err);
+  mag_clear(ck);
+  mag_clear(f);
+  acb_poly_clear(c);
+  acb_clear(m);
+  mag_clear(r);
+}
+
 }  // namespace
 
 Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
@@ -186,10 +239,11 @@ void Speed::eval_derivatives(acb_ptr d1, acb_ptr d2, const acb_t z, long prec) c
   acb_init(v);
   for (std::size_t i = 0; i < comp_.size(); ++i) {
     const Component& k = comp_[i];
-    poly_eval(n, k.N, z, prec);
-    poly_eval(n1, k.N1, z, prec);
-    poly_eval(q, k.Q, z, prec);
-    poly_eval(q1, k.Q1, z, prec);
+    acb_t n2, q2;
+    acb_init(n2);
+    acb_init(q2);
+    poly_eval_d2(n, n1, d2 ? n2 : nullptr, k.N, k.N1, k.N2, z, prec);
+    poly_eval_d2(q, q1, d2 ? q2 : nullptr, k.Q, k.Q1, k.Q2, z, prec);
     // A = N'Q - NQ', x' = A / Q^2
     acb_mul(a, n1, q, prec);
     acb_submul(a, n, q1, prec);
@@ -197,12 +251,8 @@ void Speed::eval_derivatives(acb_ptr d1, acb_ptr d2, const acb_t z, long prec) c
     acb_div(d1 + i, a, v, prec);
     if (d2) {
       // x'' = (N''Q - NQ'') / Q^2 - 2 Q' A / Q^3
-      acb_t n2, q2, w;
-      acb_init(n2);
-      acb_init(q2);
+      acb_t w;
       acb_init(w);
-      poly_eval(n2, k.N2, z, prec);
-      poly_eval(q2, k.Q2, z, prec);
       acb_mul(w, n2, q, prec);
       acb_submul(w, n, q2, prec);
       acb_div(w, w, v, prec);
@@ -211,10 +261,10 @@ void Speed::eval_derivatives(acb_ptr d1, acb_ptr d2, const acb_t z, long prec) c
       acb_mul(v, v, q, prec);
       acb_div(n2, n2, v, prec);
       acb_sub(d2 + i, w, n2, prec);
-      acb_clear(n2);
-      acb_clear(q2);
       acb_clear(w);
     }
+    acb_clear(n2);
+    acb_clear(q2);
   }
   acb_clear(n);
   acb_clear(n1);
