@@ -129,7 +129,7 @@ TEST(ReparamC1, RejectsBadTargets) {
 }
 
 TEST(RationalOutput, C0MapsAreExactAndTheirUniformityIsIndependentlyConfirmed) {
-  for (const char* curve : {"(t, t^3)", "(t^2, t^3 + t/3)", "((1 - t^2)/(1 + t^2), 2t/(1 + t^2), t)"}) {
+  for (const char* curve : {kSlide, "(t, t^3)", "(t^2, t^3 + t/3)", "((1 - t^2)/(1 + t^2), 2t/(1 + t^2), t)"}) {
     const Curve c = parse_curve(curve);
     const MoebiusResult r = reparam_c0(c, SpeedKind::Angular, 3, {});
     const MoebiusResult q = make_rational(c, r, 6, {});
