@@ -47,15 +47,17 @@ MoebiusResult make_rational(const Curve& c, const MoebiusResult& in, long ration
   std::vector<Rational> tm, sm;
   for (const auto& b : in.T) tm.push_back(b.t.is_rational() ? b.t.rational() : mid_rational(b.t.to_ball(prec0)));
   for (const auto& b : in.S) sm.push_back(mid_rational(b));
+  // Breakpoints chosen by a method (the optimiser, the C1 construction) are
+  // rounded like S; breakpoints the user gave (moebius_c0) stay exact, and so
+  // does every rational one among them.
+  const bool chosen = in.optimiser.used || in.target.used;
   std::vector<Rational> Tq = tm;
-  for (std::size_t j = 1; j < N; ++j)
-    if (!in.T[j].t.is_rational()) {
-      Tq = round_sequence(tm, tol);
-      break;
-    }
-  // keep given rational breakpoints exactly
-  for (std::size_t j = 0; j <= N; ++j)
-    if (in.T[j].t.is_rational()) Tq[j] = in.T[j].t.rational();
+  bool irrational = false;
+  for (std::size_t j = 1; j < N; ++j) irrational = irrational || !in.T[j].t.is_rational();
+  if (chosen || irrational) Tq = round_sequence(tm, tol);
+  if (!chosen)
+    for (std::size_t j = 0; j <= N; ++j)
+      if (in.T[j].t.is_rational()) Tq[j] = in.T[j].t.rational();
   const std::vector<Rational> Sq = round_sequence(sm, tol);
   std::vector<RealAlgebraic> T;
   for (const auto& q : Tq) T.emplace_back(q);

@@ -124,12 +124,14 @@ MoebiusResult reparam_c0(const Curve& c, SpeedKind kind, long N, const Options& 
 MoebiusResult reparam_c1(const Curve& c, SpeedKind kind, const Rational& target, const Options& opt = {},
                          long max_pieces = 64);
 
-/// Exact rational output: rounds T (where not already rational), S and the
-/// alphas of r to the simplest rationals within 10^-rational_digits (relative
-/// to the neighbouring gaps for T and S), so the map has rational
-/// coefficients, and certifies the u of *that* map. C0: each alpha rounded.
-/// C1: the free parameter rounded, the other alphas solved exactly from the
-/// C1 condition on the rational T and S, so r' is continuous exactly.
+/// Exact rational output: rounds T, S and the alphas of r to the simplest
+/// rationals within 10^-rational_digits (relative to the neighbouring gaps for
+/// T and S) and certifies the u of *that* map, which has rational
+/// coefficients. T is rounded when a method chose it (reparam_c0,
+/// reparam_c1); rational breakpoints given to moebius_c0 stay exact
+/// (irrational ones are rounded). C0: each alpha rounded. C1: the free
+/// parameter rounded, the other alphas solved exactly from the C1 condition
+/// on the rational T and S, so r' is continuous exactly.
 /// \pre r was computed for c; 1 <= rational_digits <= 100 (InvalidArgument).
 /// \post rational == true; T_exact, S_exact, alpha_exact are the map's data;
 ///       T, S, alpha, integrals and u_after describe that exact map (u_after
