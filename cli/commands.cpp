@@ -28,6 +28,8 @@ const std::vector<Command>& commands() {
       {uniformity_spec(), &run_uniformity},
       {radical_spec(), &run_radical},
       {moebius_spec(), &run_moebius},
+      {sample_spec(), &run_sample},
+      {plot_spec(), &run_plot},
   };
   return table;
 }
