@@ -1,6 +1,7 @@
 // cli/cmd_sample.cpp -- `uniparam sample CURVE`: K certified points of p o r
 // at equally spaced parameters, as CSV (decimals) or JSON (balls); and the
 // --method options shared with `uniparam plot`.
+#include <algorithm>
 #include <iostream>
 
 #include "commands.hpp"
@@ -79,9 +80,22 @@ int run_sample(int argc, char** argv) {
   // the samples must meet.
   Options ropt = opt;
   ropt.digits = opt.digits + 3;
-  const Reparameterization r = read_method(a, c, kind, ropt, true);
+  Reparameterization r = read_method(a, c, kind, ropt, true);
   const Speed sp(c, kind);
-  const Samples smp = sample(c, sp, r, K, opt.digits, opt.max_prec);
+  Samples smp = sample(c, sp, r, K, opt.digits, opt.max_prec);
+  if (!meets_digits(smp, opt.digits)) {
+    // A sample on a joint where the speed vanishes with multiplicity k - 1: r
+    // is Hoelder-1/k there, so r's data need k times the digits.
+    long k = 2;
+    if (const auto* x = r.radical_result())
+      for (std::size_t i = 0; i < x->pieces(); ++i) k = std::max<long>(k, x->root_index(i));
+    ropt.digits = std::min<long>(10000, k * opt.digits + 3);
+    r = read_method(a, c, kind, ropt, true);
+    smp = sample(c, sp, r, K, opt.digits, opt.max_prec);
+    if (!meets_digits(smp, opt.digits))
+      throw BudgetExceeded("could not certify the samples on the joints of r to " + std::to_string(opt.digits) +
+                           " digits (r computed to " + std::to_string(ropt.digits) + " digits)");
+  }
   const std::size_t n = c.dimension();
   const long pd = printed_digits(opt.digits);
 

@@ -152,7 +152,9 @@ SamplePoint sample_one(const Curve& c, const Speed& sp, const Reparameterization
     if (ok) return out;
     // Stop when doubling the precision no longer halves the error: the
     // accuracy is then limited by r's data, not by the working precision.
-    if (prec * 2 > max_prec || !(worst < 0.5 * last))
+    const bool stalled = prec * 2 > max_prec || !(worst < 0.5 * last);
+    if (stalled && out.at_joint) return out;  // enclosures, exempt from `digits` (see SamplePoint)
+    if (stalled)
       throw BudgetExceeded("could not certify the sample at s = " + s.str() + " to " + std::to_string(digits) +
                            " digits (working precision " + std::to_string(prec) +
                            " bits); the reparameterization must be computed with more digits than its samples");
@@ -161,6 +163,17 @@ SamplePoint sample_one(const Curve& c, const Speed& sp, const Reparameterization
 }
 
 }  // namespace
+
+bool meets_digits(const Samples& s, long digits) {
+  for (const auto* v : {&s.before, &s.after})
+    for (const SamplePoint& p : *v) {
+      if (!p.t.meets_digits(digits)) return false;
+      for (const auto& b : p.point)
+        if (!b.meets_digits(digits)) return false;
+      if (!p.at_joint && !p.speed.meets_digits(digits)) return false;
+    }
+  return true;
+}
 
 Samples sample(const Curve& c, const Speed& sp, const Reparameterization& r, long K, long digits, long max_prec) {
   if (K < 2 || K > 1000000) throw InvalidArgument("sample: the number of points must be between 2 and 1000000");

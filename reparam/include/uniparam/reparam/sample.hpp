@@ -72,9 +72,13 @@ struct SamplePoint {
   std::vector<Ball> point;  ///< p(r(s)), one ball per component
   Ball speed;               ///< sigma_{p o r}(s), see at_joint
   /// True when s lies in the ball of an interior joint s_i (1 <= i < N): which
-  /// side of the joint s is on is then unknown, and `speed` is the union of
-  /// both one-sided speeds (exempt from the accuracy contract; t and point
-  /// still meet it, r being continuous).
+  /// side of the joint s is on is then unknown. `speed` is the union of both
+  /// one-sided speeds and exempt from the accuracy contract. t and point are
+  /// still enclosures and usually meet it (r is continuous), but at a joint
+  /// where sigma vanishes with multiplicity k - 1, r is only Hoelder-1/k
+  /// continuous: a joint ball of radius rho gives t a width of about
+  /// rho^(1/k). Computing r with k times the digits cures that (see
+  /// meets_digits(Samples)).
   bool at_joint = false;
 };
 
@@ -90,14 +94,20 @@ struct Samples {
 /// \pre 2 <= K <= 1000000 (checked: InvalidArgument); `r` was computed for
 ///      `c` and `sp` (not checkable; the balls would be meaningless otherwise).
 /// \post every t, point component and speed contains the true value and
-///       meets `digits` (rad <= 10^-digits max(1, |mid|)), except the speed
-///       of a sample with at_joint (see SamplePoint).
-/// \throws BudgetExceeded when a sample cannot meet `digits` within max_prec
-///         bits: r's data (joints, alpha) are balls of fixed accuracy, so r
-///         must have been computed with more digits than asked here (3 more
-///         suffice in practice).
+///       meets `digits` (rad <= 10^-digits max(1, |mid|)), except for a
+///       sample with at_joint (see SamplePoint): there the balls are
+///       enclosures only, and meets_digits(Samples) tells whether they also
+///       meet `digits`.
+/// \throws BudgetExceeded when a sample off the joints cannot meet `digits`
+///         within max_prec bits: r's data (joints, alpha) are balls of fixed
+///         accuracy, so r must have been computed with more digits than asked
+///         here (3 more suffice off the joints).
 Samples sample(const Curve& c, const Speed& sp, const Reparameterization& r, long K, long digits,
                long max_prec);
+
+/// True when every t, point component and (off the joints) speed of the
+/// samples meets `digits`.
+bool meets_digits(const Samples& s, long digits);
 
 /// The midpoint of b rounded to the nearest double. Not an enclosure: for
 /// drawing only (uncertified).
