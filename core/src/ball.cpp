@@ -1,5 +1,7 @@
 #include "uniparam/core/ball.hpp"
 
+#include "uniparam/core/error.hpp"
+
 #include <arf.h>
 #include <mag.h>
 
@@ -51,6 +53,16 @@ void clamp_unit(arb_t x, long prec) {
   arb_set_interval_arf(x, lo, hi, prec);
   arf_clear(lo);
   arf_clear(hi);
+}
+
+Rational mid_rational(const Ball& b) {
+  if (!arf_is_finite(arb_midref(b.get()))) throw DomainError("mid_rational: the ball's midpoint is not finite");
+  fmpq_t q;
+  fmpq_init(q);
+  arf_get_fmpq(q, arb_midref(b.get()));
+  Rational r(q);
+  fmpq_clear(q);
+  return r;
 }
 
 }  // namespace uniparam

@@ -88,4 +88,11 @@ Rational operator/(const Rational& a, const Rational& b) {
 }
 Rational Rational::operator-() const { Rational r; fmpq_neg(r.v_, v_); return r; }
 
+Rational Rational::simplest_between(const Rational& lo, const Rational& hi) {
+  if (hi < lo) throw InvalidArgument("Rational::simplest_between: empty interval [" + lo.str() + ", " + hi.str() + "]");
+  Rational r;
+  fmpq_simplest_between(r.v_, lo.v_, hi.v_);
+  return r;
+}
+
 }  // namespace uniparam

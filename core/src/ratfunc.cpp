@@ -1,5 +1,7 @@
 #include "uniparam/core/ratfunc.hpp"
 
+#include <algorithm>
+
 #include "error_util.hpp"
 #include "uniparam/core/error.hpp"
 
@@ -61,6 +63,46 @@ RatFunc RatFunc::pow(long e) const {
   RatFunc inv;
   fmpz_poly_q_inv(inv.v_, v_);
   return inv.pow(-e);
+}
+
+namespace {
+
+// sum_k c_k a^k b^(d - k) for c of degree d <= deg (homogenised at degree deg).
+void homogenise(fmpz_poly_t out, const fmpz_poly_t c, const fmpz_poly_t a, const fmpz_poly_t b, slong deg) {
+  fmpz_poly_t apow, term, bp;
+  fmpz_poly_init(apow);
+  fmpz_poly_init(term);
+  fmpz_poly_init(bp);
+  fmpz_poly_zero(out);
+  fmpz_poly_one(apow);
+  for (slong k = 0; k <= fmpz_poly_degree(c); ++k) {
+    if (!fmpz_is_zero(c->coeffs + k)) {
+      fmpz_poly_pow(bp, b, static_cast<ulong>(deg - k));
+      fmpz_poly_mul(term, apow, bp);
+      fmpz_poly_scalar_mul_fmpz(term, term, c->coeffs + k);
+      fmpz_poly_add(out, out, term);
+    }
+    fmpz_poly_mul(apow, apow, a);
+  }
+  fmpz_poly_clear(apow);
+  fmpz_poly_clear(term);
+  fmpz_poly_clear(bp);
+}
+
+}  // namespace
+
+RatFunc compose(const RatFunc& f, const RatFunc& g) {
+  const fmpz_poly_struct* a = fmpz_poly_q_numref(g.get());
+  const fmpz_poly_struct* b = fmpz_poly_q_denref(g.get());
+  const fmpz_poly_struct* n = fmpz_poly_q_numref(f.get());
+  const fmpz_poly_struct* q = fmpz_poly_q_denref(f.get());
+  const slong d = std::max<slong>(std::max<slong>(fmpz_poly_degree(n), fmpz_poly_degree(q)), 0);
+  // f(a/b) = [sum n_k a^k b^(d-k)] / [sum q_k a^k b^(d-k)]: the powers b^d cancel.
+  Poly num, den;
+  homogenise(num.get(), n, a, b, d);
+  homogenise(den.get(), q, a, b, d);
+  if (den.is_zero()) throw DomainError("compose: the inner function hits a pole of the outer one identically");
+  return RatFunc(num, den);
 }
 
 }  // namespace uniparam

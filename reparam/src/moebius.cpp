@@ -4,6 +4,7 @@
 
 #include "uniparam/core/ball_poly.hpp"
 #include "uniparam/core/error.hpp"
+#include "moebius_detail.hpp"
 
 namespace uniparam {
 
@@ -70,15 +71,6 @@ void unite(Ball& acc, bool& any, const Ball& v, long prec) {
 
 }  // namespace
 
-MoebiusResult reparam_c0(const Curve& c, SpeedKind kind, long N, const Options& opt) {
-  if (N < 1 || N > 1000) throw InvalidArgument("the number of pieces must be in [1, 1000], got " + std::to_string(N));
-  std::vector<RealAlgebraic> T;
-  for (long i = 0; i <= N; ++i) T.emplace_back(Rational(Integer(i), Integer(N)));
-  MoebiusResult r = moebius_c0(c, kind, T, opt);
-  r.optimiser.used = true;
-  return r;
-}
-
 Ball moebius_eval_r(const MoebiusResult& r, const Ball& s, long prec) {
   Ball out;
   bool any = false;
@@ -137,14 +129,20 @@ MoebiusResult moebius_c0(const Curve& c, SpeedKind kind, const std::vector<RealA
   validate(opt);
   check_degree(c, opt);
   const Speed s(c, kind);
+  return detail::moebius_c0(s, uniformity(s, opt), T, opt);
+}
+
+namespace detail {
+
+MoebiusResult moebius_c0(const Speed& s, const UniformityResult& base, const std::vector<RealAlgebraic>& T,
+                         const Options& opt) {
   // mark_zeros validates T (0 = t_0 < ... < t_N = 1); the rational method then
   // integrates every piece with ZeroSide::None, so the multiplicities are reset.
   std::vector<Breakpoint> bp = mark_zeros(s, T);
   for (auto& b : bp) b = Breakpoint{b.t, 0, 0, 0};
-  const UniformityResult base = uniformity(s, opt);
 
   MoebiusResult r;
-  r.kind = kind;
+  r.kind = s.kind();
   r.T = bp;
   r.mu = base.mu;
   r.u_before = base.u;
@@ -205,6 +203,31 @@ MoebiusResult moebius_c0(const Curve& c, SpeedKind kind, const std::vector<RealA
                            " bits of working precision (raise it with --max-prec)");
   }
 }
+
+Ball phi_of(const MoebiusResult& r, long prec) {
+  Ball phi(0);
+  for (const auto& p : r.integrals) {
+    Ball q;
+    arb_sqrtpos(q.get(), p.M.get(), prec);
+    arb_add(phi.get(), phi.get(), q.get(), prec);
+  }
+  return phi;
+}
+
+Ball certified_phi(const Speed& s, const std::vector<RealAlgebraic>& T, long bits, long max_prec) {
+  std::vector<Breakpoint> bp = mark_zeros(s, T);
+  Ball phi(0);
+  for (std::size_t i = 0; i + 1 < bp.size(); ++i) {
+    const PieceIntegrals p =
+        piece_integrals(s, Breakpoint{bp[i].t, 0, 0, 0}, Breakpoint{bp[i + 1].t, 0, 0, 0}, bits, max_prec);
+    Ball q;
+    arb_sqrtpos(q.get(), p.M.get(), 2 * bits + 64);
+    arb_add(phi.get(), phi.get(), q.get(), 2 * bits + 64);
+  }
+  return phi;
+}
+
+}  // namespace detail
 
 MoebiusResult moebius_optimal(const Curve& c, SpeedKind kind, const Options& opt) {
   return moebius_c0(c, kind, {RealAlgebraic(0), RealAlgebraic(1)}, opt);

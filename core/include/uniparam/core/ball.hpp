@@ -63,4 +63,7 @@ class Ball {
 /// argument that is known to lie in [0, 1].
 void clamp_unit(arb_t x, long prec);
 
+/// The midpoint of b as an exact rational. \pre b finite (checked: DomainError).
+Rational mid_rational(const Ball& b);
+
 }  // namespace uniparam

@@ -63,6 +63,10 @@ class Rational {
   /// Parses "a", "-a", "a/b" or a decimal "1.25", "-0.1", "1e-3" exactly.
   /// Throws ParseError (column within the string) on anything else.
   static Rational parse(const std::string& text);
+  /// The simplest rational (smallest denominator, then smallest numerator in
+  /// absolute value) in the closed interval [lo, hi]. \pre lo <= hi
+  /// (checked: InvalidArgument).
+  static Rational simplest_between(const Rational& lo, const Rational& hi);
   Rational(const Rational& o) noexcept { fmpq_init(v_); fmpq_set(v_, o.v_); }
   Rational(Rational&& o) noexcept { fmpq_init(v_); fmpq_swap(v_, o.v_); }
   Rational& operator=(const Rational& o) noexcept { fmpq_set(v_, o.v_); return *this; }

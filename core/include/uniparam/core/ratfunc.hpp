@@ -59,4 +59,9 @@ class RatFunc {
   fmpz_poly_q_t v_;
 };
 
+/// f(g(x)), exact and canonical. \pre g's denominator does not vanish
+/// identically after substitution (a constant g at a pole of f throws
+/// DomainError).
+RatFunc compose(const RatFunc& f, const RatFunc& g);
+
 }  // namespace uniparam

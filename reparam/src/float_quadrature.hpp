@@ -1,0 +1,27 @@
+// reparam/src/float_quadrature.hpp -- UNCERTIFIED double-precision quadrature
+// of the piece integrals, private to reparam/.
+//
+// Used only to *choose* data that is certified afterwards (the optimiser of
+// the breakpoints T, the refinement of the C1 method): nothing computed here
+// is ever reported as a result. sigma^2 is evaluated from the speed's factors
+// in ball arithmetic and rounded to double.
+#pragma once
+
+#include "uniparam/reparam/speed.hpp"
+
+namespace uniparam::detail {
+
+/// sigma(t)^2 rounded to double (uncertified). t in [0, 1].
+double sigma2_double(const Speed& s, double t);
+
+/// Uncertified A, B, C of a piece [a, b] (the integrals of sigma^2 (1-t~)^2,
+/// sigma^2 2 t~ (1-t~), sigma^2 t~^2 over dt), by adaptive 20-point
+/// Gauss-Legendre with the usual error estimate (relative tolerance 1e-12).
+struct FloatABC {
+  double A = 0, B = 0, C = 0;
+  /// The contribution min_alpha (b-a)[(1-a)/a A + B + a/(1-a) C] = (b-a)(B + 2 sqrt(AC)).
+  double M(double h) const;
+};
+FloatABC float_abc(const Speed& s, double a, double b);
+
+}  // namespace uniparam::detail
