@@ -76,7 +76,12 @@ std::string u_text(const Ball& u) {
   if (x == 1 && u.is_exact()) return "1";
   long digits = 4;
   if (x < 1 && 1 - x < 1e-3) digits = 3 + static_cast<long>(std::ceil(-std::log10(1 - x)));
-  return u.mid_decimal(std::min<long>(digits, 15));
+  digits = std::min<long>(digits, 15);
+  std::string t = u.mid_decimal(digits);
+  // keep trailing zeros (0.7320, not 0.732) for u in [0.1, 1): `digits` decimals
+  if (x >= 0.1 && x < 1 && t.compare(0, 2, "0.") == 0)
+    while (static_cast<long>(t.size()) - 2 < digits) t += '0';
+  return t;
 }
 
 struct Projection {
@@ -249,7 +254,9 @@ std::string render(const Curve& c, SpeedKind kind, const Reparameterization& r, 
   doc.end_group();
 
   const bool angular = kind == SpeedKind::Angular;
-  const std::string w = angular ? "\u03c9" : "\u2016v\u2016";  // omega, or the norm of the velocity
+  // legend names of the two speeds: omega_p(t), omega_{p o r}(s) or |p'(t)|, |(p o r)'(s)|
+  const std::string speed_before = angular ? "\u03c9_{p}(t)" : "|p\u2032(t)|";
+  const std::string speed_after = angular ? "\u03c9_{p\u2218r}(s)" : "|(p\u2218r)\u2032(s)|";
   const std::string Ks = std::to_string(K);
 
   // Curve panels: same range and scale in both.
@@ -325,7 +332,7 @@ std::string render(const Curve& c, SpeedKind kind, const Reparameterization& r, 
     const svg::Panel P{left, top, plot, plot, 0, 1, 0, ytop};
     doc.begin_group("panel speed");
     svg::draw_axes(doc, P, svg::nice_ticks(0, 1, 5), yt3, "t (for p),  s (for p\u2218r)",
-                   angular ? "angular speed \u03c9" : "speed \u2016v\u2016");
+                   angular ? "angular speed \u03c9" : "parametric speed |p\u2032|");
     doc.begin_clip(P.left, P.top, P.width, P.height);
     doc.begin_group("joints");
     for (double s : d.joints_s)
@@ -350,8 +357,8 @@ std::string render(const Curve& c, SpeedKind kind, const Reparameterization& r, 
     doc.end_group();
     doc.end_clip();
     std::vector<std::pair<int, std::string>> items = {
-        {2, w + "_{p}(t), the original speed"},
-        {2, w + "_{p\u2218r}(s), the new speed"},
+        {2, speed_before + ", the original speed"},
+        {2, speed_after + ", the new speed"},
         {3, "\u03bc = " + r.mu().mid_decimal(4) + ", the speed of a uniform p\u2218r"},
     };
     caption(left - 50, top + plot + 62, "speeds:  u(p) = " + u_text(r.u_before()) + " \u2192 u(p\u2218r) = " +
@@ -375,7 +382,7 @@ std::string render(const Curve& c, SpeedKind kind, const Reparameterization& r, 
       doc.text({x + 22, yy}, "joints s_{i} of r (where p\u2218r's pieces meet)", 12.5, Anchor::Start, "#222");
       yy += 18;
       doc.diamond({x + 7, yy - 4}, 5.5, Style{kMark, "none", 1.5, "", 1});
-      doc.text({x + 22, yy}, w + "_{p} at the breakpoints t_{i}", 12.5, Anchor::Start, "#222");
+      doc.text({x + 22, yy}, speed_before + " at the breakpoints t_{i}", 12.5, Anchor::Start, "#222");
     }
     doc.end_group();
     doc.end_group();
