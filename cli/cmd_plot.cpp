@@ -10,7 +10,6 @@
 #include <stdexcept>
 
 #include "commands.hpp"
-#include "report.hpp"
 #include "svg.hpp"
 #include "uniparam/reparam/sample.hpp"
 
@@ -237,8 +236,7 @@ std::string elide(const std::string& s, std::size_t max_chars) {
   return s.substr(0, a) + " \u2026 " + s.substr(b);
 }
 
-std::string render(const Curve& c, SpeedKind kind, const Reparameterization& r, const Samples& smp,
-                   const PlotData& d, const Projection& proj, long K, const Args& a) {
+std::string render(const Curve& c, SpeedKind kind, const Reparameterization& r, const PlotData& d, const Projection& proj, long K, const Args& a) {
   const double col = 430, plot = 330, left0 = 78, top = proj.caption.empty() ? 84 : 102;
   const double W = 3 * col + 20, H = top + plot + 168;
   svg::Document doc(W, H);
@@ -387,7 +385,6 @@ std::string render(const Curve& c, SpeedKind kind, const Reparameterization& r, 
     doc.end_group();
     doc.end_group();
   }
-  (void)smp;
   return doc.str();
 }
 
@@ -426,7 +423,7 @@ int run_plot(int argc, char** argv) {
   // The dots need only drawing accuracy; they are certified to 6 digits anyway.
   const Samples smp = sample(c, sp, r, K, std::min<long>(6, opt.digits), opt.max_prec);
   const PlotData d = collect(c, sp, r, smp, proj);
-  const std::string text = render(c, kind, r, smp, d, proj, K, a);
+  const std::string text = render(c, kind, r, d, proj, K, a);
   if (out == "-") {
     std::cout << text;
     return 0;
