@@ -297,7 +297,10 @@ std::string render(const Curve& c, SpeedKind kind, const Reparameterization& r, 
     doc.polyline(tr, Style{kTrace, "none", 1.3, "", 1});
     doc.begin_group(k == 0 ? "samples before" : "samples after");
     const char* color = k == 0 ? kGreen : kRed;
-    for (const auto& p : k == 0 ? d.before : d.after) doc.circle(P.map(p), 3.5, Style{"#ffffff", color, 0.7, "", 1});
+    // dots shrink with many points so that neighbours stay apart (3.5 px up to 40 points)
+    const double dot = std::max(1.2, std::min(3.5, 3.5 * std::sqrt(40.0 / static_cast<double>(K))));
+    for (const auto& p : k == 0 ? d.before : d.after)
+      doc.circle(P.map(p), dot, Style{"#ffffff", color, dot < 2 ? 0.3 : 0.7, "", 1});
     doc.end_group();
     doc.begin_group("breakpoints");
     for (const auto& p : d.breakpoints) doc.diamond(P.map(p), 6, Style{kMark, "none", 1.6, "", 1});
