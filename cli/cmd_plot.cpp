@@ -18,7 +18,7 @@ namespace uniparam::cli {
 CommandSpec plot_spec() {
   std::vector<OptionSpec> opts;
   for (const auto& o : common_options())
-    if (o.name != "json") opts.push_back(o);
+    if (o.name != "json" && o.name != "digits") opts.push_back(o);  // a picture has no digits to choose
   for (const auto& o : method_options(false)) opts.push_back(o);
   opts.push_back({"points", "K", "number of sample points in the two curve panels", "40"});
   opts.push_back({"projection", "P",
@@ -221,7 +221,8 @@ std::string method_title(const Reparameterization& r, const Args& a) {
   if (r.radical_result()) return "Optimal piecewise radical reparameterization r = \u03c6\u2218m (" + pieces + ")";
   const auto* m = r.moebius_result();
   if (m && m->continuity == Continuity::C1)
-    return "C1 piecewise M\u00f6bius reparameterization (" + pieces + ", target \u016b = " + a.get("target", "0.99") + ")";
+    return "C1 piecewise M\u00f6bius reparameterization (" + pieces + ", target \u016b = " + a.get("target", "0.99") +
+           ")";
   return "Optimal C0 piecewise M\u00f6bius reparameterization (" + pieces + ")";
 }
 
@@ -236,7 +237,8 @@ std::string elide(const std::string& s, std::size_t max_chars) {
   return s.substr(0, a) + " \u2026 " + s.substr(b);
 }
 
-std::string render(const Curve& c, SpeedKind kind, const Reparameterization& r, const PlotData& d, const Projection& proj, long K, const Args& a) {
+std::string render(const Curve& c, SpeedKind kind, const Reparameterization& r, const PlotData& d,
+                   const Projection& proj, long K, const Args& a) {
   const double col = 430, plot = 330, left0 = 78, top = proj.caption.empty() ? 84 : 102;
   const double W = 3 * col + 20, H = top + plot + 168;
   svg::Document doc(W, H);
@@ -416,6 +418,8 @@ int run_plot(int argc, char** argv) {
   const bool png = ends_with(".png");
   if (out != "-" && !png && !ends_with(".svg"))
     throw InvalidArgument("-o: the file name must end in .svg or .png (or be - for SVG on stdout), got '" + out + "'");
+  // 15 digits (no --digits): the drawing evaluates r next to its joints (1e-9
+  // of a piece inside), so the joints must be known far better than that.
   const Options opt = read_options(a);
   const SpeedKind kind = parse_speed_kind(a.get("speed", "angular"));
   const long K = a.get_long("points", 40, 2, 100000);

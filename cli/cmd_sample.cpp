@@ -73,7 +73,8 @@ int run_sample(int argc, char** argv) {
   const SpeedKind kind = parse_speed_kind(a.get("speed", "angular"));
   const long K = a.get_long("points", 40, 2, 1000000);
   std::string format = a.get("format", a.flag("json") ? "json" : "csv");
-  if (format != "csv" && format != "json") throw InvalidArgument("unknown format '" + format + "' (expected csv or json)");
+  if (format != "csv" && format != "json")
+    throw InvalidArgument("unknown format '" + format + "' (expected csv or json)");
   if (a.flag("json") && format != "json") throw InvalidArgument("--json conflicts with --format " + format);
   const Curve c = read_curve(a);
   // r's data are balls of fixed accuracy: compute them with 3 more digits than

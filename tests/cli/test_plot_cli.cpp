@@ -329,8 +329,8 @@ TEST(SampleCli, CsvAndJsonAgreeAndFollowTheCurve) {
       for (int col = 0; col < 5; ++col) {
         const JsonBall& x = b[static_cast<std::size_t>(5 * k + col)];
         // the JSON ball meets the digits
-        const Rational scale = x.mid < Rational(0) ? (Rational(-1) * x.mid > Rational(1) ? Rational(-1) * x.mid : Rational(1))
-                                                   : (x.mid > Rational(1) ? x.mid : Rational(1));
+        const Rational abs_mid = x.mid < Rational(0) ? -x.mid : x.mid;
+        const Rational scale = abs_mid > Rational(1) ? abs_mid : Rational(1);
         if (col > 0) EXPECT_LE(x.rad, Rational::parse("1e-" + std::to_string(D)) * scale);
         if (rows[k][col].empty()) continue;  // speed at a joint
         // the CSV decimal is the same number rounded to D significant digits

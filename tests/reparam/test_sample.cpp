@@ -30,7 +30,8 @@ struct Independent {
 long piece_of(const std::vector<Ball>& joints, const Ball& s) {
   for (std::size_t i = 0; i + 1 < joints.size(); ++i)
     if (!arb_lt(s.get(), joints[i].get()) && !arb_gt(s.get(), joints[i + 1].get()) &&
-        (i == 0 || arb_gt(s.get(), joints[i].get())) && (i + 2 == joints.size() || arb_lt(s.get(), joints[i + 1].get())))
+        (i == 0 || arb_gt(s.get(), joints[i].get())) &&
+        (i + 2 == joints.size() || arb_lt(s.get(), joints[i + 1].get())))
       return static_cast<long>(i);
   return -1;
 }
