@@ -22,6 +22,13 @@ long Args::get_long(const std::string& n, long dflt, long lo, long hi) const {
   return v;
 }
 
+bool curve_or_control(const CommandSpec& spec) {
+  if (spec.positionals.empty() || spec.positionals.front() != "CURVE") return false;
+  for (const auto& o : spec.options)
+    if (o.name == "control") return true;
+  return false;
+}
+
 Args parse_args(const CommandSpec& spec, int argc, char** argv, int first) {
   Args a;
   for (int i = first; i < argc; ++i) {
@@ -54,10 +61,19 @@ Args parse_args(const CommandSpec& spec, int argc, char** argv, int first) {
     }
     a.positional.push_back(arg);
   }
-  if (!a.help && a.positional.size() != spec.positionals.size()) {
-    std::string want;
-    for (const auto& p : spec.positionals) want += " " + p;
-    throw InvalidArgument("'uniparam " + spec.name + "' expects" + (want.empty() ? " no arguments" : want) +
+  if (a.help) return a;
+  // CURVE may be replaced by --control POINTS (a Bezier curve): exactly one of the two.
+  std::size_t want = spec.positionals.size();
+  if (curve_or_control(spec) && a.has("control")) {
+    if (a.positional.size() == want)
+      throw InvalidArgument("'uniparam " + spec.name + "': give the curve either as CURVE or with --control, not both");
+    --want;
+  }
+  if (a.positional.size() != want) {
+    std::string names;
+    for (const auto& p : spec.positionals) names += " " + p;
+    if (curve_or_control(spec)) names = " CURVE or --control POINTS";
+    throw InvalidArgument("'uniparam " + spec.name + "' expects" + (names.empty() ? " no arguments" : names) +
                           ", got " + std::to_string(a.positional.size()) + " argument(s) (quote the curve: \"(t, t^3)\")");
   }
   return a;
@@ -65,7 +81,8 @@ Args parse_args(const CommandSpec& spec, int argc, char** argv, int first) {
 
 std::string help_text(const CommandSpec& spec) {
   std::string s = "usage: uniparam " + spec.name;
-  for (const auto& p : spec.positionals) s += " " + p;
+  for (std::size_t i = 0; i < spec.positionals.size(); ++i)
+    s += (i == 0 && curve_or_control(spec)) ? " (CURVE | --control POINTS)" : " " + spec.positionals[i];
   s += " [options]\n\n" + spec.synopsis + "\n";
   if (!spec.description.empty()) s += "\n" + spec.description + "\n";
   s += "\noptions:\n";

@@ -19,7 +19,10 @@ struct CommandSpec {
   std::string name;
   std::string synopsis;   ///< one line
   std::string description;
-  std::vector<std::string> positionals;  ///< names, all required
+  /// Names, all required; except that a first positional named "CURVE" is
+  /// replaced by --control when the command has that option (exactly one of
+  /// the two must be given).
+  std::vector<std::string> positionals;
   std::vector<OptionSpec> options;
 };
 
@@ -40,8 +43,12 @@ struct Args {
   long get_long(const std::string& n, long dflt, long lo, long hi) const;
 };
 
+/// True when the command's first positional CURVE may be given as --control instead.
+bool curve_or_control(const CommandSpec& spec);
+
 /// Parses argv[first..argc) for `spec`; InvalidArgument for an unknown option,
-/// a missing value or a wrong number of positional arguments (unless --help).
+/// a missing value or a wrong number of positional arguments (unless --help),
+/// or both CURVE and --control given.
 Args parse_args(const CommandSpec& spec, int argc, char** argv, int first);
 
 /// Help text of one command.

@@ -4,24 +4,32 @@
 #include <iostream>
 
 #include "commands.hpp"
-#include "report.hpp"
-#include "uniparam/reparam/moebius.hpp"
+#include "moebius_report.hpp"
 
 namespace uniparam::cli {
 
-CommandSpec moebius_spec() {
-  auto opts = common_options();
-  opts.push_back({"breakpoints", "LIST", "C0 piecewise Moebius with fixed breakpoints, e.g. 0,1/3,2/3,1", "0,1"});
-  return {"moebius",
-          "Optimal Moebius reparameterization: alpha* = 1/(1+sqrt(C/A)) and u after.",
-          "With --breakpoints T the pieces are C0 Moebius maps with the optimal alpha\n"
-          "and S for that T (MATH.md 3.1). Rational maps cannot lift zeros of the\n"
-          "speed: for such curves see 'uniparam radical'.",
-          {"CURVE"},
-          opts};
+std::vector<OptionSpec> moebius_output_options() {
+  return {
+      {"format", "F", "formulas of the pieces: text, latex, maple (or json, the same as --json)", "text"},
+      {"rational", "", "round alpha, S and T to short rationals and certify that exact map", ""},
+      {"rational-digits", "D", "with --rational: round to the simplest rationals within 10^-D", "8"},
+  };
 }
 
-namespace {
+MoebiusPrint read_moebius_print(const Args& a) {
+  MoebiusPrint how;
+  const std::string f = a.get("format", "text");
+  how.json = a.flag("json") || f == "json";
+  how.format = f == "json" ? Format::Text : parse_format(f);
+  return how;
+}
+
+MoebiusResult finish_moebius(const Curve& c, const MoebiusResult& r, const Args& a, const Options& opt) {
+  const long rd = a.get_long("rational-digits", 8, 1, 100);
+  if (a.has("rational-digits") && !a.flag("rational"))
+    throw InvalidArgument("--rational-digits needs --rational");
+  return a.flag("rational") ? make_rational(c, r, rd, opt) : r;
+}
 
 std::vector<RealAlgebraic> parse_breakpoints(const std::string& list) {
   std::vector<RealAlgebraic> out;
@@ -37,7 +45,18 @@ std::vector<RealAlgebraic> parse_breakpoints(const std::string& list) {
   return out;
 }
 
-}  // namespace
+CommandSpec moebius_spec() {
+  auto opts = common_options();
+  opts.push_back({"breakpoints", "LIST", "C0 piecewise Moebius with fixed breakpoints, e.g. 0,1/3,2/3,1", "0,1"});
+  for (auto& o : moebius_output_options()) opts.push_back(o);
+  return {"moebius",
+          "Optimal Moebius reparameterization: alpha* = 1/(1+sqrt(C/A)) and u after.",
+          "With --breakpoints T the pieces are C0 Moebius maps with the optimal alpha\n"
+          "and S for that T (MATH.md 3.1). Rational maps cannot lift zeros of the\n"
+          "speed: for such curves see 'uniparam radical'.",
+          {"CURVE"},
+          opts};
+}
 
 int run_moebius(int argc, char** argv) {
   const CommandSpec spec = moebius_spec();
@@ -45,42 +64,11 @@ int run_moebius(int argc, char** argv) {
   if (a.help) { std::cout << help_text(spec); return 0; }
   const Options opt = read_options(a);
   const SpeedKind kind = parse_speed_kind(a.get("speed", "angular"));
+  const MoebiusPrint how = read_moebius_print(a);
   const std::vector<RealAlgebraic> T = parse_breakpoints(a.get("breakpoints", "0,1"));
   const Curve c = read_curve(a);
-  const MoebiusResult r = moebius_c0(c, kind, T, opt);
-  const long pd = printed_digits(opt.digits);
-  if (a.flag("json")) {
-    Json j = Json::object();
-    j.set("curve", Json::string(c.str()));
-    j.set("speed", Json::string(to_string(kind)));
-    j.set("digits", Json::number(opt.digits));
-    Json t = Json::array(), s = Json::array(), al = Json::array();
-    for (const auto& b : r.T) t.push(json_algebraic(b.t, opt.digits));
-    for (const auto& b : r.S) s.push(json_ball(b, pd));
-    for (const auto& p : r.integrals) al.push(json_ball(p.alpha, pd));
-    j.set("t", t);
-    j.set("s", s);
-    j.set("alpha", al);
-    j.set("mu", json_ball(r.mu, pd));
-    j.set("u_before", json_ball(r.u_before, pd));
-    j.set("u_after", json_ball(r.u_after, pd));
-    j.set("continuity", Json::string("C0"));
-    j.set("speed_vanishes", Json::boolean(r.speed_vanishes));
-    std::cout << j.dump(2) << "\n";
-    return 0;
-  }
-  std::cout << "curve      " << c.str() << "\nspeed      " << to_string(kind) << "\n";
-  for (std::size_t i = 0; i < r.pieces(); ++i)
-    std::cout << "piece " << i << "    t in [" << text_algebraic(r.T[i].t, opt.digits) << ", "
-              << text_algebraic(r.T[i + 1].t, opt.digits) << "], s in [" << r.S[i].mid_decimal(pd) << ", "
-              << r.S[i + 1].mid_decimal(pd) << "], alpha = " << format_ball(r.integrals[i].alpha, pd, Format::Text)
-              << "\n";
-  std::cout << "mu         " << format_ball(r.mu, pd, Format::Text) << "\n"
-            << "u before   " << format_ball(r.u_before, pd, Format::Text) << "\n"
-            << "u after    " << format_ball(r.u_after, pd, Format::Text) << "\n";
-  if (r.speed_vanishes)
-    std::cout << "note: the speed vanishes in [0, 1]; rational maps cannot lift its zeros "
-                 "(see 'uniparam radical')\n";
+  const MoebiusResult r = finish_moebius(c, moebius_c0(c, kind, T, opt), a, opt);
+  print_moebius(c, r, opt.digits, how);
   return 0;
 }
 

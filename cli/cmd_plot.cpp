@@ -33,7 +33,8 @@ CommandSpec plot_spec() {
           "and of p o r (against s). The breakpoints p(t_i) are marked, the joints s_i of r\n"
           "drawn in the speed panel, and the captions give the certified u before and after.\n"
           "Space curves are drawn in a projection, named in the picture. PNG output is\n"
-          "rendered from the SVG by rsvg-convert (Debian package librsvg2-bin) at 2x size.",
+          "rendered from the SVG by rsvg-convert (Debian package librsvg2-bin) at 2x size.\n"
+          "When --method c1 misses its target, the best map is drawn and the exit status is 4.",
           {"CURVE"},
           opts};
 }
@@ -222,7 +223,7 @@ std::string method_title(const Reparameterization& r, const Args& a) {
   const auto* m = r.moebius_result();
   if (m && m->continuity == Continuity::C1)
     return "C1 piecewise M\u00f6bius reparameterization (" + pieces + ", target \u016b = " + a.get("target", "0.99") +
-           ")";
+           (m->target.reached ? " reached" : " NOT reached") + ")";
   return "Optimal C0 piecewise M\u00f6bius reparameterization (" + pieces + ")";
 }
 
@@ -433,7 +434,7 @@ int run_plot(int argc, char** argv) {
   const std::string text = render(c, kind, r, d, proj, K, a);
   if (out == "-") {
     std::cout << text;
-    return 0;
+    return target_status(r, "plot");
   }
   try {
     if (png) {
@@ -449,7 +450,7 @@ int run_plot(int argc, char** argv) {
     std::cerr << "uniparam plot: " << e.what() << "\n";
     return 1;
   }
-  return 0;
+  return target_status(r, "plot");
 }
 
 }  // namespace uniparam::cli

@@ -19,6 +19,7 @@ std::vector<OptionSpec> method_options(bool with_none) {
        "radical"},
       {"pieces", "N", "number of pieces for --method c0", "3"},
       {"target", "U", "target uniformity in (0, 1) for --method c1, e.g. 0.99", "0.99"},
+      {"max-pieces", "N", "largest number of pieces --method c1 tries", "64"},
   };
 }
 
@@ -29,18 +30,26 @@ Reparameterization read_method(const Args& a, const Curve& c, SpeedKind kind, co
                           std::string(with_none ? " or none)" : ")"));
   if (a.has("pieces") && m != "c0") throw InvalidArgument("--pieces applies to --method c0 only");
   if (a.has("target") && m != "c1") throw InvalidArgument("--target applies to --method c1 only");
+  if (a.has("max-pieces") && m != "c1") throw InvalidArgument("--max-pieces applies to --method c1 only");
   if (m == "radical") return Reparameterization(radical(c, kind, opt));
   if (m == "c0") return Reparameterization(reparam_c0(c, kind, a.get_long("pieces", 3, 1, 1000), opt));
   if (m == "c1") {
     const Rational target = Rational::parse(a.get("target", "0.99"));
     if (target <= Rational(0) || target >= Rational(1))
       throw InvalidArgument("--target must lie strictly between 0 and 1, got " + target.str());
-    throw InvalidArgument(
-        "--method c1 is not available yet in this build (the C1 piecewise Moebius method is being "
-        "written); use --method c0 or radical");
+    return Reparameterization(reparam_c1(c, kind, target, opt, a.get_long("max-pieces", 64, 1, 1000)));
   }
   const UniformityResult u = uniformity(c, kind, opt);
   return Reparameterization::identity(u.mu, u.u);
+}
+
+int target_status(const Reparameterization& r, const std::string& command) {
+  const auto* m = r.moebius_result();
+  if (!m || !m->target.used || m->target.reached) return 0;
+  std::cerr << "uniparam " << command << ": the target u >= " << m->target.value.str()
+            << " was not reached (best map used: " << m->pieces() << " pieces, u = " << m->u_after.mid_decimal(6)
+            << "; raise --max-pieces)\n";
+  return 4;
 }
 
 std::string coordinate_name(std::size_t i, std::size_t n) {
@@ -60,7 +69,8 @@ CommandSpec sample_spec() {
           "balls {\"mid\", \"rad\"}, CSV the midpoints (decimals with D significant digits).\n"
           "Where s falls on a joint of r whose side cannot be decided, the speed is\n"
           "two-sided: CSV leaves it empty, JSON gives the union and \"at_joint\": true.\n"
-          "--method none samples the original p (s = t).",
+          "--method none samples the original p (s = t). When --method c1 misses its\n"
+          "target, the best map is sampled and the exit status is 4.",
           {"CURVE"},
           opts};
 }
@@ -131,7 +141,7 @@ int run_sample(int argc, char** argv) {
     }
     j.set("samples", rows);
     std::cout << j.dump(2) << "\n";
-    return 0;
+    return target_status(r, "sample");
   }
   std::cout << "s,t";
   for (std::size_t i = 0; i < n; ++i) std::cout << "," << coordinate_name(i, n);
@@ -143,7 +153,7 @@ int run_sample(int argc, char** argv) {
     if (!p.at_joint) std::cout << p.speed.mid_decimal(opt.digits);
     std::cout << "\n";
   }
-  return 0;
+  return target_status(r, "sample");
 }
 
 }  // namespace uniparam::cli

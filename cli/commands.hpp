@@ -16,14 +16,20 @@ struct Command {
 const std::vector<Command>& commands();
 
 /// Options shared by the certified commands: --speed, --digits, --json,
-/// --max-prec, --max-degree.
+/// --max-prec, --max-degree, --control, --weights.
 std::vector<OptionSpec> common_options();
 /// Reads --digits, --max-prec, --max-degree (validated ranges).
 Options read_options(const Args& a);
-/// The curve a command works on: its CURVE argument (every command reads its
+/// The curve a command works on: its CURVE argument, or the Bezier curve of
+/// --control (and --weights) in the power basis (every command reads its
 /// curve through here, so new ways of giving one apply to all commands).
-/// \throws ParseError, DomainError as Curve::parse.
+/// \throws ParseError, DomainError as Curve::parse; InvalidArgument for
+///         --weights without --control and as read_bezier.
 Curve read_curve(const Args& a);
+/// The Bezier curve of --control and --weights (at most --max-degree + 1
+/// points). \throws ParseError, InvalidArgument as BezierCurve::parse;
+/// InvalidArgument when --control is missing.
+BezierCurve read_bezier(const Args& a);
 
 // One pair per command, defined in cmd_<name>.cpp.
 CommandSpec uniformity_spec();
@@ -32,6 +38,16 @@ CommandSpec radical_spec();
 int run_radical(int argc, char** argv);
 CommandSpec moebius_spec();
 int run_moebius(int argc, char** argv);
+CommandSpec reparam_spec();
+int run_reparam(int argc, char** argv);
+/// --format, --rational, --rational-digits of the Moebius commands.
+std::vector<OptionSpec> moebius_output_options();
+/// "0,1/3,2/3,1" -> breakpoints (exact rationals; checked later by the method).
+std::vector<RealAlgebraic> parse_breakpoints(const std::string& list);
+/// Applies --rational / --rational-digits to a result.
+MoebiusResult finish_moebius(const Curve& c, const MoebiusResult& r, const Args& a, const Options& opt);
+CommandSpec bezier_spec();
+int run_bezier(int argc, char** argv);
 CommandSpec sample_spec();
 int run_sample(int argc, char** argv);
 CommandSpec plot_spec();
@@ -40,8 +56,10 @@ int run_plot(int argc, char** argv);
 /// --method none (the original curve).
 std::vector<OptionSpec> method_options(bool with_none);
 /// The reparameterization of c selected by --method, computed with `opt`.
-/// --method c1 throws InvalidArgument until the C1 method exists.
 Reparameterization read_method(const Args& a, const Curve& c, SpeedKind kind, const Options& opt, bool with_none);
+/// Exit status after using r: 4, with a message on stderr, when r is a C1
+/// map whose target uniformity was not reached (the best map was used); 0 otherwise.
+int target_status(const Reparameterization& r, const std::string& command);
 /// "x", "y", "z" for n <= 3 components, else "x1", ..., "xn" (0-based i).
 std::string coordinate_name(std::size_t i, std::size_t n);
 /// Parses --format text|latex|maple.

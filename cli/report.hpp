@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 
 #include "uniparam/uniparam.hpp"
 
@@ -16,6 +17,10 @@ inline long printed_digits(long digits) { return digits + 3; }
 Json json_algebraic(const RealAlgebraic& x, long digits);
 /// Text: "1/2", or "0.43869133765083082 (root of 27*t^4 - 1 in (43/100, 11/25))".
 std::string text_algebraic(const RealAlgebraic& x, long digits);
+
+/// A short isolating interval of an irrational algebraic number (decimal ends
+/// with few digits, exactly one root inside), or its current interval.
+std::pair<Rational, Rational> short_interval(const RealAlgebraic& x);
 
 /// {"text": ..., "latex": ..., "maple": ...} of a rational function.
 Json json_ratfunc(const RatFunc& r);

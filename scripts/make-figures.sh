@@ -34,15 +34,8 @@ fig() {  # fig NAME ARGS... : one picture, reported
 fig example16-radical "(t, t^3)" --method radical --points 40
 # The slides' C0 figure: N = 3 pieces, 40 points.
 fig slide-c0-n3 "$slide" --method c0 --pieces 3 --points 40
-# The slides' C1 figure: target 0.99, 40 points (once the C1 method exists).
-if err="$("$bin" plot "$slide" --method c1 --target 0.99 --points 40 -o "$out/slide-c1-u099.svg" 2>&1)"; then
-  echo "make-figures.sh: wrote docs/img/slide-c1-u099.svg"
-elif printf '%s' "$err" | grep -q "not available yet"; then
-  echo "make-figures.sh: skipped docs/img/slide-c1-u099.svg: --method c1 is not available in this build" >&2
-else
-  printf '%s\n' "$err" >&2
-  exit 1
-fi
+# The slides' C1 figure: target 0.99, 40 points.
+fig slide-c1-u099 "$slide" --method c1 --target 0.99 --points 40
 # A space curve (a projection is drawn) and the parametric speed.
 fig space-c0-n2 "((1-t^2)/(1+t^2), 2t/(1+t^2), t)" --method c0 --pieces 2 --points 30
 fig example16-parametric "(t, t^3)" --method radical --speed parametric --points 40

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <exception>
 #include <string>
+#include <vector>
 
 #include "uniparam/core/error.hpp"
 
@@ -97,6 +98,44 @@ bool meets_goal(const Ball& r, const QuadratureOptions& opt) {
   return mag_cmp(rad, m.v) <= 0;
 }
 
+/// Bits that evaluating f loses to cancellation on [a, b] (e.g. a power-basis
+/// polynomial of high degree with large alternating coefficients): f at 7
+/// interior points at precision `prec`, absolute radius against the largest
+/// |f| seen. The first attempt then starts that much higher instead of
+/// failing and doubling. 0 when nothing can be measured; an exception from f
+/// propagates (as from the quadrature itself).
+long cancellation_bits(const Integrand& f, const Ball& a, const Ball& b, long prec) {
+  long worst = 0;
+  {
+    AcbVar z, fz;
+    MagVar big;
+    std::vector<MagVar> rads(7);
+    for (int j = 0; j < 7; ++j) {
+      // z = a + (b - a) (j + 1) / 8 at exact dyadic midpoints
+      arb_sub(acb_realref(z.v), b.get(), a.get(), prec);
+      arb_mul_si(acb_realref(z.v), acb_realref(z.v), j + 1, prec);
+      arb_mul_2exp_si(acb_realref(z.v), acb_realref(z.v), -3);
+      arb_add(acb_realref(z.v), acb_realref(z.v), a.get(), prec);
+      mag_zero(arb_radref(acb_realref(z.v)));
+      arb_zero(acb_imagref(z.v));
+      f(fz.v, z.v, false, prec);
+      if (!acb_is_finite(fz.v)) return prec;  // everything lost (or a true pole: the real run reports it)
+      MagVar m;
+      acb_get_mag(m.v, fz.v);
+      if (mag_cmp(m.v, big.v) > 0) mag_set(big.v, m.v);
+      mag_hypot(rads[static_cast<std::size_t>(j)].v, arb_radref(acb_realref(fz.v)), arb_radref(acb_imagref(fz.v)));
+    }
+    if (mag_is_zero(big.v)) return 0;
+    for (auto& r : rads) {
+      if (mag_is_zero(r.v)) continue;
+      // accuracy = log2(big / rad); loss = prec - accuracy
+      const long acc = fmpz_get_si(MAG_EXPREF(big.v)) - fmpz_get_si(MAG_EXPREF(r.v));
+      worst = std::max(worst, prec - acc);
+    }
+  }
+  return std::max(0L, worst);
+}
+
 std::string goal_text(const QuadratureOptions& opt) {
   std::string s = std::to_string(opt.rel_goal_bits) + " bits";
   if (opt.abs_goal_bits > 0) s += " (or absolute error 2^-" + std::to_string(opt.abs_goal_bits) + ")";
@@ -118,6 +157,17 @@ Ball integrate(const Integrand& f, const RealAlgebraic& a, const RealAlgebraic& 
 
   long start = opt.initial_prec > 0 ? opt.initial_prec : opt.rel_goal_bits + 32;
   start = std::min(std::max(start, 2L), opt.max_prec);
+  if (opt.initial_prec == 0) {
+    // Start above the precision that cancellation in f would eat, measured
+    // at the precision that is then used (a total loss doubles it first).
+    const long base = start;
+    for (int round = 0; round < 4 && start < opt.max_prec; ++round) {
+      const long lost = cancellation_bits(f, a.to_ball(start), b.to_ball(start), start);
+      const long need = lost >= start ? 2 * start : base + lost;
+      if (need <= start + 16) break;
+      start = std::min(need, opt.max_prec);
+    }
+  }
 
   acb_calc_integrate_opt_t arb_opt;
   acb_calc_integrate_opt_init(arb_opt);

@@ -130,4 +130,52 @@ std::vector<PieceFormulas> radical_formulas(const Curve& c, const RadicalResult&
   return out;
 }
 
+std::vector<MoebiusPieceFormulas> moebius_formulas(const Curve& c, const MoebiusResult& r, Format f, long digits) {
+  const Fmt F{f, digits};
+  const long prec = 4 * digits + 64;
+  std::vector<MoebiusPieceFormulas> out;
+  for (std::size_t i = 0; i < r.pieces(); ++i) {
+    MoebiusPieceFormulas pf;
+    // t = (A s + B) / (C s + D) with C = 1 - 2a, D = a ds - C s_i,
+    // A = t_i C + dt (1 - a), B = t_i D - dt (1 - a) s_i.
+    if (r.rational) {
+      const Rational &ti = r.T_exact[i], &tj = r.T_exact[i + 1], &si = r.S_exact[i], &sj = r.S_exact[i + 1];
+      const Rational& a = r.alpha_exact[i];
+      const Rational dt = tj - ti, ds = sj - si, C = Rational(1) - Rational(2) * a, D = a * ds - C * si;
+      const Rational A = ti * C + dt * (Rational(1) - a), B = ti * D - dt * (Rational(1) - a) * si;
+      const RatFunc s = RatFunc::t();
+      const RatFunc rf = (RatFunc(A) * s + RatFunc(B)) / (RatFunc(C) * s + RatFunc(D));
+      pf.exact = true;
+      pf.s_interval = "[" + format_rational(si, f) + ", " + format_rational(sj, f) + "]";
+      pf.t_interval = "[" + format_rational(ti, f) + ", " + format_rational(tj, f) + "]";
+      pf.r = format_ratfunc(rf, f, "s");
+      for (const auto& comp : c.components()) pf.p_r.push_back(format_ratfunc(compose(comp, rf), f, "s"));
+    } else {
+      const Ball ti = r.T[i].t.to_ball(prec), tj = r.T[i + 1].t.to_ball(prec);
+      const Ball &si = r.S[i], &sj = r.S[i + 1], &a = r.alpha[i];
+      Ball dt, ds, oma, C, D, A, B, t;
+      arb_sub(dt.get(), tj.get(), ti.get(), prec);
+      arb_sub(ds.get(), sj.get(), si.get(), prec);
+      arb_sub_ui(oma.get(), a.get(), 1, prec);
+      arb_neg(oma.get(), oma.get());
+      arb_mul_2exp_si(C.get(), a.get(), 1);
+      arb_sub_ui(C.get(), C.get(), 1, prec);
+      arb_neg(C.get(), C.get());
+      arb_mul(D.get(), a.get(), ds.get(), prec);
+      arb_submul(D.get(), C.get(), si.get(), prec);
+      arb_mul(t.get(), dt.get(), oma.get(), prec);
+      arb_mul(A.get(), ti.get(), C.get(), prec);
+      arb_add(A.get(), A.get(), t.get(), prec);
+      arb_mul(B.get(), ti.get(), D.get(), prec);
+      arb_submul(B.get(), t.get(), si.get(), prec);
+      pf.s_interval = F.interval(si, sj);
+      pf.t_interval = F.interval(ti, tj);
+      pf.r = F.frac(F.linear(A, B, "s"), F.linear(C, D, "s"));
+      for (const auto& comp : c.components()) pf.p_r.push_back(substitute_t(format_ratfunc(comp, f), pf.r));
+    }
+    out.push_back(std::move(pf));
+  }
+  return out;
+}
+
 }  // namespace uniparam

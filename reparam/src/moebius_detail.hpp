@@ -18,4 +18,22 @@ Ball phi_of(const MoebiusResult& r, long prec);
 /// Certified Phi(T) = sum sqrt M_i to about `bits` relative bits.
 Ball certified_phi(const Speed& s, const std::vector<RealAlgebraic>& T, long bits, long max_prec);
 
+/// N1 = 2 g' S D + g S' D - 2 g S D' (S = sum K^2): sigma'/sigma = N1 / (2 g S D),
+/// so the zeros of sigma' where sigma != 0 are roots of N1.
+Poly log_derivative_numerator(const Speed& s);
+
+/// The C1 data of a piecewise Moebius map with breakpoints T and S: rho_i =
+/// dt_i / ds_i, k_i = (1 - alpha_i) / alpha_i from the C1 condition
+/// rho_i / k_i = rho_{i+1} k_{i+1} with the free parameter chosen optimally
+/// (x = sqrt(Q/P) closes the one-parameter family), each piece's F_i =
+/// (k_i A_i + B_i + C_i / k_i) / ds_i (its int sigma_{p o m}^2 ds, with the
+/// PieceIntegrals convention of dt_i times the integrals over dt) and u =
+/// mu^2 / sum F_i. All certified balls.
+struct C1Data {
+  std::vector<Ball> rho, k, alpha, F;
+  Ball u;
+};
+C1Data c1_from_pieces(const std::vector<RealAlgebraic>& T, const std::vector<Ball>& S,
+                      const std::vector<PieceIntegrals>& I, const Ball& mu, long prec);
+
 }  // namespace uniparam::detail

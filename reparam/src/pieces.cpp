@@ -1,6 +1,9 @@
 #include "uniparam/reparam/pieces.hpp"
 
 #include <algorithm>
+#include <deque>
+#include <functional>
+#include <unordered_map>
 
 #include "uniparam/algebra/quadrature.hpp"
 #include "uniparam/algebra/real_roots.hpp"
@@ -20,6 +23,63 @@ Poly critical_numerator(const Speed& s) {
   for (const auto& k : s.cofactors()) Q = Q + k * k;
   return Poly(2) * g.derivative() * Q * D + g * Q.derivative() * D - Poly(2) * g * Q * D.derivative();
 }
+
+// Memo of the expensive factor sigma^2 rho of the integrands of A, B and C:
+// the three quadratures evaluate it at largely the same balls (the same
+// subintervals and Gauss-Legendre nodes), so each value is computed once.
+// Keys are compared exactly (midpoints, radii and precision).
+class EvalMemo {
+ public:
+  EvalMemo() = default;
+  EvalMemo(const EvalMemo&) = delete;
+  EvalMemo& operator=(const EvalMemo&) = delete;
+  ~EvalMemo() {
+    for (auto& e : entries_) {
+      acb_clear(e.z);
+      acb_clear(e.v);
+    }
+  }
+  /// out = the stored value for (z, prec), or compute(out) stored.
+  template <class F>
+  void get(acb_t out, const acb_t z, long prec, const F& compute) {
+    const std::size_t h = hash(z, prec);
+    auto range = index_.equal_range(h);
+    for (auto it = range.first; it != range.second; ++it) {
+      const Entry& e = entries_[it->second];
+      if (e.prec == prec && acb_equal(e.z, z)) {
+        acb_set(out, e.v);
+        return;
+      }
+    }
+    compute(out);
+    if (entries_.size() >= kMax) return;  // bounded memory: stop memoising
+    entries_.emplace_back();
+    Entry& e = entries_.back();
+    acb_init(e.z);
+    acb_init(e.v);
+    acb_set(e.z, z);
+    acb_set(e.v, out);
+    e.prec = prec;
+    index_.emplace(h, entries_.size() - 1);
+  }
+
+ private:
+  struct Entry {
+    acb_t z, v;
+    long prec = 0;
+  };
+  static constexpr std::size_t kMax = 200000;
+  static std::size_t hash(const acb_t z, long prec) {
+    std::hash<double> hd;
+    std::size_t h = std::hash<long>()(prec);
+    for (double d : {arf_get_d(arb_midref(acb_realref(z)), ARF_RND_DOWN), arf_get_d(arb_midref(acb_imagref(z)), ARF_RND_DOWN),
+                     mag_get_d(arb_radref(acb_realref(z))), mag_get_d(arb_radref(acb_imagref(z)))})
+      h = h * 1000003u ^ hd(d);
+    return h;
+  }
+  std::deque<Entry> entries_;
+  std::unordered_multimap<std::size_t, std::size_t> index_;
+};
 
 }  // namespace
 
@@ -81,8 +141,9 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
   const SpeedZero zero = side == ZeroSide::Left ? a.zero() : side == ZeroSide::Right ? b.zero() : SpeedZero{a.t, 0};
 
   // f_k(t) = sigma^2 rho w_k(s~): k = 0, 1, 2 for (1-s~)^2, 2 s~(1-s~), s~^2.
+  EvalMemo memo;
   auto make = [&](int k) -> Integrand {
-    return [&s, &a, &b, side, mu, zero, k](acb_t out, const acb_t z, bool, long prec) {
+    return [&s, &a, &b, &memo, side, mu, zero, k](acb_t out, const acb_t z, bool, long prec) {
       acb_t ta, dt, tt, st, w;
       acb_init(ta);
       acb_init(dt);
@@ -96,12 +157,14 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
       acb_sub(tt, z, ta, prec);
       acb_div(tt, tt, dt, prec);  // t~
       if (side == ZeroSide::None) {
-        s.eval_squared(out, z, prec);
+        memo.get(out, z, prec, [&](acb_t v) { s.eval_squared(v, z, prec); });
         acb_mul(out, out, dt, prec);  // rho = Delta t
         acb_set(st, tt);
       } else {
         // sigma^2 rho = Delta t^(mu+1) / (mu+1) * sigma^2 / (side (t - gamma))^mu
-        s.eval_squared_over_zero(out, z, zero, side == ZeroSide::Left ? 1 : -1, mu, prec);
+        memo.get(out, z, prec, [&](acb_t v) {
+          s.eval_squared_over_zero(v, z, zero, side == ZeroSide::Left ? 1 : -1, mu, prec);
+        });
         acb_pow_ui(w, dt, static_cast<ulong>(mu + 1), prec);
         acb_mul(out, out, w, prec);
         acb_div_ui(out, out, static_cast<ulong>(mu + 1), prec);

@@ -1,5 +1,7 @@
 #include "uniparam/reparam/speed.hpp"
 
+#include <acb_poly.h>
+
 #include <algorithm>
 
 #include "uniparam/algebra/deflation.hpp"
@@ -22,6 +24,106 @@ Poly gcd_all(const std::vector<Poly>& ps) {
   Poly g;
   for (const auto& p : ps) g = gcd(g, p);
   return g;
+}
+
+// Enclosure of p(z) on a complex ball z. Horner in ball arithmetic (Arb's
+// arb_poly_evaluate_acb) bounds p on a wide ball by roughly
+// sum |a_k| (|m| + r)^k - a huge overestimate for power-basis polynomials
+// with large alternating coefficients (Bezier curves, high degree), which
+// makes the quadrature subdivide its ellipses far more than needed. On a
+// wide ball the centred (Taylor) form is used instead: with m the ball's
+// exact midpoint and |z - m| <= r,
+//     p(z) in p(m) + sum_{k >= 1} |p^(k)(m) / k!| r^k * (unit disk),
+// whose overestimate is of the size of the true variation of p on the ball.
+void poly_eval(acb_t out, const BallPoly& p, const acb_t z, long prec) {
+  const slong n = p.length();
+  mag_t r;
+  mag_init(r);
+  mag_hypot(r, arb_radref(acb_realref(z)), arb_radref(acb_imagref(z)));
+  // Narrow balls (the quadrature's nodes) and low degrees: Horner is tight.
+  if (n <= 2 || mag_cmp_2exp_si(r, -24) < 0) {
+    mag_clear(r);
+    p.evaluate(out, z, prec);
+    return;
+  }
+  acb_t m;
+  acb_init(m);
+  arf_set(arb_midref(acb_realref(m)), arb_midref(acb_realref(z)));
+  arf_set(arb_midref(acb_imagref(m)), arb_midref(acb_imagref(z)));
+  acb_poly_t c;
+  acb_poly_init(c);
+  acb_poly_set_arb_poly(c, p.get());
+  acb_poly_taylor_shift(c, c, m, prec);  // c_k = p^(k)(m) / k!
+  // err = sum_{k >= 1} |c_k| r^k, by Horner on upper bounds
+  mag_t err, ck;
+  mag_init(err);
+  mag_init(ck);
+  for (slong k = acb_poly_length(c) - 1; k >= 1; --k) {
+    acb_get_mag(ck, acb_poly_get_coeff_ptr(c, k));
+    mag_add(err, err, ck);
+    mag_mul(err, err, r);
+  }
+  if (acb_poly_length(c) > 0) acb_set(out, acb_poly_get_coeff_ptr(c, 0));
+  else acb_zero(out);
+  acb_add_error_mag(out, err);
+  mag_clear(err);
+  mag_clear(ck);
+  acb_poly_clear(c);
+  acb_clear(m);
+  mag_clear(r);
+}
+
+// p(z), p'(z) and, when d2 is non-null, p''(z) on a complex ball z. On a wide
+// ball, one Taylor shift c_k = p^(k)(m)/k! gives all three in centred form:
+//     p^(j)(z) in j! c_j + sum_{k > j} k!/(k-j)! |c_k| r^(k-j) * (unit disk).
+void poly_eval_d2(acb_t v, acb_t d1, acb_t d2, const BallPoly& p, const BallPoly& p1, const BallPoly& p2,
+                  const acb_t z, long prec) {
+  mag_t r;
+  mag_init(r);
+  mag_hypot(r, arb_radref(acb_realref(z)), arb_radref(acb_imagref(z)));
+  if (p.length() <= 2 || mag_cmp_2exp_si(r, -24) < 0) {
+    mag_clear(r);
+    p.evaluate(v, z, prec);
+    p1.evaluate(d1, z, prec);
+    if (d2) p2.evaluate(d2, z, prec);
+    return;
+  }
+  acb_t m;
+  acb_init(m);
+  arf_set(arb_midref(acb_realref(m)), arb_midref(acb_realref(z)));
+  arf_set(arb_midref(acb_imagref(m)), arb_midref(acb_imagref(z)));
+  acb_poly_t c;
+  acb_poly_init(c);
+  acb_poly_set_arb_poly(c, p.get());
+  acb_poly_taylor_shift(c, c, m, prec);
+  const slong n = acb_poly_length(c);
+  mag_t err, ck, f;
+  mag_init(err);
+  mag_init(ck);
+  mag_init(f);
+  acb_ptr outs[3] = {v, d1, d2};
+  for (int j = 0; j <= 2; ++j) {
+    acb_ptr out = outs[j];
+    if (!out) continue;
+    // err = sum_{k > j} k!/(k-j)! |c_k| r^(k-j), by Horner on upper bounds
+    mag_zero(err);
+    for (slong k = n - 1; k > j; --k) {
+      acb_get_mag(ck, acb_poly_get_coeff_ptr(c, k));
+      mag_set_ui(f, static_cast<ulong>(j == 0 ? 1 : j == 1 ? k : k * (k - 1)));
+      mag_mul(ck, ck, f);
+      mag_add(err, err, ck);
+      mag_mul(err, err, r);
+    }
+    if (n > j) acb_mul_ui(out, acb_poly_get_coeff_ptr(c, j), static_cast<ulong>(j == 2 ? 2 : 1), prec);
+    else acb_zero(out);
+    acb_add_error_mag(out, err);
+  }
+  mag_clear(err);
+  mag_clear(ck);
+  mag_clear(f);
+  acb_poly_clear(c);
+  acb_clear(m);
+  mag_clear(r);
 }
 
 }  // namespace
@@ -137,10 +239,11 @@ void Speed::eval_derivatives(acb_ptr d1, acb_ptr d2, const acb_t z, long prec) c
   acb_init(v);
   for (std::size_t i = 0; i < comp_.size(); ++i) {
     const Component& k = comp_[i];
-    k.N.evaluate(n, z, prec);
-    k.N1.evaluate(n1, z, prec);
-    k.Q.evaluate(q, z, prec);
-    k.Q1.evaluate(q1, z, prec);
+    acb_t n2, q2;
+    acb_init(n2);
+    acb_init(q2);
+    poly_eval_d2(n, n1, d2 ? n2 : nullptr, k.N, k.N1, k.N2, z, prec);
+    poly_eval_d2(q, q1, d2 ? q2 : nullptr, k.Q, k.Q1, k.Q2, z, prec);
     // A = N'Q - NQ', x' = A / Q^2
     acb_mul(a, n1, q, prec);
     acb_submul(a, n, q1, prec);
@@ -148,12 +251,8 @@ void Speed::eval_derivatives(acb_ptr d1, acb_ptr d2, const acb_t z, long prec) c
     acb_div(d1 + i, a, v, prec);
     if (d2) {
       // x'' = (N''Q - NQ'') / Q^2 - 2 Q' A / Q^3
-      acb_t n2, q2, w;
-      acb_init(n2);
-      acb_init(q2);
+      acb_t w;
       acb_init(w);
-      k.N2.evaluate(n2, z, prec);
-      k.Q2.evaluate(q2, z, prec);
       acb_mul(w, n2, q, prec);
       acb_submul(w, n, q2, prec);
       acb_div(w, w, v, prec);
@@ -162,10 +261,10 @@ void Speed::eval_derivatives(acb_ptr d1, acb_ptr d2, const acb_t z, long prec) c
       acb_mul(v, v, q, prec);
       acb_div(n2, n2, v, prec);
       acb_sub(d2 + i, w, n2, prec);
-      acb_clear(n2);
-      acb_clear(q2);
       acb_clear(w);
     }
+    acb_clear(n2);
+    acb_clear(q2);
   }
   acb_clear(n);
   acb_clear(n1);
@@ -205,7 +304,7 @@ void Speed::eval_g(acb_t out, const acb_t z, long prec, std::size_t skip) const 
   acb_set_fmpz(out, g_content_.get());
   for (std::size_t i = 0; i < g_h_.size(); ++i) {
     if (i == skip) continue;
-    g_h_[i].evaluate(h, z, prec);
+    poly_eval(h, g_h_[i], z, prec);
     acb_pow_ui(h, h, static_cast<ulong>(g_m_[i]), prec);
     acb_mul(out, out, h, prec);
   }
@@ -218,7 +317,7 @@ void Speed::eval_cofactor(acb_t out, const acb_t z, bool analytic, long prec) co
   acb_init(d);
   // numerator: sqrt(sum K^2); a single cofactor is a nonzero integer constant.
   if (K_b_.size() == 1) {
-    K_b_[0].evaluate(s, z, prec);
+    poly_eval(s, K_b_[0], z, prec);
     if (arb_is_negative(acb_realref(s)) && arb_is_zero(acb_imagref(s))) acb_neg(s, s);
   } else {
     eval_sumK2(s, z, prec);
@@ -295,7 +394,7 @@ void Speed::eval_sumK2(acb_t out, const acb_t z, long prec) const {
   acb_init(v);
   acb_zero(out);
   for (const auto& k : K_b_) {
-    k.evaluate(v, z, prec);
+    poly_eval(v, k, z, prec);
     acb_addmul(out, v, v, prec);
   }
   acb_clear(v);
@@ -303,14 +402,14 @@ void Speed::eval_sumK2(acb_t out, const acb_t z, long prec) const {
 
 void Speed::eval_D(acb_t out, const acb_t z, long prec) const {
   if (kind_ == SpeedKind::Parametric) {
-    W_b_.evaluate(out, z, prec);
+    poly_eval(out, W_b_, z, prec);
     return;
   }
   acb_t v;
   acb_init(v);
   acb_zero(out);
   for (const auto& y : Y_b_) {  // D = sum Y_i^2, from the factors Y_i
-    y.evaluate(v, z, prec);
+    poly_eval(v, y, z, prec);
     acb_addmul(out, v, v, prec);
   }
   acb_clear(v);
@@ -365,7 +464,7 @@ void Speed::eval_squared_over_zero(acb_t out, const acb_t z, const SpeedZero& ze
       it = deflated_.emplace(key, deflate(g_sqf_.factors[j].factor, zero.t, 1, prec + 16)).first;
     }
     acb_pow_ui(w, w, static_cast<ulong>(2 * mu - power), prec);
-    it->second.evaluate(h, z, prec);
+    poly_eval(h, it->second, z, prec);
     acb_pow_ui(h, h, static_cast<ulong>(2 * mu), prec);
     acb_mul(w, w, h, prec);
     eval_g(h, z, prec, j);  // c g_1(z): g without the factor vanishing at gamma

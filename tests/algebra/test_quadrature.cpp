@@ -2,7 +2,9 @@
 // and independent Arb values (arb_const_pi, arb_atan, arb_log, arb_sqrt).
 #include <acb.h>
 #include <arb.h>
+#include <arb_poly.h>
 #include <arf.h>
+#include <flint/fmpz_poly.h>
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -418,6 +420,37 @@ TEST(Quadrature, IntegrandExceptionsCrossTheCCallback) {
 TEST(Quadrature, NonRealIntegrandIsDomainError) {
   Integrand f = [](acb_t out, const acb_t, bool, long) { acb_onei(out); };
   EXPECT_THROW(integrate(f, Rational(0), Rational(1)), DomainError);
+}
+
+
+// An integrand that loses ~200 bits to cancellation (the expanded (1 - 2z)^100
+// by Horner, as a high-degree power-basis polynomial is evaluated): the first
+// attempt starts above the loss, so the quadrature runs at one precision only,
+// and the result still encloses 1/101 to the goal.
+TEST(Quadrature, StartsAbovePrecisionLostToCancellation) {
+  arb_poly_t p;
+  arb_poly_init(p);
+  {
+    fmpz_poly_t e;
+    fmpz_poly_init(e);
+    fmpz_poly_set_coeff_si(e, 0, 1);
+    fmpz_poly_set_coeff_si(e, 1, -2);
+    fmpz_poly_pow(e, e, 100);
+    arb_poly_set_fmpz_poly(p, e, ARF_PREC_EXACT);
+    fmpz_poly_clear(e);
+  }
+  std::set<long> precs;
+  Integrand f = [&](acb_t out, const acb_t z, bool analytic, long prec) {
+    if (analytic) precs.insert(prec);
+    arb_poly_evaluate_acb(out, p, z, prec);
+  };
+  QuadratureOptions o;
+  o.rel_goal_bits = 64;
+  const Ball r = integrate(f, Rational(0), Rational(1), o);
+  EXPECT_TRUE(r.contains(Rational(1, 101))) << r.str(30);
+  EXPECT_LE(mag_cmp_2exp_si(arb_radref(r.get()), -64 - 6), 0) << r.str(30);  // 2^-64 relative to 1/101
+  EXPECT_EQ(precs.size(), 1u) << "precisions used: " << precs.size();
+  arb_poly_clear(p);
 }
 
 }  // namespace

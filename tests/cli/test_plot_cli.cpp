@@ -167,6 +167,7 @@ TEST(PlotCli, SvgHasThreePanelsSamplesBreakpointsAndUniformities) {
       {kCubic, {"--method", "radical"}, 2},
       {kSlide, {"--method", "c0", "--pieces", "3"}, 2},
       {kSpace, {"--method", "c0", "--pieces", "2"}, 3},
+      {kSlide, {"--method", "c1", "--target", "0.99"}, 2},
   };
   for (const auto& pc : cases) {
     SCOPED_TRACE(pc.curve);
@@ -282,6 +283,7 @@ TEST(PlotCli, BadRequestsAreRefusedClearly) {
       {{"plot", kCubic, "--points", "1", "-o", "-"}, 2, "--points"},
       {{"sample", kCubic, "--format", "xml"}, 2, "unknown format"},
       {{"sample", kCubic, "--method", "c1", "--target", "1.5"}, 2, "--target"},
+      {{"sample", kCubic, "--max-pieces", "3"}, 2, "--max-pieces applies to --method c1"},
   };
   for (const auto& c : cases) {
     auto r = run_uniparam(c.args);
@@ -359,8 +361,19 @@ TEST(SampleCli, CsvOfASpaceCurveHasItsCoordinates) {
   EXPECT_NE(r.out.find("0.5,0.5,0.6,0.8,0.5,"), std::string::npos) << r.out;
 }
 
-TEST(PlotCli, C1IsReportedAsNotAvailableYet) {
-  auto r = run_uniparam({"plot", kSlide, "--method", "c1", "--target", "0.99", "-o", "-"});
-  EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("not available yet"), std::string::npos) << r.err;
+TEST(PlotCli, C1TargetReachedOrExitFour) {
+  // ImUp's slides: the slide curve reaches 0.99 with a C1 map.
+  auto ok = run_uniparam({"plot", kSlide, "--method", "c1", "--target", "0.99", "-o", "-"});
+  ASSERT_EQ(ok.exit_code, 0) << ok.err;
+  EXPECT_NE(text_of(group(ok.out, "title")).find("0.99 reached"), std::string::npos);
+  // Too few pieces for 0.999: the best map is still drawn, the title says
+  // so, and the exit status is 4 (as 'uniparam reparam --target').
+  auto low = run_uniparam({"plot", kSlide, "--method", "c1", "--target", "0.999", "--max-pieces", "2", "-o", "-"});
+  EXPECT_EQ(low.exit_code, 4);
+  EXPECT_NE(low.err.find("not reached"), std::string::npos) << low.err;
+  EXPECT_TRUE(well_formed(low.out));
+  EXPECT_NE(text_of(group(low.out, "title")).find("NOT reached"), std::string::npos);
+  auto smp = run_uniparam({"sample", kSlide, "--method", "c1", "--target", "0.999", "--max-pieces", "2"});
+  EXPECT_EQ(smp.exit_code, 4);
+  EXPECT_EQ(count(smp.out, "\n"), 41u);  // header and 40 rows all the same
 }

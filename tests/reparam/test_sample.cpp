@@ -148,7 +148,7 @@ Ball speed_times(const Speed& sp, const Ball& t, const Ball& dr, long prec) {
 
 struct Case {
   const char* curve;
-  const char* method;  // "radical", "c0" or "none"
+  const char* method;  // "radical", "c0", "c1" (target 0.99) or "none"
   long pieces;
 };
 
@@ -156,12 +156,14 @@ Reparameterization make(const Curve& c, const Case& k, const Options& o) {
   const std::string m = k.method;
   if (m == "radical") return Reparameterization(radical(c, SpeedKind::Angular, o));
   if (m == "c0") return Reparameterization(reparam_c0(c, SpeedKind::Angular, k.pieces, o));
+  if (m == "c1") return Reparameterization(reparam_c1(c, SpeedKind::Angular, Rational(99, 100), o));
   const UniformityResult u = uniformity(c, SpeedKind::Angular, o);
   return Reparameterization::identity(u.mu, u.u);
 }
 
 const Case kCases[] = {
-    {kCubic, "radical", 0}, {kInflection, "radical", 0}, {kSlide, "c0", 3}, {kCubic, "c0", 2}, {kCubic, "none", 0},
+    {kCubic, "radical", 0}, {kInflection, "radical", 0}, {kSlide, "c0", 3}, {kCubic, "c0", 2},
+    {kSlide, "c1", 0},      {kCubic, "none", 0},
 };
 
 }  // namespace
@@ -343,7 +345,57 @@ TEST(Sample, MethodNamesAndJoints) {
   const Reparameterization m(reparam_c0(c, SpeedKind::Angular, 2, o));
   EXPECT_EQ(m.method(), "C0 piecewise Moebius");
   EXPECT_EQ(m.pieces(), 2u);
+  const MoebiusResult c1 = reparam_c1(parse_curve(kSlide), SpeedKind::Angular, Rational(99, 100), o);
+  const Reparameterization m1(c1);
+  EXPECT_EQ(m1.method(), "C1 piecewise Moebius");
+  ASSERT_EQ(m1.pieces(), c1.pieces());
+  for (std::size_t i = 0; i <= m1.pieces(); ++i) EXPECT_TRUE(arb_overlaps(m1.joints_s()[i].get(), c1.S[i].get()));
   const UniformityResult u = uniformity(c, SpeedKind::Angular, o);
   EXPECT_EQ(Reparameterization::identity(u.mu, u.u).method(), "none");
   EXPECT_THROW(r.eval_r(Ball(2), 64), InvalidArgument);
+}
+
+TEST(Sample, SpeedAtAJointBallIsBothOneSidedSpeeds) {
+  // At a joint ball eval_speed unites both one-sided speeds. For the C1 map
+  // the two agree, so the union stays tight. For the radical map of (t, t^3)
+  // they differ (about 1.19 left and 1.06 right of Z_1, paper 002 Example
+  // 16): the union then contains the speeds just left and right of the joint.
+  Options o;
+  o.digits = 20;
+  {
+    const Curve c = parse_curve(kSlide);
+    const Speed sp(c, SpeedKind::Angular);
+    const Reparameterization c1(reparam_c1(c, SpeedKind::Angular, Rational(99, 100), o));
+    ASSERT_GE(c1.pieces(), 2u);
+    for (std::size_t i = 1; i < c1.pieces(); ++i) {
+      const Ball v = c1.eval_speed(sp, c1.joints_s()[i], 256);
+      EXPECT_TRUE(v.meets_digits(8)) << "joint " << i << ": " << v.str();
+    }
+  }
+  const Curve c = parse_curve(kCubic);
+  const Speed sp(c, SpeedKind::Angular);
+  const Reparameterization r(radical(c, SpeedKind::Angular, o));
+  ASSERT_EQ(r.pieces(), 2u);
+  const Ball& z = r.joints_s()[1];
+  const Ball at = r.eval_speed(sp, z, 256);
+  // 1e-12 away from the joint, outside its ball (radius <= 1e-20)
+  Ball h, left, right;
+  arb_set_str(h.get(), "1e-12", 256);
+  arb_sub(left.get(), z.get(), h.get(), 256);
+  arb_add(right.get(), z.get(), h.get(), 256);
+  const Ball vl = r.eval_speed(sp, left, 256), vr = r.eval_speed(sp, right, 256);
+  Ball gap;
+  arb_sub(gap.get(), vl.get(), vr.get(), 256);
+  Ball tenth;
+  arb_set_str(tenth.get(), "0.1", 256);
+  EXPECT_TRUE(arb_gt(gap.get(), tenth.get())) << vl.str() << " vs " << vr.str();
+  // the one-sided speeds move by O(1e-12) from the joint: widen by 1e-9
+  Ball widened = at;
+  mag_t e;
+  mag_init(e);
+  mag_set_d(e, 1e-9);
+  arb_add_error_mag(widened.get(), e);
+  mag_clear(e);
+  EXPECT_TRUE(arb_contains(widened.get(), vl.get()));
+  EXPECT_TRUE(arb_contains(widened.get(), vr.get()));
 }

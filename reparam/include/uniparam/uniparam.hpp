@@ -27,6 +27,7 @@
 #include "uniparam/core/poly.hpp"
 #include "uniparam/core/printer.hpp"
 #include "uniparam/core/ratfunc.hpp"
+#include "uniparam/reparam/bezier.hpp"
 #include "uniparam/reparam/curve.hpp"
 #include "uniparam/reparam/formula.hpp"
 #include "uniparam/reparam/moebius.hpp"

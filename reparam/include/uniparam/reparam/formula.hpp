@@ -12,6 +12,7 @@
 
 #include "uniparam/core/printer.hpp"
 #include "uniparam/reparam/curve.hpp"
+#include "uniparam/reparam/moebius.hpp"
 #include "uniparam/reparam/radical.hpp"
 
 namespace uniparam {
@@ -27,6 +28,20 @@ struct PieceFormulas {
 
 /// Formulas of every piece of a radical (or piecewise Moebius) result.
 std::vector<PieceFormulas> radical_formulas(const Curve& c, const RadicalResult& r, Format f, long digits);
+
+/// The formulas of one piece of a piecewise Moebius map on [s_i, s_{i+1}].
+struct MoebiusPieceFormulas {
+  std::string s_interval, t_interval;  ///< "[s_i, s_{i+1}]", "[t_i, t_{i+1}]"
+  std::string r;                       ///< t = r_i(s) = (A s + B) / (C s + D)
+  std::vector<std::string> p_r;        ///< components of p(r_i(s))
+  bool exact = false;                  ///< rational data: every formula is exact
+};
+
+/// Formulas of every piece of r. With r.rational the coefficients are exact
+/// rationals and p(r_i(s)) is expanded exactly (same degree as p); otherwise
+/// they are midpoints of certified balls with `digits` digits and p(r_i(s))
+/// is p with t replaced by r_i(s).
+std::vector<MoebiusPieceFormulas> moebius_formulas(const Curve& c, const MoebiusResult& r, Format f, long digits);
 
 /// A decimal for a ball's midpoint in the given format ("1.25e-30" becomes
 /// "1.25 \cdot 10^{-30}" in LaTeX, "1.25e-30" in text and Maple).

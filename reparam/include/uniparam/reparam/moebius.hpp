@@ -106,6 +106,39 @@ MoebiusResult moebius_optimal(const Curve& c, SpeedKind kind, const Options& opt
 /// \throws as moebius_c0.
 MoebiusResult reparam_c0(const Curve& c, SpeedKind kind, long N, const Options& opt = {});
 
+/// ImUp's ReparameterizationU: a C1 piecewise Moebius map. T starts as 0,
+/// the zeros of sigma' in (0, 1), and 1; S_i = int_0^{t_i} sigma / mu; the
+/// alpha_i satisfy the C1 condition at every joint,
+///     (dt_i / ds_i) alpha_i / (1 - alpha_i) = (dt_{i+1} / ds_{i+1}) (1 - alpha_{i+1}) / alpha_{i+1},
+/// with the one free parameter chosen to minimise int sigma_{p o m}^2. While
+/// u < target and pieces remain, T is refined by the roots of
+/// sigma' dt_i [alpha_i t~ + (1 - alpha_i)(1 - t~)] - 2 sigma (1 - 2 alpha_i)
+/// on each piece (the critical points of the reparameterized speed); when
+/// that adds nothing, the piece with the largest excess is bisected.
+/// \pre 0 < target < 1, 1 <= max_pieces <= 1000 (checked: InvalidArgument).
+/// \post continuity == C1; target.used; the result is the best map found
+///       (largest u); target.reached iff u_after >= target is certified.
+///       The balls meet Options::digits. Not reaching the target is not an
+///       error here: callers decide (the CLI exits with status 4).
+/// \throws as moebius_c0.
+MoebiusResult reparam_c1(const Curve& c, SpeedKind kind, const Rational& target, const Options& opt = {},
+                         long max_pieces = 64);
+
+/// Exact rational output: rounds T (where not already rational), S and the
+/// alphas of r to the simplest rationals within 10^-rational_digits (relative
+/// to the neighbouring gaps for T and S), so the map has rational
+/// coefficients, and certifies the u of *that* map. C0: each alpha rounded.
+/// C1: the free parameter rounded, the other alphas solved exactly from the
+/// C1 condition on the rational T and S, so r' is continuous exactly.
+/// \pre r was computed for c; 1 <= rational_digits <= 100 (InvalidArgument).
+/// \post rational == true; T_exact, S_exact, alpha_exact are the map's data;
+///       T, S, alpha, integrals and u_after describe that exact map (u_after
+///       meets Options::digits); target.reached re-checked; optimiser.phi is
+///       cleared (it described the unrounded map).
+/// \throws as moebius_c0.
+MoebiusResult make_rational(const Curve& c, const MoebiusResult& r, long rational_digits = 8,
+                            const Options& opt = {});
+
 /// Enclosure of r(s) for s in [0, 1] (a real ball; where s overlaps a joint
 /// s_i, the union of both pieces' values). InvalidArgument if s misses [0, 1].
 Ball moebius_eval_r(const MoebiusResult& r, const Ball& s, long prec);

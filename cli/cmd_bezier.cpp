@@ -1,0 +1,142 @@
+// cli/cmd_bezier.cpp -- `uniparam bezier --control POINTS [--weights LIST]`:
+// the optimal bilinear reparameterization of a Bezier curve for the
+// parametric speed (paper 000, eqs. 21-22; MATH.md section 2).
+#include <iostream>
+
+#include "commands.hpp"
+#include "report.hpp"
+#include "uniparam/reparam/bezier.hpp"
+
+namespace uniparam::cli {
+
+CommandSpec bezier_spec() {
+  std::vector<OptionSpec> opts;
+  for (auto& o : common_options())
+    if (o.name != "speed") opts.push_back(o);  // always the parametric speed
+  opts.push_back({"format", "F", "exact values (P, Q, alpha, weights): text, latex or maple", "text"});
+  return {"bezier",
+          "Optimal bilinear (Moebius) reparameterization of a Bezier curve for the parametric speed.",
+          "Integral curves (no --weights): P and Q of paper 000 eq. (21) as exact rationals,\n"
+          "alpha, the root in (0, 1) of P (1-alpha)^2 + Q alpha^2 = 0, as an exact quadratic\n"
+          "surd, and the new weights w_i = (1-alpha)^i alpha^(n-i) exactly. Rational curves\n"
+          "(--weights): P, Q and alpha by certified quadrature, new weights v_i w_i.\n"
+          "Also the arc length mu and the uniformity u of |p'| before and after.\n"
+          "Control points are exact rationals in any dimension >= 2, e.g.\n"
+          "--control \"[[0,0],[1/3,1],[1,0.25]]\".",
+          {},
+          opts};
+}
+
+namespace {
+
+Json json_surd(const QuadraticSurd& q, const Ball& b, long pd) {
+  if (q.is_rational()) return json_rational(q.rational(), pd);
+  Json j = json_ball(b, pd);
+  Json e = Json::object();
+  e.set("text", Json::string(q.str(Format::Text)));
+  e.set("latex", Json::string(q.str(Format::Latex)));
+  e.set("maple", Json::string(q.str(Format::Maple)));
+  j.set("exact", e);
+  return j;
+}
+
+}  // namespace
+
+int run_bezier(int argc, char** argv) {
+  const CommandSpec spec = bezier_spec();
+  Args a = parse_args(spec, argc, argv, 2);
+  if (a.help) { std::cout << help_text(spec); return 0; }
+  const Options opt = read_options(a);
+  const Format fmt = parse_format(a.get("format", "text"));
+  const BezierCurve bz = read_bezier(a);
+  const Curve c = bz.to_curve();
+  const BezierResult r = bezier_optimal(bz, opt);
+  const long pd = printed_digits(opt.digits);
+  const std::size_t n1 = r.weights.size();
+
+  if (a.flag("json")) {
+    Json j = Json::object();
+    j.set("control", Json::string(bz.str()));
+    if (bz.is_rational()) {
+      Json w = Json::array();
+      for (const auto& v : bz.weights()) w.push(Json::string(v.str()));
+      j.set("input_weights", w);
+    }
+    j.set("degree", Json::number(bz.degree()));
+    j.set("dimension", Json::number(static_cast<long>(bz.dimension())));
+    j.set("curve", Json::string(c.str()));
+    j.set("speed", Json::string("parametric"));
+    j.set("digits", Json::number(opt.digits));
+    j.set("exact", Json::boolean(r.exact));
+    if (r.exact) {
+      j.set("P", json_rational(*r.P_exact, pd));
+      j.set("Q", json_rational(*r.Q_exact, pd));
+      Json al = json_surd(*r.alpha_exact, r.alpha, pd);
+      if (!r.alpha_exact->is_rational()) {
+        // the surd's text, plus its defining polynomial and isolating interval
+        Json e = Json::object();
+        e.set("text", Json::string(r.alpha_exact->str(Format::Text)));
+        e.set("latex", Json::string(r.alpha_exact->str(Format::Latex)));
+        e.set("maple", Json::string(r.alpha_exact->str(Format::Maple)));
+        e.set("poly", Json::string(r.alpha_algebraic->poly().str()));
+        auto [lo, hi] = short_interval(*r.alpha_algebraic);
+        e.set("interval", Json::array().push(Json::string(lo.str())).push(Json::string(hi.str())));
+        al.set("exact", e);
+      }
+      j.set("alpha", al);
+      Json w = Json::array();
+      for (std::size_t i = 0; i < n1; ++i) w.push(json_surd(r.weights_exact[i], r.weights[i], pd));
+      j.set("weights", w);
+      j.set("mean_square", json_rational(*r.mean_square_exact, pd));
+    } else {
+      j.set("P", json_ball(r.P, pd));
+      j.set("Q", json_ball(r.Q, pd));
+      j.set("alpha", json_ball(r.alpha, pd));
+      Json w = Json::array();
+      for (const auto& b : r.weights) w.push(json_ball(b, pd));
+      j.set("weights", w);
+    }
+    j.set("mu", json_ball(r.mu, pd));
+    j.set("u_before", json_ball(r.u_before, pd));
+    j.set("u_after", json_ball(r.u_after, pd));
+    std::cout << j.dump(2) << "\n";
+    return 0;
+  }
+
+  std::cout << "control    " << bz.str() << "\n";
+  if (bz.is_rational()) {
+    std::cout << "weights in [";
+    const auto v = bz.weights();
+    for (std::size_t i = 0; i < v.size(); ++i) std::cout << (i ? ", " : "") << format_rational(v[i], fmt);
+    std::cout << "]\n";
+  }
+  std::cout << "bezier     degree " << bz.degree() << ", dimension " << bz.dimension() << ", "
+            << (bz.is_rational() ? "rational" : "integral") << "\n"
+            << "curve      " << c.str() << "\n"
+            << "speed      parametric\n";
+  if (r.exact) {
+    std::cout << "P          " << format_rational(*r.P_exact, fmt) << "  (-int (1-t)^2 |p'|^2, exact)\n"
+              << "Q          " << format_rational(*r.Q_exact, fmt) << "  (int t^2 |p'|^2, exact)\n"
+              << "alpha      " << r.alpha_exact->str(fmt);
+    if (!r.alpha_exact->is_rational()) std::cout << " = " << format_ball(r.alpha, pd, Format::Text);
+    std::cout << "\n";
+    for (std::size_t i = 0; i < n1; ++i) {
+      std::cout << (i ? "           w_" : "weights    w_") << i << " = " << r.weights_exact[i].str(fmt);
+      if (!r.weights_exact[i].is_rational()) std::cout << " = " << format_ball(r.weights[i], pd, Format::Text);
+      std::cout << "\n";
+    }
+  } else {
+    std::cout << "P          " << format_ball(r.P, pd, Format::Text) << "  (-int (1-t)^2 |p'|^2, certified quadrature)\n"
+              << "Q          " << format_ball(r.Q, pd, Format::Text) << "  (int t^2 |p'|^2, certified quadrature)\n"
+              << "alpha      " << format_ball(r.alpha, pd, Format::Text) << "\n";
+    for (std::size_t i = 0; i < n1; ++i)
+      std::cout << (i ? "           w_" : "weights    w_") << i << " = " << format_ball(r.weights[i], pd, Format::Text)
+                << "\n";
+  }
+  std::cout << "mu         " << format_ball(r.mu, pd, Format::Text) << "  (arc length)\n"
+            << "u before   " << format_ball(r.u_before, pd, Format::Text) << "\n"
+            << "u after    " << format_ball(r.u_after, pd, Format::Text) << "\n";
+  return 0;
+}
+
+}  // namespace uniparam::cli

@@ -1,0 +1,137 @@
+// reparam/src/moebius_rational.cpp -- exact rational output of a piecewise
+// Moebius map: short rational T, S, alpha and the certified u of that map.
+#include <string>
+#include <vector>
+
+#include "moebius_detail.hpp"
+#include "uniparam/core/error.hpp"
+#include "uniparam/reparam/moebius.hpp"
+
+namespace uniparam {
+
+namespace {
+
+Rational pow10_inv(long d) {
+  Integer p(1);
+  for (long i = 0; i < d; ++i) p = p * Integer(10);
+  return Rational(Integer(1), p);
+}
+
+// The simplest rational within tol * min(gap to the neighbours) of each
+// interior value; ends exactly 0 and 1. `mids` are the exact midpoints.
+std::vector<Rational> round_sequence(const std::vector<Rational>& mids, const Rational& tol) {
+  std::vector<Rational> out{Rational(0)};
+  for (std::size_t j = 1; j + 1 < mids.size(); ++j) {
+    Rational gap = mids[j] - mids[j - 1];
+    if (mids[j + 1] - mids[j] < gap) gap = mids[j + 1] - mids[j];
+    const Rational w = gap * tol;
+    Rational q = Rational::simplest_between(mids[j] - w, mids[j] + w);
+    if (q <= out.back()) q = mids[j];  // cannot happen for tol < 1/2; kept for safety
+    out.push_back(q);
+  }
+  out.push_back(Rational(1));
+  return out;
+}
+
+}  // namespace
+
+MoebiusResult make_rational(const Curve& c, const MoebiusResult& in, long rational_digits, const Options& opt) {
+  if (rational_digits < 1 || rational_digits > 100)
+    throw InvalidArgument("the rational rounding must keep 1 to 100 digits, got " + std::to_string(rational_digits));
+  validate(opt);
+  const Speed s(c, in.kind);
+  const std::size_t N = in.pieces();
+  const Rational tol = pow10_inv(rational_digits);
+  const long prec0 = 4 * digits_to_bits(rational_digits + opt.digits) + 64;
+
+  std::vector<Rational> tm, sm;
+  for (const auto& b : in.T) tm.push_back(b.t.is_rational() ? b.t.rational() : mid_rational(b.t.to_ball(prec0)));
+  for (const auto& b : in.S) sm.push_back(mid_rational(b));
+  std::vector<Rational> Tq = tm;
+  for (std::size_t j = 1; j < N; ++j)
+    if (!in.T[j].t.is_rational()) {
+      Tq = round_sequence(tm, tol);
+      break;
+    }
+  // keep given rational breakpoints exactly
+  for (std::size_t j = 0; j <= N; ++j)
+    if (in.T[j].t.is_rational()) Tq[j] = in.T[j].t.rational();
+  const std::vector<Rational> Sq = round_sequence(sm, tol);
+  std::vector<RealAlgebraic> T;
+  for (const auto& q : Tq) T.emplace_back(q);
+
+  MoebiusResult r = in;
+  r.rational = true;
+  r.T_exact = Tq;
+  r.S_exact = Sq;
+  r.T.clear();
+  for (const auto& t : T) r.T.push_back(Breakpoint{t, 0, 0, 0});
+  if (in.identically_zero) {
+    r.alpha_exact.assign(N, Rational(1, 2));
+    r.S_exact = Tq;
+    r.S.clear();
+    for (const auto& q : Tq) r.S.emplace_back(q, prec0);
+    r.alpha.assign(N, Ball(Rational(1, 2), prec0));
+    return r;
+  }
+
+  for (long bits = digits_to_bits(opt.digits) + 8;; bits += 32) {
+    const long prec = 2 * bits + 64;
+    r.integrals.clear();
+    for (std::size_t i = 0; i < N; ++i)
+      r.integrals.push_back(piece_integrals(s, r.T[i], r.T[i + 1], bits, opt.max_prec));
+    std::vector<Rational> k(N);
+    if (in.continuity == Continuity::C0) {
+      for (std::size_t i = 0; i < N; ++i) {
+        const Rational a = Rational::simplest_between(mid_rational(in.alpha[i]) - tol, mid_rational(in.alpha[i]) + tol);
+        k[i] = (Rational(1) - a) / a;
+      }
+    } else {
+      // C1: the optimal free parameter for the rounded T and S, rounded; the
+      // rest follows exactly from rho_i / k_i = rho_{i+1} k_{i+1}.
+      std::vector<Ball> Sb;
+      for (const auto& q : Sq) Sb.emplace_back(q, prec);
+      const detail::C1Data d = detail::c1_from_pieces(T, Sb, r.integrals, r.mu, prec);
+      const Rational k0 = mid_rational(d.k[0]);
+      k[0] = Rational::simplest_between(k0 - k0 * tol, k0 + k0 * tol);
+      for (std::size_t i = 0; i + 1 < N; ++i) {
+        const Rational rho_i = (Tq[i + 1] - Tq[i]) / (Sq[i + 1] - Sq[i]);
+        const Rational rho_j = (Tq[i + 2] - Tq[i + 1]) / (Sq[i + 2] - Sq[i + 1]);
+        k[i + 1] = rho_i / (rho_j * k[i]);
+      }
+    }
+    r.alpha_exact.clear();
+    r.alpha.clear();
+    r.S.clear();
+    for (const auto& q : Sq) r.S.emplace_back(q, prec);
+    Ball total(0);
+    for (std::size_t i = 0; i < N; ++i) {
+      const Rational a = Rational(1) / (Rational(1) + k[i]);
+      r.alpha_exact.push_back(a);
+      r.alpha.emplace_back(a, prec);
+      // the piece's int sigma_{p o m}^2 ds = (k A + B + C / k) / ds_i, exact k, ds
+      const Ball kb(k[i], prec), ikb(Rational(1) / k[i], prec), ids(Rational(1) / (Sq[i + 1] - Sq[i]), prec);
+      Ball f, t;
+      arb_mul(f.get(), kb.get(), r.integrals[i].A.get(), prec);
+      arb_add(f.get(), f.get(), r.integrals[i].B.get(), prec);
+      arb_mul(t.get(), ikb.get(), r.integrals[i].C.get(), prec);
+      arb_add(f.get(), f.get(), t.get(), prec);
+      arb_addmul(total.get(), f.get(), ids.get(), prec);
+    }
+    arb_mul(r.u_after.get(), r.mu.get(), r.mu.get(), prec);
+    arb_div(r.u_after.get(), r.u_after.get(), total.get(), prec);
+    if (r.u_after.meets_digits(opt.digits + 1)) break;
+    if (bits > opt.max_prec)
+      throw BudgetExceeded("could not certify the rational reparameterization to " + std::to_string(opt.digits) +
+                           " digits within " + std::to_string(opt.max_prec) +
+                           " bits of working precision (raise it with --max-prec)");
+  }
+  if (r.target.used) {
+    const Ball tq(r.target.value, 2 * digits_to_bits(opt.digits) + 64);
+    r.target.reached = arb_ge(r.u_after.get(), tq.get());
+  }
+  if (r.optimiser.used) r.optimiser.phi = Ball();  // Phi belonged to the unrounded map
+  return r;
+}
+
+}  // namespace uniparam

@@ -1,0 +1,109 @@
+#!/usr/bin/env bash
+# scripts/bench.sh -- builds Release, runs the benchmark table of issue 7
+# (bench/bench_table.cpp, Google Benchmark) one process per benchmark, and
+# prints a Markdown table: curve, degree, operation, digits, certified time,
+# double time, ratio, correct digits of double, memory.
+#
+#   scripts/bench.sh                      # everything (long: degree 300 included)
+#   BENCH_DEGREES="6 12 50" BENCH_FAMILIES="bez-plane" BENCH_OPS="radical" scripts/bench.sh
+#
+# Environment: BENCH_DEGREES, BENCH_FAMILIES, BENCH_OPS (uniformity radical
+# pieces3), BENCH_DIGITS ("15 50"), BENCH_TIMEOUT (seconds per benchmark
+# process, default 600), BENCH_MIN_TIME (Google Benchmark min time, default
+# 0.2), BENCH_OUT (results folder, default build/bench-results; results.csv
+# there feeds scripts/plot-scaling). BENCH_REPORT_ONLY=1 prints the table of
+# the results already in BENCH_OUT without running anything. The double column is the UNCERTIFIED
+# baseline of bench/float_baseline.hpp.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+BUILD=${BUILD:-build}
+DEGREES=${BENCH_DEGREES:-"6 12 50 100 150 300"}
+FAMILIES=${BENCH_FAMILIES:-"bez-plane bez-rat-space dense-plane"}
+OPS=${BENCH_OPS:-"uniformity radical pieces3"}
+DIGITS=${BENCH_DIGITS:-"15 50"}
+TIMEOUT=${BENCH_TIMEOUT:-600}
+MIN_TIME=${BENCH_MIN_TIME:-0.2}
+OUT=${BENCH_OUT:-$BUILD/bench-results}
+
+cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$BUILD" -j2 --target uniparam_bench >/dev/null
+mkdir -p "$OUT"
+BIN="$BUILD/bench/uniparam_bench"
+
+run() {  # run NAME: one benchmark in its own process, JSON to $OUT/NAME.json
+  local name=$1 file="$OUT/$(echo "$1" | tr '/' '_').json"
+  if timeout "$TIMEOUT" "$BIN" --benchmark_filter="^${name}\$" --benchmark_min_time="$MIN_TIME" \
+      --benchmark_format=json >"$file.tmp" 2>/dev/null; then
+    mv "$file.tmp" "$file"
+  elif [[ $name == float/* ]] && UNIPARAM_BENCH_NO_REF=1 timeout "$TIMEOUT" "$BIN" --benchmark_filter="^${name}\$" \
+      --benchmark_min_time="$MIN_TIME" --benchmark_format=json >"$file.tmp" 2>/dev/null; then
+    mv "$file.tmp" "$file"  # the double run without its certified reference: "no ref" digits
+  else
+    echo '{"timeout": true}' >"$file"
+    rm -f "$file.tmp"
+  fi
+}
+
+for fam in $FAMILIES; do
+  [[ -n ${BENCH_REPORT_ONLY:-} ]] && break  # only print the table of what $OUT holds
+  for d in $DEGREES; do
+    for op in $OPS; do
+      for dg in $DIGITS; do run "cert/$fam/$d/$op/$dg"; done
+      run "float/$fam/$d/$op"
+      echo "done $fam $d $op" >&2
+    done
+  done
+done
+
+python3 - "$OUT" "$TIMEOUT" "$FAMILIES" "$DEGREES" "$OPS" "$DIGITS" <<'PY'
+import json, os, sys
+out, timeout = sys.argv[1], sys.argv[2]
+fams, degs, ops, digs = (s.split() for s in sys.argv[3:7])
+def load(name):
+    p = os.path.join(out, name.replace('/', '_') + '.json')
+    if not os.path.exists(p):
+        return None
+    j = json.load(open(p))
+    if j.get('timeout'):
+        return 'timeout'
+    b = j['benchmarks'][0]
+    scale = {'ns': 1e-9, 'us': 1e-6, 'ms': 1e-3, 's': 1.0}[b['time_unit']]
+    b['seconds'] = b['real_time'] * scale
+    return b
+def fmt_t(s):
+    return f'{s*1e3:.3g} ms' if s < 1 else f'{s:.3g} s'
+names = {'uniformity': 'uniformity', 'radical': 'radical', 'pieces3': 'reparam --pieces 3'}
+rows, csv = [], ['family,degree,op,digits,cert_s,double_s,correct_digits,maxrss_mb']
+print('| curve | degree | operation | digits | certified time | double time | ratio | correct digits of double | memory (peak RSS) |')
+print('|---|---|---|---|---|---|---|---|---|')
+for f in fams:
+    for d in degs:
+        for op in ops:
+            fl = load(f'float/{f}/{d}/{op}')
+            for dg in digs:
+                c = load(f'cert/{f}/{d}/{op}/{dg}')
+                if c is None:
+                    continue
+                if c == 'timeout':
+                    ct, ratio, mem, cs = f'> {timeout} s (timeout)', '', '', ''
+                else:
+                    cs = c['seconds']
+                    ct, mem = fmt_t(cs), f"{c.get('maxrss_MB', 0):.0f} MB"
+                ft, ratio_s, dig, fs = 'timeout', '', '', ''
+                if isinstance(fl, dict):
+                    fs = fl['seconds']
+                    ft = fmt_t(fs)
+                    cd = fl.get('correct_digits', -1)
+                    dig = 'no ref (timeout)' if cd < 0 else f'{cd:.1f}'
+                    if fl.get('structure_ok', 1) == 0:
+                        dig += ' (wrong breakpoints)'
+                    if fl.get('converged', 1) == 0:
+                        dig += ' (not converged)'
+                    if cs != '':
+                        ratio_s = f'{cs / fs:.2g}x'
+                print(f'| {f} | {d} | {names[op]} | {dg} | {ct} | {ft} | {ratio_s} | {dig} | {mem} |')
+                csv.append(f'{f},{d},{op},{dg},{cs},{fs},{dig.split(" ")[0] if dig else ""},{mem.split(" ")[0] if mem else ""}')
+        # reparam --target 0.99 needs reparam_c1 (pending in the library)
+        print(f'| {f} | {d} | reparam --target 0.99 | 15 | n/a (pending) | n/a (pending) | | | |')
+open(os.path.join(out, 'results.csv'), 'w').write('\n'.join(csv) + '\n')
+PY

@@ -1,0 +1,158 @@
+// Speed evaluation on wide complex balls (the quadrature's ellipses): the
+// enclosure of sigma^2 (and sigma, and sigma^2 over a zero) on a ball must
+// contain the value at every point of the ball. Curves: Bezier curves of
+// moderate degree converted to the power basis (large alternating
+// coefficients, where the centred form replaces Horner), plane and space,
+// polynomial and rational.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "support/iterations.hpp"
+#include "uniparam/uniparam.hpp"
+
+using namespace uniparam;
+
+namespace {
+
+// sum_k P_k C(d,k) t^k (1-t)^(d-k), exactly.
+Poly bernstein(const std::vector<long>& P) {
+  const long d = static_cast<long>(P.size()) - 1;
+  Poly acc(0), omt = Poly(1) - Poly::t();
+  Integer binom(1);
+  for (long k = 0; k <= d; ++k) {
+    if (k > 0) {
+      fmpz_mul_ui(binom.get(), binom.get(), static_cast<ulong>(d - k + 1));
+      fmpz_divexact_ui(binom.get(), binom.get(), static_cast<ulong>(k));
+    }
+    Integer c;
+    fmpz_mul_si(c.get(), binom.get(), P[static_cast<std::size_t>(k)]);
+    acc = acc + Poly(std::vector<Integer>{c}) * Poly::t().pow(static_cast<ulong>(k)) * omt.pow(static_cast<ulong>(d - k));
+  }
+  return acc;
+}
+
+Curve random_bezier(std::mt19937_64& rng, long d, std::size_t dim, bool rational) {
+  std::uniform_int_distribution<long> coord(-50, 50), weight(1, 4);
+  std::vector<long> w;
+  for (long k = 0; k <= d; ++k) w.push_back(rational ? weight(rng) : 1);
+  const Poly W = bernstein(w);
+  std::vector<RatFunc> comps;
+  for (std::size_t i = 0; i < dim; ++i) {
+    std::vector<long> P;
+    for (long k = 0; k <= d; ++k) P.push_back(w[static_cast<std::size_t>(k)] * (i == 0 ? 20 * k : coord(rng)));
+    comps.emplace_back(bernstein(P), W);
+  }
+  return Curve(comps);
+}
+
+// A random complex ball with midpoint near [0, 1] and radii up to `maxrad`.
+void random_ball(acb_t z, std::mt19937_64& rng, double maxrad) {
+  std::uniform_int_distribution<long> m(0, 1 << 20), r(1, 1 << 10);
+  arb_set_si(acb_realref(z), m(rng));
+  arb_mul_2exp_si(acb_realref(z), acb_realref(z), -20);
+  arb_set_si(acb_imagref(z), m(rng) - (1 << 19));
+  arb_mul_2exp_si(acb_imagref(z), acb_imagref(z), -24);
+  mag_set_d(arb_radref(acb_realref(z)), maxrad * static_cast<double>(r(rng)) / 1024.0);
+  mag_set_d(arb_radref(acb_imagref(z)), maxrad * static_cast<double>(r(rng)) / 1024.0);
+}
+
+// An exact point of the ball z: mid + (a, b) * rad with a, b in [-1, 1].
+void random_point(acb_t w, const acb_t z, std::mt19937_64& rng) {
+  std::uniform_int_distribution<long> f(-1024, 1024);
+  arb_t s;
+  arb_init(s);
+  for (int part = 0; part < 2; ++part) {
+    arb_srcptr src = part ? acb_imagref(z) : acb_realref(z);
+    arb_ptr dst = part ? acb_imagref(w) : acb_realref(w);
+    arf_set_mag(arb_midref(s), arb_radref(src));
+    mag_zero(arb_radref(s));
+    arb_mul_si(s, s, f(rng), ARF_PREC_EXACT);
+    arb_mul_2exp_si(s, s, -10);
+    arb_set_arf(dst, arb_midref(src));
+    arb_add(dst, dst, s, ARF_PREC_EXACT);
+  }
+  arb_clear(s);
+}
+
+}  // namespace
+
+TEST(SpeedEval, SquaredSpeedOnWideBallsContainsEveryPointValue) {
+  std::mt19937_64 rng(7);
+  long finite = 0;
+  for (long it = 0; it < test_support::iterations(6); ++it) {
+    const long d = 8 + static_cast<long>(rng() % 24);
+    const std::size_t dim = 2 + rng() % 2;
+    const Curve c = random_bezier(rng, d, dim, it % 2 == 1);
+    for (SpeedKind kind : {SpeedKind::Angular, SpeedKind::Parametric}) {
+      const Speed s(c, kind);
+      acb_t z, w, out, v;
+      acb_init(z);
+      acb_init(w);
+      acb_init(out);
+      acb_init(v);
+      for (int b = 0; b < 10; ++b) {
+        random_ball(z, rng, b % 2 ? 0.05 : 0.002);
+        s.eval_squared(out, z, 128);
+        if (!acb_is_finite(out)) continue;
+        ++finite;
+        for (int p = 0; p < 8; ++p) {
+          random_point(w, z, rng);
+          s.eval_squared(v, w, 256);
+          ASSERT_TRUE(acb_overlaps(out, v)) << c.str() << " degree " << d;
+        }
+      }
+      acb_clear(z);
+      acb_clear(w);
+      acb_clear(out);
+      acb_clear(v);
+    }
+  }
+  EXPECT_GT(finite, 0);  // the check above ran
+}
+
+TEST(SpeedEval, SpeedAndSquaredOverIrrationalZeroOnWideBalls) {
+  // (t, t^4 - 3 t^2): angular speed zero of multiplicity 1 at 1/sqrt(2).
+  const Curve c = parse_curve("(t, t^4 - 3*t^2)");
+  const Speed s(c, SpeedKind::Angular);
+  ASSERT_EQ(s.zeros().size(), 1u);
+  const SpeedZero& zero = s.zeros()[0];
+  const Speed::PieceSigns right = s.piece_signs(zero.t, RealAlgebraic(1));
+  std::mt19937_64 rng(11);
+  acb_t z, w, out, v;
+  acb_init(z);
+  acb_init(w);
+  acb_init(out);
+  acb_init(v);
+  long checked = 0;
+  for (int b = 0; b < 40; ++b) {
+    // balls around 1/sqrt(2) ~ 0.70710678 and to its right
+    arb_set_d(acb_realref(z), 0.7071 + 0.002 * b);
+    arb_zero(acb_imagref(z));
+    mag_set_d(arb_radref(acb_realref(z)), 0.01);
+    mag_set_d(arb_radref(acb_imagref(z)), 0.01);
+    for (int power = 0; power <= 2; ++power) {
+      s.eval_squared_over_zero(out, z, zero, 1, power, 128);
+      if (!acb_is_finite(out)) continue;
+      for (int p = 0; p < 6; ++p) {
+        random_point(w, z, rng);
+        s.eval_squared_over_zero(v, w, zero, 1, power, 256);
+        ASSERT_TRUE(acb_overlaps(out, v)) << "power " << power << " ball " << b;
+        ++checked;
+      }
+    }
+    s.eval(out, z, right, false, 128);
+    if (!acb_is_finite(out)) continue;
+    for (int p = 0; p < 6; ++p) {
+      random_point(w, z, rng);
+      s.eval(v, w, right, false, 256);
+      ASSERT_TRUE(acb_overlaps(out, v)) << "sigma, ball " << b;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 0);
+  acb_clear(z);
+  acb_clear(w);
+  acb_clear(out);
+  acb_clear(v);
+}
