@@ -45,6 +45,8 @@ const std::vector<Command>& commands() {
       {moebius_spec(), &run_moebius},
       {reparam_spec(), &run_reparam},
       {bezier_spec(), &run_bezier},
+      {sample_spec(), &run_sample},
+      {plot_spec(), &run_plot},
   };
   return table;
 }

@@ -48,6 +48,20 @@ std::vector<RealAlgebraic> parse_breakpoints(const std::string& list);
 MoebiusResult finish_moebius(const Curve& c, const MoebiusResult& r, const Args& a, const Options& opt);
 CommandSpec bezier_spec();
 int run_bezier(int argc, char** argv);
+CommandSpec sample_spec();
+int run_sample(int argc, char** argv);
+CommandSpec plot_spec();
+int run_plot(int argc, char** argv);
+/// --method, --pieces, --target (cmd_sample.cpp); `with_none` adds
+/// --method none (the original curve).
+std::vector<OptionSpec> method_options(bool with_none);
+/// The reparameterization of c selected by --method, computed with `opt`.
+Reparameterization read_method(const Args& a, const Curve& c, SpeedKind kind, const Options& opt, bool with_none);
+/// Exit status after using r: 4, with a message on stderr, when r is a C1
+/// map whose target uniformity was not reached (the best map was used); 0 otherwise.
+int target_status(const Reparameterization& r, const std::string& command);
+/// "x", "y", "z" for n <= 3 components, else "x1", ..., "xn" (0-based i).
+std::string coordinate_name(std::size_t i, std::size_t n);
 /// Parses --format text|latex|maple.
 Format parse_format(const std::string& s);
 

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs what a bare Debian 12 (bookworm) machine needs to build and test
 # uniparam: the C++ toolchain, CMake, GMP, MPFR, FLINT 2.9, Arb 2.23,
-# GoogleTest and Google Benchmark.
+# GoogleTest and Google Benchmark; and rsvg-convert (librsvg2-bin), which
+# 'uniparam plot -o FILE.png' runs to turn its SVG into PNG.
 #
 #   scripts/install-deps.sh        # quiet; prints nothing when all is present
 #   scripts/install-deps.sh -v     # (or UNIPARAM_VERBOSE=1) show apt's output
@@ -17,13 +18,14 @@ PACKAGES=(
   libflint-dev libflint-arb-dev
   libgtest-dev googletest
   libbenchmark-dev
+  librsvg2-bin
 )
 
 verbose="${UNIPARAM_VERBOSE:-0}"
 for arg in "$@"; do
   case "$arg" in
     -v|--verbose) verbose=1 ;;
-    -h|--help) sed -n '2,11p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "install-deps.sh: unknown argument '$arg' (try --help)" >&2; exit 2 ;;
   esac
 done

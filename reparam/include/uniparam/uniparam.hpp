@@ -33,6 +33,7 @@
 #include "uniparam/reparam/moebius.hpp"
 #include "uniparam/reparam/pieces.hpp"
 #include "uniparam/reparam/radical.hpp"
+#include "uniparam/reparam/sample.hpp"
 #include "uniparam/reparam/speed.hpp"
 #include "uniparam/reparam/uniformity.hpp"
 

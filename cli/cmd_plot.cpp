@@ -1,0 +1,456 @@
+// cli/cmd_plot.cpp -- `uniparam plot CURVE -o FILE.svg|FILE.png`: ImUp's
+// three panels (ImUpPlotN / ImUpPlotU): p sampled at equal steps of t, p o r
+// sampled at equal steps of s, and the two speed functions, with axes, the
+// breakpoints and the certified uniformities in the captions.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <stdexcept>
+
+#include "commands.hpp"
+#include "svg.hpp"
+#include "uniparam/reparam/sample.hpp"
+
+namespace uniparam::cli {
+
+CommandSpec plot_spec() {
+  std::vector<OptionSpec> opts;
+  for (const auto& o : common_options())
+    if (o.name != "json" && o.name != "digits") opts.push_back(o);  // a picture has no digits to choose
+  for (const auto& o : method_options(false)) opts.push_back(o);
+  opts.push_back({"points", "K", "number of sample points in the two curve panels", "40"});
+  opts.push_back({"projection", "P",
+                  "for space curves: iso (isometric view of x, y, z) or I,J (coordinates I and J, from 1)",
+                  "iso for 3 or more components"});
+  opts.push_back({"output", "FILE", "the picture: FILE.svg, FILE.png (needs rsvg-convert) or - (SVG on stdout); "
+                                    "also -o FILE", ""});
+  return {"plot",
+          "Plot p and p o r sampled at equal parameter steps, and their speeds (SVG or PNG).",
+          "Three panels as ImUp's ImUpPlotN / ImUpPlotU: the curve p at K equal steps of t,\n"
+          "the reparameterized curve p o r at K equal steps of s, and the speed of p (against t)\n"
+          "and of p o r (against s). The breakpoints p(t_i) are marked, the joints s_i of r\n"
+          "drawn in the speed panel, and the captions give the certified u before and after.\n"
+          "Space curves are drawn in a projection, named in the picture. PNG output is\n"
+          "rendered from the SVG by rsvg-convert (Debian package librsvg2-bin) at 2x size.\n"
+          "When --method c1 misses its target, the best map is drawn and the exit status is 4.",
+          {"CURVE"},
+          opts};
+}
+
+namespace {
+
+using svg::Anchor;
+using svg::Point;
+using svg::Style;
+
+const char* kGreen = "#1a9641";
+const char* kRed = "#d7191c";
+const char* kTrace = "#b8b8b8";
+const char* kMark = "#111111";
+
+// "2*t^4 - 16*t^3 + 9" -> "2t⁴ − 16t³ + 9" for the subtitle.
+std::string pretty(const std::string& s) {
+  static const char* sup[] = {"\u2070", "\u00b9", "\u00b2", "\u00b3", "\u2074",
+                              "\u2075", "\u2076", "\u2077", "\u2078", "\u2079"};
+  std::string o;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const char c = s[i];
+    if (c == '*') continue;
+    if (c == '^') {
+      while (i + 1 < s.size() && s[i + 1] >= '0' && s[i + 1] <= '9') o += sup[s[++i] - '0'];
+      continue;
+    }
+    if (c == '-' && i > 0 && s[i - 1] == ' ') { o += "\u2212"; continue; }
+    if (c == '-' && (i == 0 || s[i - 1] == '(')) { o += "\u2212"; continue; }
+    o += c;
+  }
+  return o;
+}
+
+// The uniformity for a caption: enough digits to tell it from 1.
+std::string u_text(const Ball& u) {
+  if (u.certainly_zero()) return "0";
+  const double x = mid_double(u);
+  if (x == 1 && u.is_exact()) return "1";
+  long digits = 4;
+  if (x < 1 && 1 - x < 1e-3) digits = 3 + static_cast<long>(std::ceil(-std::log10(1 - x)));
+  digits = std::min<long>(digits, 15);
+  std::string t = u.mid_decimal(digits);
+  // keep trailing zeros (0.7320, not 0.732) for u in [0.1, 1): `digits` decimals
+  if (x >= 0.1 && x < 1 && t.compare(0, 2, "0.") == 0)
+    while (static_cast<long>(t.size()) - 2 < digits) t += '0';
+  return t;
+}
+
+struct Projection {
+  bool iso = false;
+  std::size_t i = 0, j = 1;
+  std::string caption, xlabel, ylabel;
+  Point operator()(const std::vector<double>& x) const {
+    if (iso) return {(x[0] - x[1]) / std::sqrt(2.0), (2 * x[2] - x[0] - x[1]) / std::sqrt(6.0)};
+    return {x[i], x[j]};
+  }
+};
+
+Projection read_projection(const Args& a, std::size_t n) {
+  Projection p;
+  const std::string dflt = n >= 3 ? "iso" : "1,2";
+  const std::string v = a.get("projection", dflt);
+  if (v == "iso") {
+    if (n < 3) throw InvalidArgument("--projection iso needs a curve with at least 3 components");
+    p.iso = true;
+    p.xlabel = "X";
+    p.ylabel = "Y";
+    p.caption = "isometric projection of (" + coordinate_name(0, n) + ", " + coordinate_name(1, n) + ", " +
+                coordinate_name(2, n) + "): X = (" + coordinate_name(0, n) + " \u2212 " + coordinate_name(1, n) +
+                ")/\u221a2, Y = (2" + coordinate_name(2, n) + " \u2212 " + coordinate_name(0, n) + " \u2212 " +
+                coordinate_name(1, n) + ")/\u221a6" + (n > 3 ? " (further coordinates ignored)" : "");
+    return p;
+  }
+  const auto comma = v.find(',');
+  auto index = [&](const std::string& s) -> std::size_t {
+    char* end = nullptr;
+    const long k = std::strtol(s.c_str(), &end, 10);
+    if (s.empty() || *end || k < 1 || k > static_cast<long>(n))
+      throw InvalidArgument("--projection expects iso or I,J with 1 <= I, J <= " + std::to_string(n) + ", got '" +
+                            v + "'");
+    return static_cast<std::size_t>(k - 1);
+  };
+  if (comma == std::string::npos)
+    throw InvalidArgument("--projection expects iso or I,J (two coordinates), got '" + v + "'");
+  p.i = index(v.substr(0, comma));
+  p.j = index(v.substr(comma + 1));
+  if (p.i == p.j) throw InvalidArgument("--projection: I and J must differ, got '" + v + "'");
+  p.xlabel = coordinate_name(p.i, n);
+  p.ylabel = coordinate_name(p.j, n);
+  if (n > 2) p.caption = "projection onto (" + p.xlabel + ", " + p.ylabel + ")";
+  return p;
+}
+
+std::vector<double> mids(const std::vector<Ball>& v) {
+  std::vector<double> o;
+  for (const auto& b : v) o.push_back(mid_double(b));
+  return o;
+}
+
+// A data range padded by `pad` of its width (a point gets width 1).
+struct Range {
+  double lo = HUGE_VAL, hi = -HUGE_VAL;
+  void add(double x) {
+    if (!std::isfinite(x)) return;
+    lo = std::min(lo, x);
+    hi = std::max(hi, x);
+  }
+  void pad(double f) {
+    if (!(hi > lo)) { lo -= 0.5; hi += 0.5; return; }
+    const double w = hi - lo;
+    lo -= f * w;
+    hi += f * w;
+  }
+};
+
+// Extends the shorter of two ranges so that both have the same data-per-pixel
+// scale in a w x h panel (equal aspect ratio: the curve is not distorted).
+void equal_aspect(Range& x, Range& y, double w, double h) {
+  const double sx = (x.hi - x.lo) / w, sy = (y.hi - y.lo) / h;
+  if (sx > sy) {
+    const double c = (y.lo + y.hi) / 2, half = sx * h / 2;
+    y.lo = c - half;
+    y.hi = c + half;
+  } else {
+    const double c = (x.lo + x.hi) / 2, half = sy * w / 2;
+    x.lo = c - half;
+    x.hi = c + half;
+  }
+}
+
+struct PlotData {
+  std::vector<Point> trace;                 // the curve, dense (projected)
+  std::vector<Point> before, after;         // the K samples (projected)
+  std::vector<Point> breakpoints;           // p(t_i), interior i
+  std::vector<Point> speed_before;          // (t, sigma_p(t)), dense
+  std::vector<std::vector<Point>> speed_after;  // per piece (s, sigma_{p o r}(s)), dense
+  std::vector<Point> breakpoint_speeds;     // (t_i, sigma_p(t_i)), interior i
+  std::vector<double> joints_s;             // interior s_i
+};
+
+PlotData collect(const Curve& c, const Speed& sp, const Reparameterization& r, const Samples& smp,
+                 const Projection& proj) {
+  const long prec = 64;
+  PlotData d;
+  const Reparameterization id = Reparameterization::identity(r.mu(), r.u_before());
+  const int dense = 800;
+  for (int j = 0; j <= dense; ++j) {
+    const Ball t(Rational(j, dense), prec);
+    d.trace.push_back(proj(mids(id.eval_point(c, t, prec))));
+    d.speed_before.push_back({static_cast<double>(j) / dense, mid_double(id.eval_speed(sp, t, prec))});
+  }
+  for (const auto& p : smp.before) d.before.push_back(proj(mids(p.point)));
+  for (const auto& p : smp.after) d.after.push_back(proj(mids(p.point)));
+  const std::size_t N = r.pieces();
+  for (std::size_t i = 1; i < N; ++i) {
+    const Ball t = r.joints_t()[i].to_ball(prec);
+    d.breakpoints.push_back(proj(mids(id.eval_point(c, t, prec))));
+    d.breakpoint_speeds.push_back({mid_double(t), mid_double(id.eval_speed(sp, t, prec))});
+    d.joints_s.push_back(mid_double(r.joints_s()[i]));
+  }
+  // p o r's speed piece by piece, so that jumps at C0 joints show; interior
+  // piece ends are moved inside by 1e-9 of the piece so that only one piece
+  // is evaluated there.
+  const int per_piece = std::max(24, 800 / static_cast<int>(N));
+  for (std::size_t i = 0; i < N; ++i) {
+    const double a = mid_double(r.joints_s()[i]), b = mid_double(r.joints_s()[i + 1]);
+    const double ia = i == 0 ? 0 : 1e-9 * (b - a), ib = i + 1 == N ? 0 : 1e-9 * (b - a);
+    std::vector<Point> piece;
+    for (int j = 0; j <= per_piece; ++j) {
+      double s = a + ia + (b - ib - a - ia) * j / per_piece;
+      s = std::min(1.0, std::max(0.0, s));
+      Ball sb;
+      arb_set_d(sb.get(), s);  // s is the exact double; only a drawing position
+      piece.push_back({s, mid_double(r.eval_speed(sp, sb, prec))});
+    }
+    d.speed_after.push_back(std::move(piece));
+  }
+  return d;
+}
+
+std::string method_title(const Reparameterization& r, const Args& a) {
+  const std::size_t N = r.pieces();
+  const std::string pieces = std::to_string(N) + (N == 1 ? " piece" : " pieces");
+  if (r.radical_result()) return "Optimal piecewise radical reparameterization r = \u03c6\u2218m (" + pieces + ")";
+  const auto* m = r.moebius_result();
+  if (m && m->continuity == Continuity::C1)
+    return "C1 piecewise M\u00f6bius reparameterization (" + pieces + ", target \u016b = " + a.get("target", "0.99") +
+           (m->target.reached ? " reached" : " NOT reached") + ")";
+  return "Optimal C0 piecewise M\u00f6bius reparameterization (" + pieces + ")";
+}
+
+std::string elide(const std::string& s, std::size_t max_chars) {
+  // counts bytes; the pretty curve text is mostly ASCII
+  if (s.size() <= max_chars) return s;
+  std::size_t keep = max_chars / 2 - 2;
+  // do not cut a UTF-8 sequence
+  std::size_t a = keep, b = s.size() - keep;
+  while (a > 0 && (static_cast<unsigned char>(s[a]) & 0xC0) == 0x80) --a;
+  while (b < s.size() && (static_cast<unsigned char>(s[b]) & 0xC0) == 0x80) ++b;
+  return s.substr(0, a) + " \u2026 " + s.substr(b);
+}
+
+std::string render(const Curve& c, SpeedKind kind, const Reparameterization& r, const PlotData& d,
+                   const Projection& proj, long K, const Args& a) {
+  const double col = 430, plot = 330, left0 = 78, top = proj.caption.empty() ? 84 : 102;
+  const double W = 3 * col + 20, H = top + plot + 168;
+  svg::Document doc(W, H);
+  doc.comment("uniparam plot: p(t) = " + c.str() + "; speed " + to_string(kind) + "; method " + r.method() + "; " +
+              std::to_string(r.pieces()) + " pieces; u before " + r.u_before().mid_decimal(10) + ", u after " +
+              r.u_after().mid_decimal(10));
+  // Title and subtitle
+  doc.begin_group("title");
+  doc.text({W / 2, 30}, method_title(r, a) + ", " + (kind == SpeedKind::Angular ? "angular" : "parametric") + " speed",
+           18, Anchor::Middle, "#111", true);
+  doc.text({W / 2, 54}, "p(t) = " + elide(pretty(c.str()), 190), 13, Anchor::Middle, "#333");
+  if (!proj.caption.empty()) doc.text({W / 2, 74}, "drawn in the " + proj.caption, 12, Anchor::Middle, "#555");
+  doc.end_group();
+
+  const bool angular = kind == SpeedKind::Angular;
+  // legend names of the two speeds: omega_p(t), omega_{p o r}(s) or |p'(t)|, |(p o r)'(s)|
+  const std::string speed_before = angular ? "\u03c9_{p}(t)" : "|p\u2032(t)|";
+  const std::string speed_after = angular ? "\u03c9_{p\u2218r}(s)" : "|(p\u2218r)\u2032(s)|";
+  const std::string Ks = std::to_string(K);
+
+  // Curve panels: same range and scale in both.
+  Range xr, yr;
+  for (const auto& p : d.trace) { xr.add(p.first); yr.add(p.second); }
+  for (const auto& p : d.before) { xr.add(p.first); yr.add(p.second); }
+  for (const auto& p : d.after) { xr.add(p.first); yr.add(p.second); }
+  xr.pad(0.06);
+  yr.pad(0.06);
+  equal_aspect(xr, yr, plot, plot);
+  const svg::Ticks xt = svg::nice_ticks(xr.lo, xr.hi, 5), yt = svg::nice_ticks(yr.lo, yr.hi, 5);
+
+  auto caption = [&](double x, double y, const std::string& head, const std::vector<std::pair<int, std::string>>& items,
+                     const std::string& color) {
+    doc.begin_group("caption");
+    doc.text({x, y}, head, 14, Anchor::Start, "#111", true);
+    double yy = y + 20;
+    for (const auto& [kindm, label] : items) {
+      const Point m{x + 7, yy - 4};
+      if (kindm == 0) doc.circle(m, 3.5, Style{"#ffffff", color, 0.7, "", 1});
+      if (kindm == 1) doc.diamond(m, 6, Style{kMark, "none", 1.6, "", 1});
+      if (kindm == 2) doc.line({x, yy - 4}, {x + 16, yy - 4}, Style{color, "none", 2.2, "", 1});
+      if (kindm == 3) doc.line({x, yy - 4}, {x + 16, yy - 4}, Style{"#666", "none", 1.4, "6 4", 1});
+      if (kindm == 4) doc.line({x + 7, yy - 11}, {x + 7, yy + 3}, Style{color, "none", 1.2, "3 3", 1});
+      doc.text({x + 22, yy}, label, 12.5, Anchor::Start, "#222");
+      yy += 18;
+    }
+    doc.end_group();
+  };
+
+  const bool has_bp = !d.breakpoints.empty();
+  for (int k = 0; k < 2; ++k) {
+    const double left = k * col + left0;
+    const svg::Panel P{left, top, plot, plot, xr.lo, xr.hi, yr.lo, yr.hi};
+    doc.begin_group(k == 0 ? "panel before" : "panel after");
+    svg::draw_axes(doc, P, xt, yt, proj.xlabel.empty() ? "x" : proj.xlabel, proj.ylabel.empty() ? "y" : proj.ylabel);
+    doc.begin_clip(P.left, P.top, P.width, P.height);
+    std::vector<Point> tr;
+    for (const auto& p : d.trace) tr.push_back(P.map(p));
+    doc.polyline(tr, Style{kTrace, "none", 1.3, "", 1});
+    doc.begin_group(k == 0 ? "samples before" : "samples after");
+    const char* color = k == 0 ? kGreen : kRed;
+    // dots shrink with many points so that neighbours stay apart (3.5 px up to 40 points)
+    const double dot = std::max(1.2, std::min(3.5, 3.5 * std::sqrt(40.0 / static_cast<double>(K))));
+    for (const auto& p : k == 0 ? d.before : d.after)
+      doc.circle(P.map(p), dot, Style{"#ffffff", color, dot < 2 ? 0.3 : 0.7, "", 1});
+    doc.end_group();
+    doc.begin_group("breakpoints");
+    for (const auto& p : d.breakpoints) doc.diamond(P.map(p), 6, Style{kMark, "none", 1.6, "", 1});
+    doc.end_group();
+    doc.end_clip();
+    std::vector<std::pair<int, std::string>> items;
+    if (k == 0) {
+      items.push_back({0, Ks + " points p(t) at equal steps of t"});
+      if (has_bp) items.push_back({1, "breakpoints p(t_{i})"});
+      caption(left - 50, top + plot + 62, "original p:  u(p) = " + u_text(r.u_before()), items, color);
+    } else {
+      items.push_back({0, Ks + " points p(r(s)) at equal steps of s"});
+      if (has_bp) items.push_back({1, "breakpoints p(t_{i}) = p(r(s_{i}))"});
+      caption(left - 50, top + plot + 62, "reparameterized p\u2218r:  u(p\u2218r) = " + u_text(r.u_after()), items,
+              color);
+    }
+    doc.end_group();
+  }
+
+  // Speed panel.
+  {
+    const double left = 2 * col + left0;
+    double ymax = 0;
+    for (const auto& p : d.speed_before) ymax = std::max(ymax, std::isfinite(p.second) ? p.second : 0);
+    for (const auto& piece : d.speed_after)
+      for (const auto& p : piece) ymax = std::max(ymax, std::isfinite(p.second) ? p.second : 0);
+    if (!(ymax > 0)) ymax = 1;
+    svg::Ticks yt3 = svg::nice_ticks(0, ymax * 1.04, 5);
+    const double ytop = std::max(ymax * 1.06, yt3.values.empty() ? ymax : yt3.values.back());
+    const svg::Panel P{left, top, plot, plot, 0, 1, 0, ytop};
+    doc.begin_group("panel speed");
+    svg::draw_axes(doc, P, svg::nice_ticks(0, 1, 5), yt3, "t (for p),  s (for p\u2218r)",
+                   angular ? "angular speed \u03c9" : "parametric speed |p\u2032|");
+    doc.begin_clip(P.left, P.top, P.width, P.height);
+    doc.begin_group("joints");
+    for (double s : d.joints_s)
+      doc.line(P.map(s, 0), P.map(s, ytop), Style{kRed, "none", 1.2, "3 3", 0.8});
+    doc.end_group();
+    const double mu = mid_double(r.mu());
+    doc.line(P.map(0, mu), P.map(1, mu), Style{"#666", "none", 1.4, "6 4", 1});
+    std::vector<Point> sb;
+    for (const auto& p : d.speed_before) sb.push_back(P.map(p));
+    doc.begin_group("speed before");
+    doc.polyline(sb, Style{kGreen, "none", 2.2, "", 1});
+    doc.end_group();
+    doc.begin_group("speed after");
+    for (const auto& piece : d.speed_after) {
+      std::vector<Point> pa;
+      for (const auto& p : piece) pa.push_back(P.map(p));
+      doc.polyline(pa, Style{kRed, "none", 2.2, "", 1});
+    }
+    doc.end_group();
+    doc.begin_group("breakpoints");
+    for (const auto& p : d.breakpoint_speeds) doc.diamond(P.map(p), 6, Style{kMark, "none", 1.6, "", 1});
+    doc.end_group();
+    doc.end_clip();
+    std::vector<std::pair<int, std::string>> items = {
+        {2, speed_before + ", the original speed"},
+        {2, speed_after + ", the new speed"},
+        {3, "\u03bc = " + r.mu().mid_decimal(4) + ", the speed of a uniform p\u2218r"},
+    };
+    caption(left - 50, top + plot + 62, "speeds:  u(p) = " + u_text(r.u_before()) + " \u2192 u(p\u2218r) = " +
+                                            u_text(r.u_after()),
+            {}, kRed);
+    // two colours in one legend: draw the items one by one
+    double yy = top + plot + 82;
+    const double x = left - 50;
+    doc.begin_group("legend");
+    doc.line({x, yy - 4}, {x + 16, yy - 4}, Style{kGreen, "none", 2.2, "", 1});
+    doc.text({x + 22, yy}, items[0].second, 12.5, Anchor::Start, "#222");
+    yy += 18;
+    doc.line({x, yy - 4}, {x + 16, yy - 4}, Style{kRed, "none", 2.2, "", 1});
+    doc.text({x + 22, yy}, items[1].second, 12.5, Anchor::Start, "#222");
+    yy += 18;
+    doc.line({x, yy - 4}, {x + 16, yy - 4}, Style{"#666", "none", 1.4, "6 4", 1});
+    doc.text({x + 22, yy}, items[2].second, 12.5, Anchor::Start, "#222");
+    if (has_bp) {
+      yy += 18;
+      doc.line({x + 7, yy - 11}, {x + 7, yy + 3}, Style{kRed, "none", 1.2, "3 3", 1});
+      doc.text({x + 22, yy}, "joints s_{i} of r (where p\u2218r's pieces meet)", 12.5, Anchor::Start, "#222");
+      yy += 18;
+      doc.diamond({x + 7, yy - 4}, 5.5, Style{kMark, "none", 1.5, "", 1});
+      doc.text({x + 22, yy}, speed_before + " at the breakpoints t_{i}", 12.5, Anchor::Start, "#222");
+    }
+    doc.end_group();
+    doc.end_group();
+  }
+  return doc.str();
+}
+
+}  // namespace
+
+int run_plot(int argc, char** argv) {
+  // "-o FILE" is "--output FILE" (the argument parser knows long options only).
+  std::vector<std::string> store(argv, argv + argc);
+  for (auto& s : store)
+    if (s == "-o") s = "--output";
+  std::vector<char*> av;
+  for (auto& s : store) av.push_back(s.data());
+  av.push_back(nullptr);
+  const CommandSpec spec = plot_spec();
+  Args a = parse_args(spec, argc, av.data(), 2);
+  if (a.help) { std::cout << help_text(spec); return 0; }
+  if (!a.has("output")) throw InvalidArgument("plot needs -o FILE.svg or -o FILE.png (or -o - for SVG on stdout)");
+  const std::string out = a.get("output", "");
+  auto ends_with = [&](const char* e) {
+    const std::size_t n = std::strlen(e);
+    if (out.size() <= n) return false;
+    std::string tail = out.substr(out.size() - n);
+    for (auto& ch : tail) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    return tail == e;
+  };
+  const bool png = ends_with(".png");
+  if (out != "-" && !png && !ends_with(".svg"))
+    throw InvalidArgument("-o: the file name must end in .svg or .png (or be - for SVG on stdout), got '" + out + "'");
+  // 15 digits (no --digits): the drawing evaluates r next to its joints (1e-9
+  // of a piece inside), so the joints must be known far better than that.
+  const Options opt = read_options(a);
+  const SpeedKind kind = parse_speed_kind(a.get("speed", "angular"));
+  const long K = a.get_long("points", 40, 2, 100000);
+  const Curve c = read_curve(a);
+  const Projection proj = read_projection(a, c.dimension());
+  const Reparameterization r = read_method(a, c, kind, opt, false);
+  const Speed sp(c, kind);
+  // The dots need only drawing accuracy; they are certified to 6 digits anyway.
+  const Samples smp = sample(c, sp, r, K, std::min<long>(6, opt.digits), opt.max_prec);
+  const PlotData d = collect(c, sp, r, smp, proj);
+  const std::string text = render(c, kind, r, d, proj, K, a);
+  if (out == "-") {
+    std::cout << text;
+    return target_status(r, "plot");
+  }
+  try {
+    if (png) {
+      svg::write_png(text, out, 2);
+    } else {
+      std::ofstream f(out, std::ios::binary);
+      f << text;
+      f.close();
+      if (!f) throw std::runtime_error("cannot write " + out);
+    }
+  } catch (const std::runtime_error& e) {
+    if (dynamic_cast<const Error*>(&e)) throw;
+    std::cerr << "uniparam plot: " << e.what() << "\n";
+    return 1;
+  }
+  return target_status(r, "plot");
+}
+
+}  // namespace uniparam::cli

@@ -1,0 +1,159 @@
+// cli/cmd_sample.cpp -- `uniparam sample CURVE`: K certified points of p o r
+// at equally spaced parameters, as CSV (decimals) or JSON (balls); and the
+// --method options shared with `uniparam plot`.
+#include <algorithm>
+#include <iostream>
+
+#include "commands.hpp"
+#include "report.hpp"
+#include "uniparam/reparam/sample.hpp"
+
+namespace uniparam::cli {
+
+std::vector<OptionSpec> method_options(bool with_none) {
+  return {
+      {"method", "M",
+       std::string("reparameterization: radical (lifts zeros of the speed), c0 (C0 piecewise Moebius, "
+                   "--pieces), c1 (C1 piecewise Moebius, --target)") +
+           (with_none ? ", none (the original p)" : ""),
+       "radical"},
+      {"pieces", "N", "number of pieces for --method c0", "3"},
+      {"target", "U", "target uniformity in (0, 1) for --method c1, e.g. 0.99", "0.99"},
+      {"max-pieces", "N", "largest number of pieces --method c1 tries", "64"},
+  };
+}
+
+Reparameterization read_method(const Args& a, const Curve& c, SpeedKind kind, const Options& opt, bool with_none) {
+  const std::string m = a.get("method", "radical");
+  if (m != "radical" && m != "c0" && m != "c1" && !(with_none && m == "none"))
+    throw InvalidArgument("unknown method '" + m + "' (expected radical, c0, c1" +
+                          std::string(with_none ? " or none)" : ")"));
+  if (a.has("pieces") && m != "c0") throw InvalidArgument("--pieces applies to --method c0 only");
+  if (a.has("target") && m != "c1") throw InvalidArgument("--target applies to --method c1 only");
+  if (a.has("max-pieces") && m != "c1") throw InvalidArgument("--max-pieces applies to --method c1 only");
+  if (m == "radical") return Reparameterization(radical(c, kind, opt));
+  if (m == "c0") return Reparameterization(reparam_c0(c, kind, a.get_long("pieces", 3, 1, 1000), opt));
+  if (m == "c1") {
+    const Rational target = Rational::parse(a.get("target", "0.99"));
+    if (target <= Rational(0) || target >= Rational(1))
+      throw InvalidArgument("--target must lie strictly between 0 and 1, got " + target.str());
+    return Reparameterization(reparam_c1(c, kind, target, opt, a.get_long("max-pieces", 64, 1, 1000)));
+  }
+  const UniformityResult u = uniformity(c, kind, opt);
+  return Reparameterization::identity(u.mu, u.u);
+}
+
+int target_status(const Reparameterization& r, const std::string& command) {
+  const auto* m = r.moebius_result();
+  if (!m || !m->target.used || m->target.reached) return 0;
+  std::cerr << "uniparam " << command << ": the target u >= " << m->target.value.str()
+            << " was not reached (best map used: " << m->pieces() << " pieces, u = " << m->u_after.mid_decimal(6)
+            << "; raise --max-pieces)\n";
+  return 4;
+}
+
+std::string coordinate_name(std::size_t i, std::size_t n) {
+  if (n <= 3) return std::string(1, "xyz"[i]);
+  return "x" + std::to_string(i + 1);
+}
+
+CommandSpec sample_spec() {
+  auto opts = common_options();
+  for (const auto& o : method_options(true)) opts.push_back(o);
+  opts.push_back({"points", "K", "number of points, at s = 0, 1/(K-1), ..., 1", "40"});
+  opts.push_back({"format", "F", "csv (decimals) or json (certified balls; same as --json)", "csv"});
+  return {"sample",
+          "K points of the reparameterized curve p o r at equally spaced parameters.",
+          "Row k is s = k/(K-1) (first 0, last 1), t = r(s), the point p(r(s)) and the\n"
+          "speed of p o r at s. Every value is certified to --digits digits: JSON gives\n"
+          "balls {\"mid\", \"rad\"}, CSV the midpoints (decimals with D significant digits).\n"
+          "Where s falls on a joint of r whose side cannot be decided, the speed is\n"
+          "two-sided: CSV leaves it empty, JSON gives the union and \"at_joint\": true.\n"
+          "--method none samples the original p (s = t). When --method c1 misses its\n"
+          "target, the best map is sampled and the exit status is 4.",
+          {"CURVE"},
+          opts};
+}
+
+int run_sample(int argc, char** argv) {
+  const CommandSpec spec = sample_spec();
+  Args a = parse_args(spec, argc, argv, 2);
+  if (a.help) { std::cout << help_text(spec); return 0; }
+  const Options opt = read_options(a);
+  const SpeedKind kind = parse_speed_kind(a.get("speed", "angular"));
+  const long K = a.get_long("points", 40, 2, 1000000);
+  std::string format = a.get("format", a.flag("json") ? "json" : "csv");
+  if (format != "csv" && format != "json")
+    throw InvalidArgument("unknown format '" + format + "' (expected csv or json)");
+  if (a.flag("json") && format != "json") throw InvalidArgument("--json conflicts with --format " + format);
+  const Curve c = read_curve(a);
+  // r's data are balls of fixed accuracy: compute them with 3 more digits than
+  // the samples must meet.
+  Options ropt = opt;
+  ropt.digits = opt.digits + 3;
+  Reparameterization r = read_method(a, c, kind, ropt, true);
+  const Speed sp(c, kind);
+  Samples smp = sample(c, sp, r, K, opt.digits, opt.max_prec);
+  if (!meets_digits(smp, opt.digits)) {
+    // A sample on a joint where the speed vanishes with multiplicity k - 1: r
+    // is Hoelder-1/k there, so r's data need k times the digits.
+    long k = 2;
+    if (const auto* x = r.radical_result())
+      for (std::size_t i = 0; i < x->pieces(); ++i) k = std::max<long>(k, x->root_index(i));
+    ropt.digits = std::min<long>(10000, k * opt.digits + 3);
+    r = read_method(a, c, kind, ropt, true);
+    smp = sample(c, sp, r, K, opt.digits, opt.max_prec);
+    if (!meets_digits(smp, opt.digits))
+      throw BudgetExceeded("could not certify the samples on the joints of r to " + std::to_string(opt.digits) +
+                           " digits (r computed to " + std::to_string(ropt.digits) + " digits)");
+  }
+  const std::size_t n = c.dimension();
+  const long pd = printed_digits(opt.digits);
+
+  if (format == "json") {
+    Json j = Json::object();
+    j.set("curve", Json::string(c.str()));
+    j.set("speed", Json::string(to_string(kind)));
+    j.set("method", Json::string(r.method()));
+    j.set("digits", Json::number(opt.digits));
+    j.set("points", Json::number(K));
+    j.set("mu", json_ball(r.mu(), pd));
+    j.set("u_before", json_ball(r.u_before(), pd));
+    j.set("u_after", json_ball(r.u_after(), pd));
+    Json js = Json::array(), jt = Json::array();
+    for (const auto& b : r.joints_s()) js.push(json_ball(b, pd));
+    for (const auto& t : r.joints_t()) jt.push(json_algebraic(t, opt.digits));
+    Json joints = Json::object();
+    joints.set("s", js);
+    joints.set("t", jt);
+    j.set("joints", joints);
+    Json rows = Json::array();
+    for (const auto& p : smp.after) {
+      Json row = Json::object();
+      row.set("s", json_rational(p.s, pd));
+      row.set("t", json_ball(p.t, pd));
+      Json pt = Json::array();
+      for (const auto& b : p.point) pt.push(json_ball(b, pd));
+      row.set("point", pt);
+      row.set("speed", json_ball(p.speed, pd));
+      row.set("at_joint", Json::boolean(p.at_joint));
+      rows.push(row);
+    }
+    j.set("samples", rows);
+    std::cout << j.dump(2) << "\n";
+    return target_status(r, "sample");
+  }
+  std::cout << "s,t";
+  for (std::size_t i = 0; i < n; ++i) std::cout << "," << coordinate_name(i, n);
+  std::cout << ",speed\n";
+  for (const auto& p : smp.after) {
+    std::cout << decimal_string(p.s, opt.digits) << "," << p.t.mid_decimal(opt.digits);
+    for (const auto& b : p.point) std::cout << "," << b.mid_decimal(opt.digits);
+    std::cout << ",";
+    if (!p.at_joint) std::cout << p.speed.mid_decimal(opt.digits);
+    std::cout << "\n";
+  }
+  return target_status(r, "sample");
+}
+
+}  // namespace uniparam::cli
