@@ -22,6 +22,7 @@ const char* kMainHelp =
     "  uniformity CURVE   exact speed^2, zeros of the speed in [0,1], certified mu and u\n"
     "  radical CURVE      optimal piecewise radical reparameterization (lifts zeros)\n"
     "  moebius CURVE      optimal Moebius map, or C0 piecewise with --breakpoints\n"
+    "  reparam CURVE      piecewise Moebius: C0 with --pieces N, C1 with --target U\n"
     "  bezier --control POINTS [--weights LIST]\n"
     "                     optimal bilinear reparameterization of a Bezier curve (arc length)\n"
     "  sample CURVE       K certified points of p o r at equal parameter steps (CSV, JSON)\n"
