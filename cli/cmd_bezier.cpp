@@ -13,7 +13,7 @@ CommandSpec bezier_spec() {
   std::vector<OptionSpec> opts;
   for (auto& o : common_options())
     if (o.name != "speed") opts.push_back(o);  // always the parametric speed
-  opts.push_back({"format", "F", "exact values (P, Q, alpha, weights): text, latex or maple", "text"});
+  opts.push_back({"format", "F", "exact values (P, Q, alpha, weights): text, latex, maple (or json, the same as --json)", "text"});
   return {"bezier",
           "Optimal bilinear (Moebius) reparameterization of a Bezier curve for the parametric speed.",
           "Integral curves (no --weights): P and Q of paper 000 eq. (21) as exact rationals,\n"
@@ -47,14 +47,14 @@ int run_bezier(int argc, char** argv) {
   Args a = parse_args(spec, argc, argv, 2);
   if (a.help) { std::cout << help_text(spec); return 0; }
   const Options opt = read_options(a);
-  const Format fmt = parse_format(a.get("format", "text"));
+  const Format fmt = read_format(a);
   const BezierCurve bz = read_bezier(a);
   const Curve c = bz.to_curve();
   const BezierResult r = bezier_optimal(bz, opt);
   const long pd = printed_digits(opt.digits);
   const std::size_t n1 = r.weights.size();
 
-  if (a.flag("json")) {
+  if (wants_json(a)) {
     Json j = Json::object();
     j.set("control", Json::string(bz.str()));
     if (bz.is_rational()) {

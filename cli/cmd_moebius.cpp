@@ -18,9 +18,8 @@ std::vector<OptionSpec> moebius_output_options() {
 
 MoebiusPrint read_moebius_print(const Args& a) {
   MoebiusPrint how;
-  const std::string f = a.get("format", "text");
-  how.json = a.flag("json") || f == "json";
-  how.format = f == "json" ? Format::Text : parse_format(f);
+  how.json = wants_json(a);
+  how.format = read_format(a);
   return how;
 }
 

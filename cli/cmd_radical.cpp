@@ -11,7 +11,7 @@ namespace uniparam::cli {
 
 CommandSpec radical_spec() {
   auto opts = common_options();
-  opts.push_back({"format", "F", "formulas of the pieces: text, latex or maple", "text"});
+  opts.push_back({"format", "F", "formulas of the pieces: text, latex, maple (or json, the same as --json)", "text"});
   opts.push_back({"at", "Z", "also evaluate r(z), p(r(z)) and the new speed at a rational z in [0, 1]", ""});
   return {"radical",
           "Optimal piecewise radical reparameterization r = phi o m (paper 002, Algorithm 1).",
@@ -25,11 +25,18 @@ CommandSpec radical_spec() {
           opts};
 }
 
+bool wants_json(const Args& a) { return a.flag("json") || a.get("format", "") == "json"; }
+
+Format read_format(const Args& a) {
+  const std::string f = a.get("format", "text");
+  return f == "json" ? Format::Text : parse_format(f);
+}
+
 Format parse_format(const std::string& s) {
   if (s == "text") return Format::Text;
   if (s == "latex") return Format::Latex;
   if (s == "maple") return Format::Maple;
-  throw InvalidArgument("unknown format '" + s + "' (expected text, latex or maple)");
+  throw InvalidArgument("unknown format '" + s + "' (expected text, latex, maple or json)");
 }
 
 int run_radical(int argc, char** argv) {
@@ -38,7 +45,7 @@ int run_radical(int argc, char** argv) {
   if (a.help) { std::cout << help_text(spec); return 0; }
   const Options opt = read_options(a);
   const SpeedKind kind = parse_speed_kind(a.get("speed", "angular"));
-  const Format fmt = parse_format(a.get("format", "text"));
+  const Format fmt = read_format(a);
   const Curve c = read_curve(a);
   std::optional<Rational> at;
   if (a.has("at")) {
@@ -69,7 +76,7 @@ int run_radical(int argc, char** argv) {
   const auto formulas = radical_formulas(c, r, fmt, opt.digits);
   const std::size_t N = r.pieces();
 
-  if (a.flag("json")) {
+  if (wants_json(a)) {
     Json j = Json::object();
     j.set("curve", Json::string(c.str()));
     j.set("speed", Json::string(to_string(kind)));

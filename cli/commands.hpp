@@ -62,6 +62,11 @@ Reparameterization read_method(const Args& a, const Curve& c, SpeedKind kind, co
 int target_status(const Reparameterization& r, const std::string& command);
 /// "x", "y", "z" for n <= 3 components, else "x1", ..., "xn" (0-based i).
 std::string coordinate_name(std::size_t i, std::size_t n);
+/// True for --json or --format json.
+bool wants_json(const Args& a);
+/// The formula format of --format text|latex|maple|json (json -> Text: the
+/// JSON output carries text formulas).
+Format read_format(const Args& a);
 /// Parses --format text|latex|maple.
 Format parse_format(const std::string& s);
 

@@ -119,3 +119,21 @@ TEST(CliReparam, BadOptionsAreRejectedWithExitTwo) {
     EXPECT_TRUE(r.out.empty());
   }
 }
+
+TEST(CliFormats, FormatJsonIsTheJsonOutputOnEveryFormulaCommand) {
+  const std::vector<std::vector<std::string>> commands = {
+      {"radical", "(t, t^3)"},
+      {"moebius", "(t, t^2)"},
+      {"reparam", "(t, t^2)", "--pieces", "2"},
+      {"bezier", "--control", "[[0,0],[1,2],[3,1]]"},
+  };
+  for (const auto& base : commands) {
+    auto with_format = base, with_flag = base;
+    with_format.insert(with_format.end(), {"--format", "json"});
+    with_flag.push_back("--json");
+    auto a = run_uniparam(with_format), b = run_uniparam(with_flag);
+    ASSERT_EQ(a.exit_code, 0) << base[0] << ": " << a.err;
+    EXPECT_EQ(a.out, b.out) << base[0];
+    EXPECT_EQ(a.out.rfind("{", 0), 0u) << base[0];
+  }
+}
