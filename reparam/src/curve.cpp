@@ -1,5 +1,7 @@
 #include "uniparam/reparam/curve.hpp"
 
+#include "uniparam/core/ball_poly.hpp"
+
 #include <algorithm>
 
 #include "uniparam/algebra/algebraic.hpp"
@@ -62,6 +64,16 @@ std::string Curve::str() const {
   std::string s = "(";
   for (std::size_t i = 0; i < components_.size(); ++i) s += (i ? ", " : "") + components_[i].str();
   return s + ")";
+}
+
+std::vector<Ball> Curve::eval(const Ball& t, long prec) const {
+  std::vector<Ball> out;
+  for (const auto& x : components_) {
+    Ball n = BallPoly(x.num())(t, prec), d = BallPoly(x.den())(t, prec), v;
+    arb_div(v.get(), n.get(), d.get(), prec);
+    out.push_back(v);
+  }
+  return out;
 }
 
 }  // namespace uniparam

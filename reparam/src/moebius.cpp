@@ -115,13 +115,7 @@ Ball moebius_eval_speed(const MoebiusResult& r, const Speed& sp, const Ball& s, 
 
 std::vector<Ball> moebius_eval_point(const Curve& c, const MoebiusResult& r, const Ball& s, long prec) {
   const Ball t = moebius_eval_r(r, s, prec);
-  std::vector<Ball> out;
-  for (const auto& x : c.components()) {
-    Ball n = BallPoly(x.num())(t, prec), d = BallPoly(x.den())(t, prec), v;
-    arb_div(v.get(), n.get(), d.get(), prec);
-    out.push_back(v);
-  }
-  return out;
+  return c.eval(t, prec);
 }
 
 MoebiusResult moebius_c0(const Curve& c, SpeedKind kind, const std::vector<RealAlgebraic>& T,

@@ -290,13 +290,7 @@ Ball radical_eval_speed(const RadicalResult& r, const Speed& s, const Ball& z, l
 
 std::vector<Ball> radical_eval_point(const Curve& c, const RadicalResult& r, const Ball& z, long prec) {
   const Ball t = radical_eval_r(r, z, prec);
-  std::vector<Ball> out;
-  for (const auto& x : c.components()) {
-    Ball n = BallPoly(x.num())(t, prec), d = BallPoly(x.den())(t, prec), v;
-    arb_div(v.get(), n.get(), d.get(), prec);
-    out.push_back(v);
-  }
-  return out;
+  return c.eval(t, prec);
 }
 
 Ball radical_direct_uniformity(const RadicalResult& r, const Speed& s, long digits, long max_prec) {

@@ -106,13 +106,7 @@ Ball Reparameterization::eval_speed(const Speed& sp, const Ball& s, long prec) c
 
 std::vector<Ball> Reparameterization::eval_point(const Curve& c, const Ball& s, long prec) const {
   const Ball t = eval_r(s, prec);
-  std::vector<Ball> out;
-  for (const auto& x : c.components()) {
-    Ball n = BallPoly(x.num())(t, prec), d = BallPoly(x.den())(t, prec), v;
-    arb_div(v.get(), n.get(), d.get(), prec);
-    out.push_back(v);
-  }
-  return out;
+  return c.eval(t, prec);
 }
 
 namespace {

@@ -5,38 +5,16 @@
 
 #include <regex>
 
+#include "support/json.hpp"
 #include "support/run.hpp"
 #include "uniparam/uniparam.hpp"
 
 using uniparam::Rational;
+using uniparam::test_support::certified_real;
+using uniparam::test_support::encloses;
 using uniparam::test_support::run_uniparam;
 
 namespace {
-
-bool certified_real(const std::string& json, const std::string& key, std::string& mid, std::string& rad) {
-  std::regex re("\"" + key + "\": \\{\\s*\"mid\": \"([^\"]+)\",\\s*\"rad\": \"([^\"]+)\"");
-  std::smatch m;
-  if (!std::regex_search(json, m, re)) return false;
-  mid = m[1];
-  rad = m[2];
-  return true;
-}
-
-// [mid - rad, mid + rad] of `key` contains ref (+- slack) and rad <= 10^-digits * max(1, |ref|).
-::testing::AssertionResult encloses(const std::string& json, const std::string& key, const char* ref,
-                                    const char* slack, long digits) {
-  std::string mid, rad;
-  if (!certified_real(json, key, mid, rad)) return ::testing::AssertionFailure() << "no certified real " << key;
-  const Rational m = Rational::parse(mid), d = Rational::parse(rad), r = Rational::parse(ref),
-                 s = Rational::parse(slack);
-  if (m - d - s > r || m + d + s < r)
-    return ::testing::AssertionFailure() << key << " = " << mid << " +/- " << rad << " misses " << ref;
-  Rational bound = Rational::parse("1e-" + std::to_string(digits));
-  if (r > Rational(1)) bound = bound * r;
-  if (r < Rational(-1)) bound = -bound * r;
-  if (d > bound) return ::testing::AssertionFailure() << key << " radius " << rad << " above the digits bound";
-  return ::testing::AssertionSuccess();
-}
 
 // The "exact" string of a key whose value carries one ("exact": "p/q").
 std::string exact_of(const std::string& json, const std::string& key) {

@@ -3,42 +3,12 @@
 
 #include <regex>
 
+#include "support/json.hpp"
 #include "support/run.hpp"
 #include "uniparam/uniparam.hpp"
 
+using uniparam::test_support::encloses;
 using uniparam::test_support::run_uniparam;
-
-namespace {
-
-// Extracts {"mid": "...", "rad": "..."} of a top-level key from our JSON.
-bool certified_real(const std::string& json, const std::string& key, std::string& mid, std::string& rad) {
-  std::regex re("\"" + key + "\": \\{\\s*\"mid\": \"([^\"]+)\",\\s*\"rad\": \"([^\"]+)\"");
-  std::smatch m;
-  if (!std::regex_search(json, m, re)) return false;
-  mid = m[1];
-  rad = m[2];
-  return true;
-}
-
-// The JSON value of `key` is a certified real whose interval [mid - rad,
-// mid + rad], read exactly, contains the reference `ref` (rounded to its last
-// digit, hence `ref_slack`), and whose rad <= 10^-digits (all values here are
-// below 1 in magnitude or near it).
-::testing::AssertionResult encloses(const std::string& json, const std::string& key, const char* ref,
-                                    const char* ref_slack, long digits) {
-  std::string mid, rad;
-  if (!certified_real(json, key, mid, rad)) return ::testing::AssertionFailure() << "no certified real " << key;
-  using uniparam::Rational;
-  const Rational m = Rational::parse(mid), d = Rational::parse(rad), r = Rational::parse(ref),
-                 slack = Rational::parse(ref_slack);
-  if (m - d - slack > r || m + d + slack < r)
-    return ::testing::AssertionFailure() << key << " = " << mid << " +/- " << rad << " misses " << ref;
-  if (d > Rational::parse("1e-" + std::to_string(digits)))
-    return ::testing::AssertionFailure() << key << " radius " << rad << " above 1e-" << digits;
-  return ::testing::AssertionSuccess();
-}
-
-}  // namespace
 
 TEST(Cli, UniformityJsonMeetsTheCertifiedRealContract) {
   for (long digits : {5L, 15L, 30L}) {

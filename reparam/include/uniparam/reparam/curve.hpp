@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "uniparam/core/ball.hpp"
+
 #include "uniparam/core/parser.hpp"
 #include "uniparam/core/poly.hpp"
 #include "uniparam/core/ratfunc.hpp"
@@ -34,6 +36,9 @@ class Curve {
   long degree() const;
   /// "(x(t), y(t))" in plain text.
   std::string str() const;
+  /// Enclosures of the components p_i(t) at the real ball t (inside [0, 1],
+  /// where no component has a pole).
+  std::vector<Ball> eval(const Ball& t, long prec) const;
 
  private:
   std::vector<RatFunc> components_;
