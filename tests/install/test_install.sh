@@ -49,4 +49,8 @@ echo "== run examples/uniformity"
 out="$("$ebuild/uniformity")" || { rc=$?; echo "$out"; echo "FAIL: uniformity exited $rc" >&2; exit 1; }
 echo "$out"
 grep -q '^u = ' <<<"$out" || { echo "FAIL: no 'u = ' line in the output" >&2; exit 1; }
-echo "PASS: installed package found, example built and ran"
+echo "== run examples/toolbox"
+out="$("$ebuild/toolbox")" || { rc=$?; echo "$out"; echo "FAIL: toolbox exited $rc" >&2; exit 1; }
+echo "$out"
+grep -q '^C1, rational: u = ' <<<"$out" || { echo "FAIL: no 'C1, rational' line in the output" >&2; exit 1; }
+echo "PASS: installed package found, examples built and ran"
