@@ -15,15 +15,31 @@ struct Command {
 
 const std::vector<Command>& commands();
 
-/// Options shared by the certified commands: --speed, --digits, --json,
-/// --max-prec, --max-degree.
+/// Options shared by the certified commands: --speed, --digits, --json and
+/// the budgets --max-prec, --max-degree, --max-bits, --max-length,
+/// --max-depth, --timeout (docs/robustness.md).
 std::vector<OptionSpec> common_options();
 /// Reads --digits, --max-prec, --max-degree (validated ranges).
 Options read_options(const Args& a);
-/// The curve a command works on: its CURVE argument (every command reads its
-/// curve through here, so new ways of giving one apply to all commands).
-/// \throws ParseError, DomainError as Curve::parse.
+/// Reads the limits of the curve parser: --max-degree (degree and exponent),
+/// --max-bits, --max-length, --max-depth (validated ranges; InvalidArgument).
+ParseLimits read_parse_limits(const Args& a);
+/// Reads --timeout SECONDS (default 600): a positive number up to 1e9.
+/// \throws InvalidArgument otherwise.
+double read_timeout(const Args& a);
+/// The curve a command works on: its CURVE argument read with
+/// read_parse_limits (every command reads its curve through here, so new
+/// ways of giving one apply to all commands).
+/// \throws ParseError, DomainError, BudgetExceeded as Curve::parse.
 Curve read_curve(const Args& a);
+
+/// Runs a command under a TimeBudget of --timeout seconds (so every command
+/// of the table gets the time limit): argv[1] is the command name. With
+/// `watchdog`, a backstop thread ends the process with exit code 4 and the
+/// budget message if the command overruns its deadline by 5% + 2 s inside a
+/// call that cannot notice the TimeBudget (the fuzz driver runs without it).
+/// \throws whatever the command throws; InvalidArgument for bad arguments.
+int run_command(const Command& c, int argc, char** argv, bool watchdog = true);
 
 // One pair per command, defined in cmd_<name>.cpp.
 CommandSpec uniformity_spec();

@@ -28,7 +28,8 @@ const char* kMainHelp =
     "\n"
     "Run 'uniparam COMMAND --help' for the options of a command.\n"
     "Exit codes: 0 ok, 2 invalid input or option, 3 curve not regular on [0,1],\n"
-    "4 accuracy not certifiable within the budget, 1 other error.\n";
+    "4 a budget exceeded (precision, degree, size, length, depth or time: the\n"
+    "message names the option that raises it), 1 other error.\n";
 
 }  // namespace
 
@@ -45,7 +46,7 @@ int main(int argc, char** argv) {
   const std::string cmd = argv[1];
   try {
     for (const auto& c : cli::commands())
-      if (c.spec.name == cmd) return c.run(argc, argv);
+      if (c.spec.name == cmd) return cli::run_command(c, argc, argv);
     std::cerr << "uniparam: unknown command '" << cmd << "' (run 'uniparam --help' for the list)\n";
     return 2;
   } catch (const ParseError& e) {

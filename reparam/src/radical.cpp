@@ -1,6 +1,7 @@
 #include "uniparam/reparam/radical.hpp"
 
 #include "uniparam/algebra/quadrature.hpp"
+#include "uniparam/core/budget.hpp"
 #include "uniparam/core/error.hpp"
 
 namespace uniparam {
@@ -61,6 +62,7 @@ RadicalResult radical(const Curve& c, SpeedKind kind, const Options& opt) {
     return r;
   }
   for (long bits = digits_to_bits(opt.digits) + 8;; bits += 32) {
+    check_time_budget();
     const long prec = 2 * bits + 64;
     r.integrals.clear();
     std::vector<Ball> sqrtL(N), sqrtM(N);
