@@ -101,6 +101,21 @@ double read_timeout(const Args& a) {
   return v;
 }
 
+Rational read_rational(const std::string& option, const std::string& text) {
+  // The OS already caps one argument at 128 KiB; this keeps 10^(10^6)-sized
+  // numbers ("1e999999") out of the breakpoints and evaluation points.
+  const auto e = text.find_first_of("eE");
+  if (text.size() > 100000 || (e != std::string::npos && text.size() - e > 5))  // "e-999" at most
+    throw InvalidArgument("--" + option + ": the number '" + text.substr(0, 20) + (text.size() > 20 ? "..." : "") +
+                          "' is too large (at most 100000 characters and a decimal exponent below 1000)");
+  try {
+    return Rational::parse(text);
+  } catch (const Error& e) {
+    throw InvalidArgument("--" + option + ": '" + text.substr(0, 40) + (text.size() > 40 ? "..." : "") +
+                          "' is not a rational number such as 1/3, 0.25 or 1e-3 (" + e.what() + ")");
+  }
+}
+
 Curve read_curve(const Args& a) { return Curve::parse(a.positional.at(0), read_parse_limits(a)); }
 
 int run_command(const Command& c, int argc, char** argv, bool watchdog) {

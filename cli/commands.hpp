@@ -24,6 +24,10 @@ Options read_options(const Args& a);
 /// Reads the limits of the curve parser: --max-degree (degree and exponent),
 /// --max-bits, --max-length, --max-depth (validated ranges; InvalidArgument).
 ParseLimits read_parse_limits(const Args& a);
+/// The exact rational `text` given to option --`option` ("1/3", "0.25",
+/// "1e-3"). \throws InvalidArgument naming the option for anything else
+/// (malformed, division by zero, more than 100000 characters).
+Rational read_rational(const std::string& option, const std::string& text);
 /// Reads --timeout SECONDS (default 600): a positive number up to 1e9.
 /// \throws InvalidArgument otherwise.
 double read_timeout(const Args& a);

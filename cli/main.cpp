@@ -36,8 +36,12 @@ const char* kMainHelp =
 int main(int argc, char** argv) {
   using namespace uniparam;
   if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h") || !std::strcmp(argv[1], "help")) {
+    if (argc < 2) {  // a usage error: the help goes to stderr
+      std::cerr << kMainHelp;
+      return 2;
+    }
     std::cout << kMainHelp;
-    return argc < 2 ? 2 : 0;
+    return 0;
   }
   if (!std::strcmp(argv[1], "--version")) {
     std::cout << "uniparam 0.1.0\n";

@@ -263,9 +263,12 @@ class Parser {
   const std::string text = lex_.text(tk);
   std::string detail;
   switch (tk.kind) {
-    case Tok::End:
-      detail = tk.pos == 0 ? "empty input" : "unexpected end of input";
+    case Tok::End: {
+      const std::string& s = lex_.source();
+      const bool blank = std::all_of(s.begin(), s.begin() + static_cast<std::ptrdiff_t>(tk.pos), is_space);
+      detail = blank ? "empty input" : "unexpected end of input";
       break;
+    }
     case Tok::Ident: {
       std::size_t j = tk.pos + tk.len;
       const std::string& s = lex_.source();
