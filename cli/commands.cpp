@@ -82,7 +82,7 @@ Options read_options(const Args& a) {
 
 ParseLimits read_parse_limits(const Args& a) {
   ParseLimits lim;
-  lim.max_degree = a.get_long("max-degree", 2000, 1, 20000);
+  lim.max_degree = a.get_long("max-degree", Options{}.max_degree, 1, 20000);
   lim.max_exponent = lim.max_degree;
   lim.max_bits = a.get_long("max-bits", lim.max_bits, 64, 1L << 40);
   lim.max_length = static_cast<std::size_t>(a.get_long("max-length", static_cast<long>(lim.max_length), 1, 1L << 30));
