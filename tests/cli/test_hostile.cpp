@@ -157,6 +157,8 @@ std::vector<HostileRow> hostile_rows() {
       {{"radical", "(t^2, t^3)", "--speed", "parametric"}, 0, ""},
       {{"moebius", "(t, t^2)", "--breakpoints", "0,1e-30,2e-30,1"}, 0, ""},
       {{"radical", kCubic, "--at", "1e-999"}, 0, ""},
+      {{"radical", "(t, (t-1)^3)", "--at", "1"}, 0, ""},  // zero of the speed at t = 1, z = 1 exactly
+      {{"radical", "(t, t^3 (1-t)^3)", "--at", "1", "--digits", "40"}, 0, ""},
       {{"uniformity", "(t^2/t, t^3/t^2)", "--speed", "parametric"}, 0, ""},
   };
 }

@@ -289,3 +289,23 @@ TEST(Degenerate, DenseDegreeFiveHundredParametricMeanSquareIsExact) {
   EXPECT_TRUE(p.zeros.empty());
   EXPECT_TRUE(agrees(p.mean_square, exact(integral)));
 }
+
+// A zero of the speed exactly at t = 1, evaluated exactly at z = 1 (it used
+// to stay uncertifiable: the breakpoints' radius went through the radical).
+// p(t) = (t, (t-1)^3) is q(1 - t), q = (t, t^3), up to a rotation by pi, so
+// r_p(z) = 1 - r_q(1 - z) and the new speeds satisfy s_p(z) = s_q(1 - z).
+TEST(Degenerate, RadicalEvaluatesExactlyAtAZeroAtTheRightEnd) {
+  const Curve p = parse_curve("(t, (t - 1)^3)"), q = parse_curve("(t, t^3)");
+  const RadicalResult rp = radical(p, SpeedKind::Angular), rq = radical(q, SpeedKind::Angular);
+  EXPECT_TRUE(agrees(rp.u_after, rq.u_after));
+  const Speed sp(p, SpeedKind::Angular), sq(q, SpeedKind::Angular);
+  for (long prec : {128L, 256L}) {
+    const Ball one(1), zero(0);
+    const Ball r1 = radical_eval_r(rp, one, prec);
+    EXPECT_TRUE(r1.contains(Rational(1)));
+    const Ball v1 = radical_eval_speed(rp, sp, one, prec), v0 = radical_eval_speed(rq, sq, zero, prec);
+    EXPECT_TRUE(agrees(v1, v0));
+    EXPECT_TRUE(v1.meets_digits(15)) << v1.str(30);
+    for (const auto& b : radical_eval_point(p, rp, one, prec)) EXPECT_TRUE(b.meets_digits(15)) << b.str(30);
+  }
+}
