@@ -309,3 +309,20 @@ TEST(Degenerate, RadicalEvaluatesExactlyAtAZeroAtTheRightEnd) {
     for (const auto& b : radical_eval_point(p, rp, one, prec)) EXPECT_TRUE(b.meets_digits(15)) << b.str(30);
   }
 }
+
+// An expired TimeBudget stops every certified computation with
+// BudgetExceeded naming --timeout (checked in the precision loops,
+// quadrature and root isolation).
+TEST(Degenerate, ExpiredTimeBudgetStopsEveryMethod) {
+  const Curve c = parse_curve("(t, t^3)");
+  const TimeBudget b(1e-9);
+  EXPECT_THROW(uniformity(c, SpeedKind::Angular), BudgetExceeded);
+  EXPECT_THROW(radical(c, SpeedKind::Angular), BudgetExceeded);
+  EXPECT_THROW(moebius_optimal(c, SpeedKind::Angular), BudgetExceeded);
+  try {
+    uniformity(c, SpeedKind::Parametric);
+    ADD_FAILURE() << "no exception";
+  } catch (const BudgetExceeded& e) {
+    EXPECT_NE(std::string(e.what()).find("--timeout"), std::string::npos) << e.what();
+  }
+}
