@@ -1,5 +1,7 @@
 #include "args.hpp"
 
+#include <algorithm>
+
 #include <cerrno>
 #include <cstdlib>
 
@@ -34,6 +36,10 @@ Args parse_args(const CommandSpec& spec, int argc, char** argv, int first) {
   for (int i = first; i < argc; ++i) {
     std::string arg = argv[i];
     if (arg == "--help" || arg == "-h") { a.help = true; continue; }
+    // "-o FILE" is "--output FILE" for the commands that write a file.
+    if (arg == "-o" && std::any_of(spec.options.begin(), spec.options.end(),
+                                   [](const OptionSpec& o) { return o.name == "output"; }))
+      arg = "--output";
     if (arg.size() > 2 && arg.compare(0, 2, "--") == 0) {
       std::string name = arg.substr(2), value;
       bool inline_value = false;

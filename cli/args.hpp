@@ -46,7 +46,8 @@ struct Args {
 /// True when the command's first positional CURVE may be given as --control instead.
 bool curve_or_control(const CommandSpec& spec);
 
-/// Parses argv[first..argc) for `spec`; InvalidArgument for an unknown option,
+/// Parses argv[first..argc) for `spec` ("-o" means "--output" when spec
+/// has that option); InvalidArgument for an unknown option,
 /// a missing value or a wrong number of positional arguments (unless --help),
 /// or both CURVE and --control given.
 Args parse_args(const CommandSpec& spec, int argc, char** argv, int first);

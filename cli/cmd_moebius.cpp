@@ -37,7 +37,7 @@ std::vector<RealAlgebraic> parse_breakpoints(const std::string& list) {
     std::size_t comma = list.find(',', start);
     std::string item = list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
     if (item.empty()) throw InvalidArgument("--breakpoints: empty entry in '" + list + "'");
-    out.emplace_back(Rational::parse(item));
+    out.emplace_back(read_rational("breakpoints", item));
     if (comma == std::string::npos) break;
     start = comma + 1;
   }

@@ -397,15 +397,9 @@ std::string render(const Curve& c, SpeedKind kind, const Reparameterization& r, 
 }  // namespace
 
 int run_plot(int argc, char** argv) {
-  // "-o FILE" is "--output FILE" (the argument parser knows long options only).
-  std::vector<std::string> store(argv, argv + argc);
-  for (auto& s : store)
-    if (s == "-o") s = "--output";
-  std::vector<char*> av;
-  for (auto& s : store) av.push_back(s.data());
-  av.push_back(nullptr);
   const CommandSpec spec = plot_spec();
-  Args a = parse_args(spec, argc, av.data(), 2);
+  Args a = parse_args(spec, argc, argv, 2);  // "-o FILE" is read as "--output FILE"
+
   if (a.help) { std::cout << help_text(spec); return 0; }
   if (!a.has("output")) throw InvalidArgument("plot needs -o FILE.svg or -o FILE.png (or -o - for SVG on stdout)");
   const std::string out = a.get("output", "");

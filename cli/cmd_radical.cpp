@@ -49,7 +49,7 @@ int run_radical(int argc, char** argv) {
   const Curve c = read_curve(a);
   std::optional<Rational> at;
   if (a.has("at")) {
-    at = Rational::parse(a.get("at", ""));
+    at = read_rational("at", a.get("at", ""));
     if (*at < Rational(0) || *at > Rational(1)) throw InvalidArgument("--at must lie in [0, 1], got " + at->str());
   }
   const RadicalResult r = radical(c, kind, opt);

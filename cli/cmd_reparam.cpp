@@ -45,7 +45,7 @@ int run_reparam(int argc, char** argv) {
   if (a.has("pieces")) pieces = a.get_long("pieces", 1, 1, 1000);
   if (a.has("breakpoints")) T = parse_breakpoints(a.get("breakpoints", ""));
   if (a.has("target")) {
-    target = Rational::parse(a.get("target", ""));
+    target = read_rational("target", a.get("target", ""));
     if (!(target.sign() > 0 && target < Rational(1)))
       throw InvalidArgument("--target must lie strictly between 0 and 1, got " + a.get("target", ""));
   }

@@ -34,7 +34,7 @@ Reparameterization read_method(const Args& a, const Curve& c, SpeedKind kind, co
   if (m == "radical") return Reparameterization(radical(c, kind, opt));
   if (m == "c0") return Reparameterization(reparam_c0(c, kind, a.get_long("pieces", 3, 1, 1000), opt));
   if (m == "c1") {
-    const Rational target = Rational::parse(a.get("target", "0.99"));
+    const Rational target = read_rational("target", a.get("target", "0.99"));
     if (target <= Rational(0) || target >= Rational(1))
       throw InvalidArgument("--target must lie strictly between 0 and 1, got " + target.str());
     return Reparameterization(reparam_c1(c, kind, target, opt, a.get_long("max-pieces", 64, 1, 1000)));

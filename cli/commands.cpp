@@ -1,7 +1,61 @@
 // cli/commands.cpp -- the table of subcommands and their shared options.
 #include "commands.hpp"
 
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <cstdio>
+#include <cstdlib>
+#include <mutex>
+#include <thread>
+
 namespace uniparam::cli {
+
+namespace {
+
+constexpr const char* kDefaultTimeout = "600";
+
+/// The backstop of --timeout. The engine checks its TimeBudget cooperatively,
+/// but a single Arb call (computing Gauss-Legendre nodes at thousands of bits,
+/// say) can run for minutes without returning. If the command is still
+/// running 5% + 2 s after its deadline, this thread reports the budget error
+/// and ends the process with exit code 4 (nothing has been printed to stdout:
+/// the commands print only after computing).
+class Watchdog {
+ public:
+  Watchdog(double seconds, std::string command) {
+    const auto grace = std::chrono::duration<double>(seconds * 1.05 + 2.0);
+    thread_ = std::thread([this, grace, seconds, command = std::move(command)] {
+      std::unique_lock<std::mutex> lock(mutex_);
+      if (done_cv_.wait_for(lock, grace, [this] { return done_; })) return;
+      std::fprintf(stderr,
+                   "uniparam %s: time limit exceeded: the computation did not finish within %g s "
+                   "(raise it with --timeout SECONDS)\n",
+                   command.c_str(), seconds);
+      std::fflush(stderr);
+      std::_Exit(4);
+    });
+  }
+  ~Watchdog() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      done_ = true;
+    }
+    done_cv_.notify_one();
+    thread_.join();
+  }
+  Watchdog(const Watchdog&) = delete;
+  Watchdog& operator=(const Watchdog&) = delete;
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable done_cv_;
+  bool done_ = false;
+  std::thread thread_;
+};
+
+}  // namespace
 
 std::vector<OptionSpec> common_options() {
   return {
@@ -9,7 +63,12 @@ std::vector<OptionSpec> common_options() {
       {"digits", "D", "correct decimal digits: every ball has radius <= 10^-D * max(1, |mid|)", "15"},
       {"json", "", "print JSON: certified reals as {\"mid\", \"rad\"}", ""},
       {"max-prec", "BITS", "largest working precision before giving up", "16384"},
-      {"max-degree", "N", "largest curve degree accepted", "2000"},
+      {"max-degree", "N", "largest degree of the curve and of any polynomial or exponent read in CURVE", "2000"},
+      {"max-bits", "BITS", "largest size of a number or polynomial read in CURVE, (degree + 1) * coefficient bits",
+       "268435456"},
+      {"max-length", "N", "largest length of CURVE in characters", "1048576"},
+      {"max-depth", "N", "deepest nesting of parentheses, signs and powers in CURVE", "500"},
+      {"timeout", "SECONDS", "wall-clock time limit of the whole command", kDefaultTimeout},
       {"control", "POINTS", "the curve as Bezier control points \"[[x0,y0],[x1,y1],...]\" (instead of CURVE)", ""},
       {"weights", "LIST", "weights \"[w0,w1,...]\" of a rational Bezier curve (with --control; positive)", ""},
   };
@@ -19,7 +78,7 @@ Options read_options(const Args& a) {
   Options o;
   o.digits = a.get_long("digits", o.digits, 1, 10000);
   o.max_prec = a.get_long("max-prec", o.max_prec, 64, 1L << 24);
-  o.max_degree = a.get_long("max-degree", o.max_degree, 1, 20000);  // the parser refuses degrees above 20000
+  o.max_degree = a.get_long("max-degree", o.max_degree, 1, 20000);  // root isolation refuses degrees above 20000
   return o;
 }
 
@@ -35,7 +94,56 @@ BezierCurve read_bezier(const Args& a) {
 Curve read_curve(const Args& a) {
   if (a.has("control")) return read_bezier(a).to_curve();
   if (a.has("weights")) throw InvalidArgument("--weights needs --control (the weights of a rational Bezier curve)");
-  return parse_curve(a.positional.at(0));
+  return Curve::parse(a.positional.at(0), read_parse_limits(a));
+}
+
+ParseLimits read_parse_limits(const Args& a) {
+  ParseLimits lim;
+  lim.max_degree = a.get_long("max-degree", Options{}.max_degree, 1, 20000);
+  lim.max_exponent = lim.max_degree;
+  lim.max_bits = a.get_long("max-bits", lim.max_bits, 64, 1L << 40);
+  lim.max_length = static_cast<std::size_t>(a.get_long("max-length", static_cast<long>(lim.max_length), 1, 1L << 30));
+  lim.max_depth = static_cast<int>(a.get_long("max-depth", lim.max_depth, 1, 1L << 30));
+  return lim;
+}
+
+double read_timeout(const Args& a) {
+  const std::string s = a.get("timeout", kDefaultTimeout);
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(s.c_str(), &end);
+  if (s.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(v))
+    throw InvalidArgument("--timeout expects a number of seconds, got '" + s + "'");
+  if (!(v > 0.0) || v > 1e9) throw InvalidArgument("--timeout must be above 0 and at most 1e9 seconds, got " + s);
+  return v;
+}
+
+Rational read_rational(const std::string& option, const std::string& text) {
+  // The OS already caps one argument at 128 KiB; this keeps 10^(10^6)-sized
+  // numbers ("1e999999") out of the breakpoints and evaluation points.
+  const auto e = text.find_first_of("eE");
+  if (text.size() > 100000 || (e != std::string::npos && text.size() - e > 5))  // "e-999" at most
+    throw InvalidArgument("--" + option + ": the number '" + text.substr(0, 20) + (text.size() > 20 ? "..." : "") +
+                          "' is too large (at most 100000 characters and a decimal exponent below 1000)");
+  try {
+    return Rational::parse(text);
+  } catch (const Error& e) {
+    throw InvalidArgument("--" + option + ": '" + text.substr(0, 40) + (text.size() > 40 ? "..." : "") +
+                          "' is not a rational number such as 1/3, 0.25 or 1e-3 (" + e.what() + ")");
+  }
+}
+
+
+int run_command(const Command& c, int argc, char** argv, bool watchdog) {
+  // Parse once here for --timeout (the command parses again, cheaply, and
+  // reports every other option error itself); help needs no budget.
+  const Args a = parse_args(c.spec, argc, argv, 2);
+  if (a.help) return c.run(argc, argv);
+  const double seconds = read_timeout(a);
+  const TimeBudget budget(seconds);
+  if (!watchdog) return c.run(argc, argv);
+  const Watchdog backstop(seconds, c.spec.name);
+  return c.run(argc, argv);
 }
 
 const std::vector<Command>& commands() {

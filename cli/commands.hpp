@@ -16,20 +16,40 @@ struct Command {
 const std::vector<Command>& commands();
 
 /// Options shared by the certified commands: --speed, --digits, --json,
-/// --max-prec, --max-degree, --control, --weights.
+/// --control, --weights and the budgets --max-prec, --max-degree, --max-bits,
+/// --max-length, --max-depth, --timeout (docs/robustness.md).
 std::vector<OptionSpec> common_options();
 /// Reads --digits, --max-prec, --max-degree (validated ranges).
 Options read_options(const Args& a);
-/// The curve a command works on: its CURVE argument, or the Bezier curve of
-/// --control (and --weights) in the power basis (every command reads its
-/// curve through here, so new ways of giving one apply to all commands).
-/// \throws ParseError, DomainError as Curve::parse; InvalidArgument for
-///         --weights without --control and as read_bezier.
+/// Reads the limits of the curve parser: --max-degree (degree and exponent),
+/// --max-bits, --max-length, --max-depth (validated ranges; InvalidArgument).
+ParseLimits read_parse_limits(const Args& a);
+/// The exact rational `text` given to option --`option` ("1/3", "0.25",
+/// "1e-3"). \throws InvalidArgument naming the option for anything else
+/// (malformed, division by zero, more than 100000 characters).
+Rational read_rational(const std::string& option, const std::string& text);
+/// Reads --timeout SECONDS (default 600): a positive number up to 1e9.
+/// \throws InvalidArgument otherwise.
+double read_timeout(const Args& a);
+/// The curve a command works on: its CURVE argument read with
+/// read_parse_limits, or the Bezier curve of --control (and --weights) in the
+/// power basis (every command reads its curve through here, so new ways of
+/// giving one apply to all commands).
+/// \throws ParseError, DomainError, BudgetExceeded as Curve::parse;
+///         InvalidArgument for --weights without --control and as read_bezier.
 Curve read_curve(const Args& a);
 /// The Bezier curve of --control and --weights (at most --max-degree + 1
 /// points). \throws ParseError, InvalidArgument as BezierCurve::parse;
 /// InvalidArgument when --control is missing.
 BezierCurve read_bezier(const Args& a);
+
+/// Runs a command under a TimeBudget of --timeout seconds (so every command
+/// of the table gets the time limit): argv[1] is the command name. With
+/// `watchdog`, a backstop thread ends the process with exit code 4 and the
+/// budget message if the command overruns its deadline by 5% + 2 s inside a
+/// call that cannot notice the TimeBudget (the fuzz driver runs without it).
+/// \throws whatever the command throws; InvalidArgument for bad arguments.
+int run_command(const Command& c, int argc, char** argv, bool watchdog = true);
 
 // One pair per command, defined in cmd_<name>.cpp.
 CommandSpec uniformity_spec();

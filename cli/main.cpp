@@ -35,15 +35,20 @@ const char* kMainHelp =
     "\n"
     "Run 'uniparam COMMAND --help' for the options of a command.\n"
     "Exit codes: 0 ok, 2 invalid input or option, 3 curve not regular on [0,1],\n"
-    "4 accuracy not certifiable within the budget, 1 other error.\n";
+    "4 a budget exceeded (precision, degree, size, length, depth or time: the\n"
+    "message names the option that raises it), 1 other error.\n";
 
 }  // namespace
 
 int main(int argc, char** argv) {
   using namespace uniparam;
   if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h") || !std::strcmp(argv[1], "help")) {
+    if (argc < 2) {  // a usage error: the help goes to stderr
+      std::cerr << kMainHelp;
+      return 2;
+    }
     std::cout << kMainHelp;
-    return argc < 2 ? 2 : 0;
+    return 0;
   }
   if (!std::strcmp(argv[1], "--version")) {
     std::cout << "uniparam 0.1.0\n";
@@ -52,7 +57,7 @@ int main(int argc, char** argv) {
   const std::string cmd = argv[1];
   try {
     for (const auto& c : cli::commands())
-      if (c.spec.name == cmd) return c.run(argc, argv);
+      if (c.spec.name == cmd) return cli::run_command(c, argc, argv);
     std::cerr << "uniparam: unknown command '" << cmd << "' (run 'uniparam --help' for the list)\n";
     return 2;
   } catch (const ParseError& e) {

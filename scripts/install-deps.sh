@@ -6,6 +6,7 @@
 #
 #   scripts/install-deps.sh        # quiet; prints nothing when all is present
 #   scripts/install-deps.sh -v     # (or UNIPARAM_VERBOSE=1) show apt's output
+#   scripts/install-deps.sh --fuzz # also clang + libFuzzer (scripts/fuzz.sh)
 #
 # Idempotent: when every package is already installed (checked with
 # dpkg-query) it does not call apt at all. Runs apt as root, or through sudo
@@ -25,6 +26,7 @@ verbose="${UNIPARAM_VERBOSE:-0}"
 for arg in "$@"; do
   case "$arg" in
     -v|--verbose) verbose=1 ;;
+    --fuzz) PACKAGES+=(clang libclang-rt-14-dev) ;;
     -h|--help) sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "install-deps.sh: unknown argument '$arg' (try --help)" >&2; exit 2 ;;
   esac

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "uniparam/core/budget.hpp"
 #include "uniparam/core/error.hpp"
 
 namespace uniparam {
@@ -60,6 +61,7 @@ static int uniparam_quadrature_trampoline(acb_ptr out, const acb_t z, void* para
     return 0;  // Arb reserves the return value; indeterminate is the answer
   }
   try {
+    uniparam::check_time_budget();  // --timeout, noticed within one evaluation
     (*ctx->f)(out, z, order == 1, prec);
   } catch (...) {
     ctx->error = std::current_exception();
@@ -178,6 +180,7 @@ Ball integrate(const Integrand& f, const RealAlgebraic& a, const RealAlgebraic& 
   bool converged = false;
   long prec = start;
   for (;;) {
+    check_time_budget();
     // eval_limit 0: Arb's default (1000 prec + prec^2), capped so that one
     // hopeless attempt at thousands of bits cannot run for hours.
     arb_opt->eval_limit = opt.eval_limit > 0 ? opt.eval_limit : std::min(1000 * prec + prec * prec, 2000000L);

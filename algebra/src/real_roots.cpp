@@ -18,6 +18,7 @@
 
 #include "root_refine.hpp"
 #include "uniparam/algebra/squarefree.hpp"
+#include "uniparam/core/budget.hpp"
 #include "uniparam/core/error.hpp"
 
 namespace uniparam {
@@ -155,6 +156,7 @@ bool refine_isolating_interval(const Poly& f, Rational& lo, Rational& hi, long b
   long extra = 0;  // precision the Newton steps needed beyond the estimate
   for (long it = 0;; ++it) {
     if (w <= target) return false;
+    check_time_budget();
     if (it > cap)
       throw BudgetExceeded("could not refine the root of " + f.str() + " to 2^-" + std::to_string(bits) +
                            " within " + std::to_string(cap) + " steps");
@@ -316,6 +318,7 @@ void vca(const Poly& G, std::vector<Cell>& leaves, std::vector<Cell>& exact) {
   while (!stack.empty()) {
     Node nd = std::move(stack.back());
     stack.pop_back();
+    check_time_budget();
     if (++nodes > node_cap || nd.cell.k > depth_cap)
       throw BudgetExceeded("root isolation of a degree-" + std::to_string(G.degree()) +
                            " polynomial did not finish within " + std::to_string(node_cap) + " subdivisions (depth " +
@@ -464,6 +467,7 @@ void make_disjoint(std::vector<Found>& roots, long cap) {
       }
     }
     if (clean) return;
+    check_time_budget();
     if (pass > cap)
       throw BudgetExceeded("could not separate the isolating intervals within " + std::to_string(cap) +
                            " refinement passes");
@@ -477,8 +481,10 @@ std::vector<IsolatedRoot> isolate_real_roots(const Poly& p, const Rational& a, c
   if (p.is_zero()) throw InvalidArgument("real-root isolation of the zero polynomial (every number is a root)");
   if (b < a) throw InvalidArgument("real-root isolation in [" + a.str() + ", " + b.str() + "]: empty interval");
   if (p.degree() > opt.max_degree)
-    throw BudgetExceeded("polynomial of degree " + std::to_string(p.degree()) + " exceeds the degree limit " +
-                         std::to_string(opt.max_degree) + "; raise --max-degree");
+    throw BudgetExceeded("root isolation of a polynomial of degree " + std::to_string(p.degree()) +
+                         " (derived from the curve: its speed or critical points) exceeds the root-isolation " +
+                         "degree limit of " + std::to_string(opt.max_degree) +
+                         " (RootIsolationOptions::max_degree; no option raises it: lower the curve's degree)");
   const SquarefreeFactorization sf = squarefree_factorization(p);
   std::vector<Found> found;
   if (a == b) {

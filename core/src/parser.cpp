@@ -27,14 +27,8 @@
 namespace uniparam {
 namespace {
 
-/// Size of an intermediate polynomial, measured as (degree + 1) times the
-/// bits of its largest coefficient, allowed before computing it: 2^28 bits
-/// (32 MiB). Not a ParseLimits field; it only stops inputs such as
-/// "(1e999999*t + 1)^10000" that pass every other limit.
-constexpr double kMaxPolyBits = 268435456.0;
-constexpr const char* kMaxPolyBitsName = "2^28 bits";
-/// Largest |e| in a decimal literal "1.5e-3" (as in Rational::parse).
-constexpr long kMaxDecimalExponent = 999999;
+/// log2(10): bits per decimal digit.
+constexpr double kBitsPerDigit = 3.3219280948873623;
 
 const char* const kExpectOperand = "a number, 't' or '('";
 
@@ -147,8 +141,15 @@ Rational power_of_ten(long k) {
   return k >= 0 ? Rational(p) : Rational(Integer(1), p);
 }
 
+/// "the size limit of 268435456 bits (raise it with --max-bits)".
+std::string size_limit_text(long max_bits) {
+  return "the size limit of " + std::to_string(max_bits) + " bits (raise it with --max-bits)";
+}
+
 /// The exact value of a number token (same values as Rational::parse).
-Rational number_value(const std::string& s, std::size_t pos) {
+/// \throws BudgetExceeded when its numerator or denominator would need more
+///         than max_bits bits.
+Rational number_value(const std::string& s, std::size_t pos, long max_bits) {
   std::string mantissa;
   long frac_digits = 0;
   std::size_t i = 0;
@@ -158,17 +159,22 @@ Rational number_value(const std::string& s, std::size_t pos) {
     while (i < s.size() && is_digit(s[i])) { mantissa += s[i++]; ++frac_digits; }
   }
   long exponent = 0;
+  bool too_long = false;
   if (i < s.size()) {  // 'e' or 'E'
     ++i;
     bool neg = false;
     if (s[i] == '+' || s[i] == '-') { neg = s[i] == '-'; ++i; }
     while (i < s.size() && s[i] == '0') ++i;
-    if (s.size() - i > 6)
-      throw BudgetExceeded("the decimal exponent of the number " + quote(s) + " at " + column_text(pos) +
-                           " is out of range (|exponent| <= " + std::to_string(kMaxDecimalExponent) + ")");
-    for (; i < s.size(); ++i) exponent = 10 * exponent + (s[i] - '0');
+    too_long = s.size() - i > 15;  // |exponent| < 10^15: no overflow below
+    for (; !too_long && i < s.size(); ++i) exponent = 10 * exponent + (s[i] - '0');
     if (neg) exponent = -exponent;
   }
+  // mantissa * 10^(exponent - frac_digits): predict its size before computing it.
+  const double bits = kBitsPerDigit * (static_cast<double>(mantissa.size()) +
+                                       std::fabs(static_cast<double>(exponent - frac_digits)));
+  if (too_long || bits > static_cast<double>(max_bits))
+    throw BudgetExceeded("the number " + quote(s) + " at " + column_text(pos) +
+                         " is too large: its exact value exceeds " + size_limit_text(max_bits));
   Rational value(Integer(mantissa.empty() ? std::string("0") : mantissa));
   if (value.is_zero()) return value;
   return value * power_of_ten(exponent - frac_digits);
@@ -215,8 +221,8 @@ class Parser {
   Parser(const std::string& text, const ParseLimits& limits) : lex_(text), lim_(limits) {
     if (text.size() > lim_.max_length)
       throw BudgetExceeded("the input has " + std::to_string(text.size()) +
-                           " characters, more than the length limit (max_length = " +
-                           std::to_string(lim_.max_length) + ")");
+                           " characters, more than the length limit of " + std::to_string(lim_.max_length) +
+                           " (raise it with --max-length)");
   }
 
   Lexer& lexer() { return lex_; }
@@ -257,9 +263,12 @@ class Parser {
   const std::string text = lex_.text(tk);
   std::string detail;
   switch (tk.kind) {
-    case Tok::End:
-      detail = tk.pos == 0 ? "empty input" : "unexpected end of input";
+    case Tok::End: {
+      const std::string& s = lex_.source();
+      const bool blank = std::all_of(s.begin(), s.begin() + static_cast<std::ptrdiff_t>(tk.pos), is_space);
+      detail = blank ? "empty input" : "unexpected end of input";
       break;
+    }
     case Tok::Ident: {
       std::size_t j = tk.pos + tk.len;
       const std::string& s = lex_.source();
@@ -294,8 +303,8 @@ void Parser::push_nesting(char kind, const Token& tk) {
   if (++depth_ > lim_.max_depth)
     throw BudgetExceeded("nesting too deep at " + column_text(tk.pos) + ": more than " +
                          std::to_string(lim_.max_depth) +
-                         " nested parentheses, signs or powers (the depth limit, max_depth = " +
-                         std::to_string(lim_.max_depth) + ")");
+                         " nested parentheses, signs or powers exceed the depth limit of " +
+                         std::to_string(lim_.max_depth) + " (raise it with --max-depth)");
 }
 
 void Parser::reduce(int min_prec) {
@@ -340,7 +349,7 @@ RatFunc Parser::expression(char closer, int base_depth, std::size_t open_pos, To
     if (want_operand) {
       switch (tk.kind) {
         case Tok::Number:
-          vals_.emplace_back(number_value(lex_.text(tk), tk.pos));
+          vals_.emplace_back(number_value(lex_.text(tk), tk.pos, lim_.max_bits));
           after_operand();
           want_operand = false;
           break;
@@ -450,8 +459,8 @@ void Parser::after_operand() {
     const Token caret = lex_.next();
     if (depth_ + static_cast<long>(exps.size()) + 1 > lim_.max_depth)
       throw BudgetExceeded("nesting too deep at " + column_text(caret.pos) + ": a chain of more than " +
-                           std::to_string(lim_.max_depth) + " nested powers (the depth limit, max_depth = " +
-                           std::to_string(lim_.max_depth) + ")");
+                           std::to_string(lim_.max_depth) + " nested powers exceeds the depth limit of " +
+                           std::to_string(lim_.max_depth) + " (raise it with --max-depth)");
     exps.push_back(read_exponent());
   }
   vals_.back() = pow(vals_.back(), fold_exponents(exps), caret_pos);
@@ -480,7 +489,8 @@ std::pair<long, std::size_t> Parser::read_exponent() {
   for (; !too_big && i < text.size(); ++i) value = 10 * value + (text[i] - '0');
   if (too_big || value > lim_.max_exponent)
     throw BudgetExceeded("the exponent " + quote((neg ? "-" : "") + text) + " at " + column_text(tk.pos) +
-                         " exceeds the exponent limit (max_exponent = " + std::to_string(lim_.max_exponent) + ")");
+                         " exceeds the exponent limit of " + std::to_string(lim_.max_exponent) +
+                         " (raise it with --max-degree)");
   if (paren) {
     const Token close = lex_.next();
     if (close.kind != Tok::RParen) fail(close, "')' after the exponent");
@@ -510,8 +520,8 @@ long Parser::fold_exponents(const std::vector<std::pair<long, std::size_t>>& exp
         r *= b;  // |r| <= max_exponent * |b| before the check: no overflow
         if (r > lim_.max_exponent || -r > lim_.max_exponent)
           throw BudgetExceeded("the exponent " + std::to_string(b) + "^" + std::to_string(acc) + " at " +
-                               column_text(pos) + " exceeds the exponent limit (max_exponent = " +
-                               std::to_string(lim_.max_exponent) + ")");
+                               column_text(pos) + " exceeds the exponent limit of " +
+                               std::to_string(lim_.max_exponent) + " (raise it with --max-degree)");
       }
     acc = r;
   }
@@ -525,14 +535,14 @@ void Parser::check(long num_deg, long den_deg, double num_size, double den_size,
   const long d = std::max(num_deg, den_deg);
   if (d > lim_.max_degree)
     throw BudgetExceeded("degree limit exceeded at " + column_text(pos) + ": the " + what +
-                         " would have degree up to " + std::to_string(d) + " (max_degree = " +
-                         std::to_string(lim_.max_degree) + ")");
+                         " would have degree up to " + std::to_string(d) + ", above the degree limit of " +
+                         std::to_string(lim_.max_degree) + " (raise it with --max-degree)");
   const double size = std::max(num_size, den_size);
-  if (size > kMaxPolyBits) {
+  if (size > static_cast<double>(lim_.max_bits)) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.3g", size);
-    throw BudgetExceeded("size limit exceeded at " + column_text(pos) + ": the " + what +
-                         " would need about " + buf + " bits of coefficients (limit " + kMaxPolyBitsName + ")");
+    throw BudgetExceeded("size limit exceeded at " + column_text(pos) + ": the " + what + " would need about " +
+                         buf + " bits, above " + size_limit_text(lim_.max_bits));
   }
 }
 
@@ -598,8 +608,8 @@ RatFunc Parser::pow(const RatFunc& a, long e, std::size_t pos) const {
   const double d = static_cast<double>(std::max(deg(num_of(a)), deg(den_of(a)))) * static_cast<double>(m);
   if (d > static_cast<double>(lim_.max_degree))
     throw BudgetExceeded("degree limit exceeded at " + column_text(pos) + ": the power would have degree " +
-                         std::to_string(static_cast<long>(d)) + " (max_degree = " +
-                         std::to_string(lim_.max_degree) + ")");
+                         std::to_string(static_cast<long>(d)) + ", above the degree limit of " +
+                         std::to_string(lim_.max_degree) + " (raise it with --max-degree)");
   // num and den are coprime with den's leading coefficient positive, so
   // num^m / den^m is already canonical; an inverse only needs the sign fixed.
   RatFunc r;
@@ -633,8 +643,8 @@ std::vector<RatFunc> parse_tuple(const std::string& text, const ParseLimits& lim
   const char closer = open.kind == Tok::LParen ? ')' : ']';
   if (limits.max_depth < 1)
     throw BudgetExceeded("nesting too deep at " + column_text(open.pos) +
-                         ": the tuple's bracket exceeds the depth limit (max_depth = " +
-                         std::to_string(limits.max_depth) + ")");
+                         ": the tuple's bracket exceeds the depth limit of " + std::to_string(limits.max_depth) +
+                         " (raise it with --max-depth)");
   std::vector<RatFunc> out;
   Token terminator;
   do {

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "uniparam/core/ball_poly.hpp"
+#include "uniparam/core/budget.hpp"
 #include "uniparam/core/error.hpp"
 #include "moebius_detail.hpp"
 
@@ -156,6 +157,7 @@ MoebiusResult moebius_c0(const Speed& s, const UniformityResult& base, const std
   }
 
   for (long bits = digits_to_bits(opt.digits) + 8;; bits += 32) {
+    check_time_budget();
     const long prec = 2 * bits + 64;
     r.integrals.clear();
     std::vector<Ball> sqrtM(N);

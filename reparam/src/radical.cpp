@@ -1,6 +1,7 @@
 #include "uniparam/reparam/radical.hpp"
 
 #include "uniparam/algebra/quadrature.hpp"
+#include "uniparam/core/budget.hpp"
 #include "uniparam/core/error.hpp"
 
 namespace uniparam {
@@ -61,6 +62,7 @@ RadicalResult radical(const Curve& c, SpeedKind kind, const Options& opt) {
     return r;
   }
   for (long bits = digits_to_bits(opt.digits) + 8;; bits += 32) {
+    check_time_budget();
     const long prec = 2 * bits + 64;
     r.integrals.clear();
     std::vector<Ball> sqrtL(N), sqrtM(N);
@@ -131,6 +133,8 @@ void moebius(acb_t x, acb_t dx, const acb_t zt, const arb_t alpha, long prec) {
     acb_div(dx, dx, den, prec);
   }
   acb_div(x, x, den, prec);
+  // The map fixes 0 and 1 exactly; the ball quotient (1-a)/(1-a) would not.
+  if (acb_is_zero(zt) || acb_is_one(zt)) acb_set(x, zt);
   acb_clear(a);
   acb_clear(b);
   acb_clear(den);
@@ -177,6 +181,17 @@ bool psi(acb_t out, const acb_t x, ZeroSide side, int k, bool analytic, long pre
   return ok;
 }
 
+// At an exact end (z = Z_i or Z_{i+1} with that breakpoint exact, as z = 0
+// and z = 1 are) the local coordinate is exactly 0 or 1: the quotient
+// (z - Z_i) / (Z_{i+1} - Z_i) of correlated balls would keep the radius of
+// the other breakpoint, which a radical at a zero of the speed at t = 1
+// blows up to its square root whatever the precision.
+void pin_exact_end(arb_t zt, const Ball& z, const Ball& lo, const Ball& hi) {
+  if (!arb_is_exact(z.get())) return;
+  if (arb_is_exact(lo.get()) && arb_equal(z.get(), lo.get())) arb_zero(zt);
+  else if (arb_is_exact(hi.get()) && arb_equal(z.get(), hi.get())) arb_one(zt);
+}
+
 }  // namespace
 
 Ball radical_eval_r(const RadicalResult& r, const Ball& z, long prec) {
@@ -191,6 +206,7 @@ Ball radical_eval_r(const RadicalResult& r, const Ball& z, long prec) {
     arb_sub(zt.get(), z.get(), lo.get(), prec);
     arb_div(zt.get(), zt.get(), dz.get(), prec);
     clamp_unit(zt.get(), prec);
+    pin_exact_end(zt.get(), z, lo, hi);
     arb_sub(dt.get(), tb.get(), ta.get(), prec);
     acb_t x, y, zc;
     acb_init(x);
@@ -264,6 +280,7 @@ Ball radical_eval_speed(const RadicalResult& r, const Speed& s, const Ball& z, l
     arb_sub(zt.get(), z.get(), lo.get(), prec);
     arb_div(zt.get(), zt.get(), dz.get(), prec);
     clamp_unit(zt.get(), prec);
+    pin_exact_end(zt.get(), z, lo, hi);
     acb_t x, dx, zc, v;
     acb_init(x);
     acb_init(dx);

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "uniparam/algebra/quadrature.hpp"
+#include "uniparam/core/budget.hpp"
 #include "uniparam/core/error.hpp"
 
 namespace uniparam {
@@ -55,8 +56,8 @@ Ball integrate_speed_squared(const Speed& s, const RealAlgebraic& a, const RealA
 
 void check_degree(const Curve& c, const Options& opt) {
   if (c.degree() > opt.max_degree)
-    throw InvalidArgument("the curve has degree " + std::to_string(c.degree()) + ", above the limit " +
-                          std::to_string(opt.max_degree) + " (raise it with --max-degree)");
+    throw BudgetExceeded("the curve has degree " + std::to_string(c.degree()) + ", above the degree limit of " +
+                         std::to_string(opt.max_degree) + " (raise it with --max-degree)");
 }
 
 UniformityResult uniformity(const Curve& c, SpeedKind kind, const Options& opt) {
@@ -78,9 +79,16 @@ UniformityResult uniformity(const Speed& s, const Options& opt) {
     r.u = Ball(1);
     return r;
   }
+  // The integrals cannot reach a relative accuracy finer than the working
+  // precision: refuse at once rather than after hopeless attempts.
+  if (digits_to_bits(opt.digits) > opt.max_prec)
+    throw BudgetExceeded(std::to_string(opt.digits) + " digits need more than " +
+                         std::to_string(digits_to_bits(opt.digits)) + " bits of working precision, above the " +
+                         "precision limit of " + std::to_string(opt.max_prec) + " bits (raise it with --max-prec)");
   const RealAlgebraic zero(0), one(1);
   // Each integral to relative accuracy 2^-bits gives u to about 4 * 2^-bits.
   for (long bits = digits_to_bits(opt.digits); ; bits += 32) {
+    check_time_budget();
     r.mu = integrate_speed(s, zero, one, bits, opt.max_prec);
     r.mean_square = integrate_speed_squared(s, zero, one, bits, opt.max_prec);
     const long prec = 2 * bits + 64;

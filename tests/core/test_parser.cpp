@@ -5,7 +5,6 @@
 // ParseLimits budgets, hostile inputs and a fuzz test.
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <climits>
 #include <cstdlib>
 #include <random>
@@ -396,23 +395,24 @@ void expect_budget(const std::string& text, const std::string& limit_name, const
 }
 
 TEST(Parser, LimitsAreEnforcedAndNamed) {
-  expect_budget("t^100000", "max_exponent");
-  expect_budget("t^-100000", "max_exponent");
-  expect_budget("t^99999999999999999999999", "max_exponent");
-  expect_budget("t^2^2^2^2^2", "max_exponent");  // 2^16 > 10000
-  expect_budget("t^10000*t^10000*t", "max_degree");
-  expect_budget("(t+1)^10000 * (t-1)^10001", "max_exponent");
-  expect_budget("(t^3+1)^7000", "max_degree");
-  expect_budget("1/(t^10000 + 1) + t/(t^10000*t - 1)", "max_degree");
-  expect_budget(std::string(100000, '('), "max_depth");
-  expect_budget(std::string(100000, '(') + "t" + std::string(100000, ')'), "max_depth");
-  expect_budget(std::string((1u << 20) - 1, '-') + "t", "max_depth");
+  expect_budget("t^100000", "exponent limit of 10000 (raise it with --max-degree)");
+  expect_budget("t^-100000", "exponent limit");
+  expect_budget("t^99999999999999999999999", "exponent limit");
+  expect_budget("t^2^2^2^2^2", "exponent limit");  // 2^16 > 10000
+  expect_budget("t^10000*t^10000*t", "degree limit of 20000 (raise it with --max-degree)");
+  expect_budget("(t+1)^10000 * (t-1)^10001", "exponent limit");
+  expect_budget("(t^3+1)^7000", "degree limit");
+  expect_budget("1/(t^10000 + 1) + t/(t^10000*t - 1)", "degree limit");
+  expect_budget(std::string(100000, '('), "depth limit of 500 (raise it with --max-depth)");
+  expect_budget(std::string(100000, '(') + "t" + std::string(100000, ')'), "depth limit");
+  expect_budget(std::string((1u << 20) - 1, '-') + "t", "depth limit");
   std::string chain = "t";
   for (int i = 0; i < 600; ++i) chain += "^1";
-  expect_budget(chain, "max_depth");
-  expect_budget(std::string((1u << 20) + 1, ' '), "max_length");
-  expect_budget("(" + std::string(1u << 20, 't') + ")", "max_length", {}, true);
-  expect_budget("1e1000000", "exponent");
+  expect_budget(chain, "depth limit");
+  expect_budget(std::string((1u << 20) + 1, ' '), "length limit of 1048576 (raise it with --max-length)");
+  expect_budget("(" + std::string(1u << 20, 't') + ")", "length limit", {}, true);
+  expect_budget("1e100000000", "size limit of 268435456 bits (raise it with --max-bits)");
+  expect_budget("1e-1000000000000000000000", "--max-bits");
   expect_budget("(1e999999*t + 1)^10000", "size limit");
 
   ParseLimits small;
@@ -421,20 +421,23 @@ TEST(Parser, LimitsAreEnforcedAndNamed) {
   small.max_depth = 3;
   small.max_length = 20;
   EXPECT_EQ(parse_expression("t^3*t^2", small), T.pow(5));
-  expect_budget("t^3*t^3", "max_degree = 5", small);
-  expect_budget("t^4", "max_exponent = 3", small);
+  expect_budget("t^3*t^3", "degree limit of 5", small);
+  expect_budget("t^4", "exponent limit of 3", small);
   EXPECT_EQ(parse_expression("((-t))", small), -T);
-  expect_budget("(((t)))+(((((t)))))", "max_depth = 3", small);
+  expect_budget("(((t)))+(((((t)))))", "depth limit of 3", small);
   EXPECT_EQ(parse_expression("---t", small), -T);
-  expect_budget("----t", "max_depth = 3", small);
+  expect_budget("----t", "depth limit of 3", small);
   EXPECT_EQ(parse_tuple("(t, ((t)))", small)[1], T);
-  expect_budget("(t, (((t))))", "max_depth = 3", small, true);  // the tuple bracket counts
+  expect_budget("(t, (((t))))", "depth limit of 3", small, true);  // the tuple bracket counts
   EXPECT_EQ(parse_tuple("(t, (t))", small).size(), 2u);
-  expect_budget("t+t+t+t+t+t+t+t+t+t+t", "max_length = 20", small);
+  expect_budget("t+t+t+t+t+t+t+t+t+t+t", "length limit of 20", small);
+  small.max_bits = 64;
+  expect_budget("12345678901234567890", "size limit of 64 bits", small);
+  expect_budget("1e30", "size limit of 64 bits", small);
+  expect_budget("(99t+99)^3", "size limit of 64 bits", small);
 }
 
 TEST(Parser, HostileInputsAreFastAndDoNotOverflowTheStack) {
-  const auto start = std::chrono::steady_clock::now();
   // A megabyte of '(' with an unlimited depth budget: the parser keeps its
   // own stack, so this parses instead of crashing.
   ParseLimits deep;
@@ -444,8 +447,8 @@ TEST(Parser, HostileInputsAreFastAndDoNotOverflowTheStack) {
   EXPECT_EQ(parse_expression(std::string(2 * n, '-') + "t", deep), T);
   EXPECT_EQ(parse_expression(std::string(2 * n - 1, '-') + "t", deep), -T);
   // A megabyte of '(' with the default limits is refused.
-  expect_budget(std::string(1u << 20, '('), "max_depth");
-  expect_budget(std::string(1u << 20, '-'), "max_depth");
+  expect_budget(std::string(1u << 20, '('), "depth limit");
+  expect_budget(std::string(1u << 20, '-'), "depth limit");
   // A long flat sum is fine: 2^19 terms.
   std::string sum = "t";
   while (sum.size() + 2 <= (1u << 20)) sum += "+t";
@@ -453,8 +456,8 @@ TEST(Parser, HostileInputsAreFastAndDoNotOverflowTheStack) {
   // A long digit string is one exact number.
   const std::string digits(500000, '9');
   EXPECT_EQ(parse_expression(digits + "+1"), RatFunc(Rational(Integer("1" + std::string(500000, '0')))));
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  EXPECT_LT(seconds, 20.0);
+  // No wall-clock assertion (house rule: no timed tests; it failed under
+  // ASan on a loaded machine): a hang is caught by CTest's timeout.
 }
 
 TEST(Parser, FuzzOnlyThrowsUniparamErrors) {

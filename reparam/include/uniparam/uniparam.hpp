@@ -12,14 +12,15 @@
 // Every number is exact (Rational, RatFunc, RealAlgebraic) or a Ball proven to
 // contain the true value. Errors are exceptions derived from uniparam::Error:
 // ParseError (with column), DomainError (undefined mathematics, e.g. a pole),
-// InvalidArgument (an option out of range), BudgetExceeded (accuracy not
-// reachable within the precision budget). The library never exits.
+// InvalidArgument (an option out of range), BudgetExceeded (a limit reached:
+// precision, degree, size, or the time of a TimeBudget). The library never exits.
 #pragma once
 
 #include "uniparam/algebra/algebraic.hpp"
 #include "uniparam/algebra/real_roots.hpp"
 #include "uniparam/algebra/squarefree.hpp"
 #include "uniparam/core/ball.hpp"
+#include "uniparam/core/budget.hpp"
 #include "uniparam/core/decimal.hpp"
 #include "uniparam/core/error.hpp"
 #include "uniparam/core/number.hpp"

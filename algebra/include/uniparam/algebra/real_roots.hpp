@@ -26,7 +26,7 @@ struct IsolatedRoot {
 
 /// Options of the isolator.
 struct RootIsolationOptions {
-  /// Refuse inputs of larger degree (BudgetExceeded naming --max-degree).
+  /// Refuse inputs of larger degree (BudgetExceeded naming this limit).
   long max_degree = 20000;
 };
 

@@ -21,12 +21,22 @@
 
 namespace uniparam {
 
-/// Limits that keep hostile input from exhausting memory or the stack.
+/// Limits that keep hostile input from exhausting memory, time or the stack.
+/// Each BudgetExceeded message names the limit and the uniparam option that
+/// sets it on the command line (docs/robustness.md):
+///   max_length   --max-length     max_exponent, max_degree   --max-degree
+///   max_depth    --max-depth      max_bits                   --max-bits
+/// (the CLI sets max_exponent = max_degree: a larger exponent of a
+/// non-constant base exceeds the degree limit anyway).
 struct ParseLimits {
-  std::size_t max_length = 1u << 20;  ///< characters
+  std::size_t max_length = 1u << 20;  ///< characters of input
   long max_exponent = 10000;          ///< |exponent| allowed after '^'
   long max_degree = 20000;            ///< of any intermediate numerator/denominator
-  int max_depth = 500;                ///< parenthesis nesting
+  int max_depth = 500;                ///< nesting of parentheses, unary signs and '^' chains
+  /// Size of any intermediate polynomial or number literal, in bits:
+  /// (degree + 1) * bits of its largest coefficient, checked before it is
+  /// computed. The default 2^28 bits is 32 MiB.
+  long max_bits = 1L << 28;
 };
 
 /// Parses one expression in t into an exact, canonical rational function.
@@ -35,7 +45,7 @@ struct ParseLimits {
 ///         as 'x' or 'sin', non-integer exponents, empty input, non-ASCII bytes);
 ///         DomainError on division by zero (the message gives the column);
 ///         BudgetExceeded when a ParseLimits bound is exceeded (the message
-///         names the limit).
+///         names the limit, its value and the option that raises it).
 RatFunc parse_expression(const std::string& text, const ParseLimits& limits = {});
 
 /// Parses a parenthesised or bracketed tuple "(x(t), y(t), ...)" of >= 1

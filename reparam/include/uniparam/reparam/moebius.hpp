@@ -85,10 +85,10 @@ struct MoebiusResult {
 ///       alpha) contains the true value and meets Options::digits;
 ///       u_after >= u_before mathematically (the Moebius map with alpha = 1/2
 ///       and s_i = t_i is the identity, and the result is optimal).
-/// \throws InvalidArgument for a bad T, bad options or a curve above
-///         Options::max_degree; DomainError for a non-regular curve or a
-///         speed infinite in [0, 1]; BudgetExceeded if the accuracy cannot be
-///         reached within Options::max_prec.
+/// \throws InvalidArgument for a bad T or bad options; DomainError for a
+///         non-regular curve or a speed infinite in [0, 1]; BudgetExceeded
+///         for a curve above Options::max_degree, or if the accuracy cannot be
+///         reached within Options::max_prec or the thread's TimeBudget.
 MoebiusResult moebius_c0(const Curve& c, SpeedKind kind, const std::vector<RealAlgebraic>& T,
                          const Options& opt = {});
 

@@ -47,12 +47,14 @@ struct UniformityResult {
 /// \post mu, mean_square and u contain the true values and each meets
 ///       Options::digits.
 /// \throws BudgetExceeded if that accuracy cannot be reached within
-///         Options::max_prec; InvalidArgument for bad options or a curve above
-///         Options::max_degree; DomainError for a non-regular curve.
+///         Options::max_prec, a curve above Options::max_degree, or the
+///         thread's TimeBudget expiring (budget.hpp); InvalidArgument for bad
+///         options; DomainError for a non-regular curve.
 UniformityResult uniformity(const Curve& c, SpeedKind kind, const Options& opt = {});
 /// The same for an already built speed (the curve's degree is not checked).
 UniformityResult uniformity(const Speed& s, const Options& opt = {});
-/// Throws InvalidArgument when the curve's degree exceeds Options::max_degree.
+/// Throws BudgetExceeded (naming --max-degree) when the curve's degree exceeds
+/// Options::max_degree.
 void check_degree(const Curve& c, const Options& opt);
 
 /// Bits of relative accuracy that give `digits` decimal digits with margin.
