@@ -150,6 +150,34 @@ std::vector<HostileRow> hostile_rows() {
       // the CLI's watchdog still stops it shortly after the deadline.
       {{"uniformity", kCubic, "--digits", "4000", "--max-prec", "65536", "--timeout", "0.5"}, 4, "--timeout"},
 
+      // ---- reparam: the piecewise Moebius methods ---------------------------------
+      {{"reparam", kCubic}, 2, "exactly one of --pieces N, --breakpoints LIST, --target U"},
+      {{"reparam", kCubic, "--pieces", "3", "--target", "0.9"}, 2, "exactly one of"},
+      {{"reparam", kCubic, "--pieces", "0"}, 2, "--pieces must be between 1 and 1000, got 0"},
+      {{"reparam", kCubic, "--pieces", "-1"}, 2, "--pieces must be between"},
+      {{"reparam", kCubic, "--pieces", "abc"}, 2, "--pieces expects an integer"},
+      {{"reparam", kCubic, "--pieces", "1e3"}, 2, "--pieces expects an integer"},
+      {{"reparam", kCubic, "--pieces", "1001"}, 2, "--pieces must be between"},
+      {{"reparam", kCubic, "--target", "1.5"}, 2, "--target must lie strictly between 0 and 1"},
+      {{"reparam", kCubic, "--target", "0"}, 2, "--target must lie strictly between 0 and 1"},
+      {{"reparam", kCubic, "--target", "-0.1"}, 2, "--target must lie strictly between 0 and 1"},
+      {{"reparam", kCubic, "--target", "abc"}, 2, "--target: 'abc' is not a rational number"},
+      {{"reparam", kCubic, "--target", "1/0"}, 2, "--target"},
+      {{"reparam", kCubic, "--target", "0.9", "--max-pieces", "0"}, 2, "--max-pieces must be between"},
+      {{"reparam", kCubic, "--breakpoints", "0,1/2"}, 2, "breakpoints"},
+      {{"reparam", kCubic, "--breakpoints", "0,2/3,1/3,1"}, 2, "increasing"},
+      {{"reparam", kCubic, "--pieces", "2", "--rational-digits", "0", "--rational"}, 2, "--rational-digits"},
+      {{"reparam", kCubic, "--pieces", "2", "--rational-digits", "4"}, 2, "--rational-digits needs --rational"},
+      // ---- bezier ------------------------------------------------------------------
+      {{"bezier"}, 2, "--control"},
+      {{"bezier", "--control", "[[0,0]]"}, 2, "needs at least 2 control points"},
+      {{"bezier", "--control", "[[0,0],[1,2,3]]"}, 2, "dimension"},
+      {{"bezier", "--control", "[[0,0],[1,2]]", "--weights", "[1,0]"}, 2, "positive"},
+      {{"bezier", "--control", "[[0,0],[1,2]]", "--weights", "[1,-2]"}, 2, "positive"},
+      {{"bezier", "--control", "[[0,0],[1,2]]", "--weights", "[1,2,3]"}, 2, "weights"},
+      {{"bezier", "--control", "[[0,0],[1,x]]"}, 2, "column"},
+      {{"uniformity", kCubic, "--weights", "[1,2]"}, 2, "--weights needs --control"},
+
       // ---- hard but valid: exit 0, nothing on stderr -----------------------------
       {{"uniformity", long_sum}, 0, ""},
       {{"uniformity", "(t, 2t)"}, 0, ""},
