@@ -189,18 +189,21 @@ Ball integrate(const Integrand& f, const RealAlgebraic& a, const RealAlgebraic& 
     arb_set_arf(acb_realref(ma.v), arb_midref(ea.get()));  // exact dyadic midpoints
     arb_set_arf(acb_realref(mb.v), arb_midref(eb.get()));
 
-    // Relative goal for Arb: the working precision (>= rel_goal_bits + 32 by
-    // default, i.e. guard bits for the sum over subintervals). Absolute
+    // Relative goal for Arb: rel_goal_bits + 32 guard bits (for the sum over
+    // subintervals), raised with each retry; never the extra precision that
+    // only pays for cancellation in f (asking for it would double the nodes
+    // and subintervals for nothing). Absolute
     // tolerance: 2^-prec, or 2^-(abs_goal_bits + 32 + growth) when an
     // absolute goal is set, tightened with the precision so a retry helps.
     long tol_bits = prec;
     if (opt.abs_goal_bits > 0) tol_bits = std::min(prec, opt.abs_goal_bits + 32 + (prec - start));
     MagVar tol;
     mag_set_ui_2exp_si(tol.v, 1, -tol_bits);
+    const long goal = std::min(prec, opt.rel_goal_bits + 32 + (prec - start));
 
     Context ctx{&f, nullptr};
     const int status =
-        acb_calc_integrate(res.v, uniparam_quadrature_trampoline, &ctx, ma.v, mb.v, prec, tol.v, arb_opt, prec);
+        acb_calc_integrate(res.v, uniparam_quadrature_trampoline, &ctx, ma.v, mb.v, goal, tol.v, arb_opt, prec);
     if (ctx.error) std::rethrow_exception(ctx.error);
     // The enclosure is valid whatever the status; NO_CONVERGENCE only means
     // it may be wide, which the goal check below sees.

@@ -2,6 +2,7 @@
 
 #include <acb.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -13,12 +14,20 @@ double sigma2_double(const Speed& s, double t) {
   acb_init(w);
   acb_set_d(z, t);
   double v = 0;
-  for (long prec = 64; prec <= 1024; prec *= 2) {
+  // Start at the precision that sufficed for the previous point of the same
+  // speed (high degrees lose 100+ bits to cancellation everywhere, and every
+  // failed attempt costs a full evaluation); only a hint, per thread.
+  thread_local const Speed* last_speed = nullptr;
+  thread_local long last_prec = 64;
+  long prec = last_speed == &s ? last_prec : 64;
+  for (; prec <= 1024; prec *= 2) {
     s.eval_squared(w, z, prec);
     v = arf_get_d(arb_midref(acb_realref(w)), ARF_RND_NEAR);
     const double r = mag_get_d(arb_radref(acb_realref(w)));
     if (std::isfinite(v) && r <= 1e-14 * std::fabs(v) + 1e-300) break;
   }
+  last_speed = &s;
+  last_prec = std::min(prec, 1024L);
   acb_clear(z);
   acb_clear(w);
   return std::isfinite(v) && v > 0 ? v : 0.0;

@@ -52,22 +52,44 @@ void poly_eval(acb_t out, const BallPoly& p, const acb_t z, long prec) {
   arf_set(arb_midref(acb_imagref(m)), arb_midref(acb_imagref(z)));
   acb_poly_t c;
   acb_poly_init(c);
-  acb_poly_set_arb_poly(c, p.get());
-  acb_poly_taylor_shift(c, c, m, prec);  // c_k = p^(k)(m) / k!
-  // err = sum_{k >= 1} |c_k| r^k, by Horner on upper bounds
-  mag_t err, ck;
+  mag_t err, ck, target;
   mag_init(err);
   mag_init(ck);
-  for (slong k = acb_poly_length(c) - 1; k >= 1; --k) {
-    acb_get_mag(ck, acb_poly_get_coeff_ptr(c, k));
-    mag_add(err, err, ck);
-    mag_mul(err, err, r);
+  mag_init(target);
+  // The shift at precision wp loses to cancellation about as many bits as
+  // evaluating p at m does (power-basis coefficients far larger than the
+  // values). When that rounding error dominates the enclosure (it would hide
+  // the true variation sum |c_k| r^k, or exclude nothing), the shift is
+  // redone with the lost bits added (the coefficients of p are exact).
+  for (long wp = prec;;) {
+    acb_poly_set_arb_poly(c, p.get());
+    acb_poly_taylor_shift(c, c, m, wp);  // c_k = p^(k)(m) / k!
+    // err = sum_{k >= 1} |c_k| r^k, by Horner on upper bounds
+    mag_zero(err);
+    for (slong k = acb_poly_length(c) - 1; k >= 1; --k) {
+      acb_get_mag(ck, acb_poly_get_coeff_ptr(c, k));
+      mag_add(err, err, ck);
+      mag_mul(err, err, r);
+    }
+    if (acb_poly_length(c) == 0 || wp >= 4 * prec + 256) break;
+    const acb_struct* c0 = acb_poly_get_coeff_ptr(c, 0);
+    // target: a 16th of max(variation, |c_0| 2^-prec)
+    acb_get_mag_lower(target, c0);
+    mag_mul_2exp_si(target, target, -prec);
+    mag_max(target, target, err);
+    mag_mul_2exp_si(target, target, -4);
+    mag_hypot(ck, arb_radref(acb_realref(c0)), arb_radref(acb_imagref(c0)));
+    if (mag_cmp(ck, target) <= 0 || mag_is_zero(target)) break;
+    // lost bits ~ log2(rounding / target), plus a margin
+    const long lost = mag_is_inf(ck) ? wp : fmpz_get_si(MAG_EXPREF(ck)) - fmpz_get_si(MAG_EXPREF(target));
+    wp += std::max(lost, 0L) + 16;
   }
-  if (acb_poly_length(c) > 0) acb_set(out, acb_poly_get_coeff_ptr(c, 0));
+  if (acb_poly_length(c) > 0) acb_set_round(out, acb_poly_get_coeff_ptr(c, 0), prec);
   else acb_zero(out);
   acb_add_error_mag(out, err);
   mag_clear(err);
   mag_clear(ck);
+  mag_clear(target);
   acb_poly_clear(c);
   acb_clear(m);
   mag_clear(r);
@@ -124,6 +146,11 @@ void poly_eval_d2(acb_t v, acb_t d1, acb_t d2, const BallPoly& p, const BallPoly
   acb_poly_clear(c);
   acb_clear(m);
   mag_clear(r);
+}
+
+// A wide ball (not a quadrature node): radius >= 2^-24.
+bool is_wide(const acb_t z) {
+  return mag_cmp_2exp_si(arb_radref(acb_realref(z)), -24) >= 0 || mag_cmp_2exp_si(arb_radref(acb_imagref(z)), -24) >= 0;
 }
 
 }  // namespace
@@ -334,8 +361,15 @@ void Speed::eval(acb_t out, const acb_t z, const PieceSigns& p, bool analytic, l
   acb_t S, F;
   acb_init(S);
   acb_init(F);
-  eval_components(S, F, z, prec);
-  if (kind_ == SpeedKind::Angular) {
+  // Space curves, angular speed, on a wide ball: F = |p' x p''|^2 from the
+  // components is a difference of products, overestimated on wide balls far
+  // beyond the true range (and then sqrt(F) is not certified analytic); the
+  // factored form g sqrt(sum K^2) / D is tight there.
+  if (kind_ == SpeedKind::Angular && comp_.size() > 2 && is_wide(z)) acb_indeterminate(out);
+  else eval_components(S, F, z, prec);
+  if (kind_ == SpeedKind::Angular && comp_.size() > 2 && is_wide(z)) {
+    // out stays indeterminate: the factored form below
+  } else if (kind_ == SpeedKind::Angular) {
     if (comp_.size() == 2) {
       acb_div(out, F, S, prec);  // E / S: no square root in the plane
       if (p.component < 0) acb_neg(out, out);

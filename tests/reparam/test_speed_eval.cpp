@@ -156,3 +156,51 @@ TEST(SpeedEval, SpeedAndSquaredOverIrrationalZeroOnWideBalls) {
   acb_clear(out);
   acb_clear(v);
 }
+
+TEST(SpeedEval, SpaceSpeedOnWideBallsAtLowPrecision) {
+  // Rational space Bezier curves of degree 40: the cofactors K of the
+  // factored form have degree ~ 110 and power-basis coefficients some 200
+  // bits above their values near t = 1. At a working precision of 64 bits the
+  // enclosure of sigma on balls of radius ~1e-3 must still be finite (the
+  // Taylor shift is redone above the bits lost to cancellation, and the
+  // factored form is used instead of the components' |p' x p''|) and contain
+  // sigma at every point of the ball.
+  std::mt19937_64 rng(23);
+  long finite = 0, total = 0;
+  for (long it = 0; it < test_support::iterations(2); ++it) {
+    const Curve c = random_bezier(rng, 40, 3, true);
+    const Speed s(c, SpeedKind::Angular);
+    const Speed::PieceSigns sign{};
+    acb_t z, w, out, v;
+    acb_init(z);
+    acb_init(w);
+    acb_init(out);
+    acb_init(v);
+    for (int b = 0; b < 12; ++b) {
+      arb_set_d(acb_realref(z), 0.8 + 0.015 * b);
+      arb_zero(acb_imagref(z));
+      mag_set_d(arb_radref(acb_realref(z)), 1e-3);
+      mag_set_d(arb_radref(acb_imagref(z)), 8e-4);
+      ++total;
+      s.eval(out, z, sign, true, 64);
+      if (!acb_is_finite(out)) continue;
+      ++finite;
+      for (int p = 0; p < 6; ++p) {
+        random_point(w, z, rng);
+        s.eval(v, w, sign, false, 512);
+        // the analytic continuation from the real axis, where sign g is
+        // +-1: compare |sigma| up to that sign
+        acb_t nv;
+        acb_init(nv);
+        acb_neg(nv, v);
+        ASSERT_TRUE(acb_overlaps(out, v) || acb_overlaps(out, nv)) << c.str() << " ball " << b;
+        acb_clear(nv);
+      }
+    }
+    acb_clear(z);
+    acb_clear(w);
+    acb_clear(out);
+    acb_clear(v);
+  }
+  EXPECT_GE(2 * finite, total);
+}
