@@ -52,7 +52,7 @@ struct MoebiusResult {
     bool used = false;
     long iterations = 0;
     Ball phi_equal;   ///< Phi = sum sqrt M_i at the equally spaced T (certified)
-    Ball phi;         ///< Phi at the returned T (certified); never above phi_equal's midpoint
+    Ball phi;         ///< Phi at the returned T (certified); never certainly above phi_equal
     /// max_j |dPhi/dt_j| * (t_{j+1} - t_{j-1}) / Phi at the returned T: a
     /// relative measure of how far from stationary the optimiser stopped
     /// (floating point, uncertified, for information).
