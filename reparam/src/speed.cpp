@@ -26,126 +26,108 @@ Poly gcd_all(const std::vector<Poly>& ps) {
   return g;
 }
 
-// Enclosure of p(z) on a complex ball z. Horner in ball arithmetic (Arb's
-// arb_poly_evaluate_acb) bounds p on a wide ball by roughly
-// sum |a_k| (|m| + r)^k - a huge overestimate for power-basis polynomials
-// with large alternating coefficients (Bezier curves, high degree), which
-// makes the quadrature subdivide its ellipses far more than needed. On a
-// wide ball the centred (Taylor) form is used instead: with m the ball's
-// exact midpoint and |z - m| <= r,
-//     p(z) in p(m) + sum_{k >= 1} |p^(k)(m) / k!| r^k * (unit disk),
-// whose overestimate is of the size of the true variation of p on the ball.
-void poly_eval(acb_t out, const BallPoly& p, const acb_t z, long prec) {
-  const slong n = p.length();
-  mag_t r;
-  mag_init(r);
-  mag_hypot(r, arb_radref(acb_realref(z)), arb_radref(acb_imagref(z)));
-  // Narrow balls (the quadrature's nodes) and low degrees: Horner is tight.
-  if (n <= 2 || mag_cmp_2exp_si(r, -24) < 0) {
-    mag_clear(r);
-    p.evaluate(out, z, prec);
-    return;
+// sum_{k > j} k!/(k-j)! |c_k| r^(k-j), by Horner on upper bounds: the
+// centred-form bound of p^(j)(z) - j! c_j for j <= 2.
+void centred_error(mag_t err, const acb_poly_t c, int j, const mag_t r) {
+  mag_t ck, f;
+  mag_init(ck);
+  mag_init(f);
+  mag_zero(err);
+  for (slong k = acb_poly_length(c) - 1; k > j; --k) {
+    acb_get_mag(ck, acb_poly_get_coeff_ptr(c, k));
+    mag_set_ui(f, static_cast<ulong>(j == 0 ? 1 : j == 1 ? k : k * (k - 1)));
+    mag_mul(ck, ck, f);
+    mag_add(err, err, ck);
+    mag_mul(err, err, r);
   }
+  mag_clear(ck);
+  mag_clear(f);
+}
+
+// c_k = p^(k)(m) / k! with m the exact midpoint of z. The shift at precision
+// wp loses to cancellation about as many bits as evaluating p at m does
+// (power-basis coefficients far larger than the values). When that rounding
+// error dominates the enclosure of p(z) (it would hide the true variation
+// sum |c_k| r^k, or exclude nothing), the shift is redone with the lost bits
+// added (the coefficients of p are exact).
+void centred_shift(acb_poly_t c, const BallPoly& p, const acb_t z, const mag_t r, long prec) {
   acb_t m;
   acb_init(m);
   arf_set(arb_midref(acb_realref(m)), arb_midref(acb_realref(z)));
   arf_set(arb_midref(acb_imagref(m)), arb_midref(acb_imagref(z)));
-  acb_poly_t c;
-  acb_poly_init(c);
-  mag_t err, ck, target;
+  mag_t err, rad, target;
   mag_init(err);
-  mag_init(ck);
+  mag_init(rad);
   mag_init(target);
-  // The shift at precision wp loses to cancellation about as many bits as
-  // evaluating p at m does (power-basis coefficients far larger than the
-  // values). When that rounding error dominates the enclosure (it would hide
-  // the true variation sum |c_k| r^k, or exclude nothing), the shift is
-  // redone with the lost bits added (the coefficients of p are exact).
   for (long wp = prec;;) {
     acb_poly_set_arb_poly(c, p.get());
-    acb_poly_taylor_shift(c, c, m, wp);  // c_k = p^(k)(m) / k!
-    // err = sum_{k >= 1} |c_k| r^k, by Horner on upper bounds
-    mag_zero(err);
-    for (slong k = acb_poly_length(c) - 1; k >= 1; --k) {
-      acb_get_mag(ck, acb_poly_get_coeff_ptr(c, k));
-      mag_add(err, err, ck);
-      mag_mul(err, err, r);
-    }
+    acb_poly_taylor_shift(c, c, m, wp);
     if (acb_poly_length(c) == 0 || wp >= 4 * prec + 256) break;
+    centred_error(err, c, 0, r);
     const acb_struct* c0 = acb_poly_get_coeff_ptr(c, 0);
     // target: a 16th of max(variation, |c_0| 2^-prec)
     acb_get_mag_lower(target, c0);
     mag_mul_2exp_si(target, target, -prec);
     mag_max(target, target, err);
     mag_mul_2exp_si(target, target, -4);
-    mag_hypot(ck, arb_radref(acb_realref(c0)), arb_radref(acb_imagref(c0)));
-    if (mag_cmp(ck, target) <= 0 || mag_is_zero(target)) break;
+    mag_hypot(rad, arb_radref(acb_realref(c0)), arb_radref(acb_imagref(c0)));
+    if (mag_cmp(rad, target) <= 0 || mag_is_zero(target)) break;
     // lost bits ~ log2(rounding / target), plus a margin
-    const long lost = mag_is_inf(ck) ? wp : fmpz_get_si(MAG_EXPREF(ck)) - fmpz_get_si(MAG_EXPREF(target));
+    const long lost = mag_is_inf(rad) ? wp : fmpz_get_si(MAG_EXPREF(rad)) - fmpz_get_si(MAG_EXPREF(target));
     wp += std::max(lost, 0L) + 16;
   }
-  if (acb_poly_length(c) > 0) acb_set_round(out, acb_poly_get_coeff_ptr(c, 0), prec);
-  else acb_zero(out);
-  acb_add_error_mag(out, err);
   mag_clear(err);
-  mag_clear(ck);
+  mag_clear(rad);
   mag_clear(target);
-  acb_poly_clear(c);
   acb_clear(m);
-  mag_clear(r);
 }
 
-// p(z), p'(z) and, when d2 is non-null, p''(z) on a complex ball z. On a wide
-// ball, one Taylor shift c_k = p^(k)(m)/k! gives all three in centred form:
-//     p^(j)(z) in j! c_j + sum_{k > j} k!/(k-j)! |c_k| r^(k-j) * (unit disk).
+// p(z), and p'(z), p''(z) where d1, d2 are non-null, on a complex ball z.
+// Horner in ball arithmetic (Arb's arb_poly_evaluate_acb) bounds p on a wide
+// ball by roughly sum |a_k| (|m| + r)^k - a huge overestimate for
+// power-basis polynomials with large alternating coefficients (Bezier
+// curves, high degree), which makes the quadrature subdivide its ellipses far
+// more than needed. On a wide ball the centred (Taylor) form is used instead:
+// with m the ball's exact midpoint, |z - m| <= r and c_k = p^(k)(m)/k!,
+//     p^(j)(z) in j! c_j + sum_{k > j} k!/(k-j)! |c_k| r^(k-j) * (unit disk),
+// whose overestimate is of the size of the true variation on the ball; one
+// shift gives all three.
 void poly_eval_d2(acb_t v, acb_t d1, acb_t d2, const BallPoly& p, const BallPoly& p1, const BallPoly& p2,
                   const acb_t z, long prec) {
   mag_t r;
   mag_init(r);
   mag_hypot(r, arb_radref(acb_realref(z)), arb_radref(acb_imagref(z)));
+  // Narrow balls (the quadrature's nodes) and low degrees: Horner is tight.
   if (p.length() <= 2 || mag_cmp_2exp_si(r, -24) < 0) {
     mag_clear(r);
     p.evaluate(v, z, prec);
-    p1.evaluate(d1, z, prec);
+    if (d1) p1.evaluate(d1, z, prec);
     if (d2) p2.evaluate(d2, z, prec);
     return;
   }
-  acb_t m;
-  acb_init(m);
-  arf_set(arb_midref(acb_realref(m)), arb_midref(acb_realref(z)));
-  arf_set(arb_midref(acb_imagref(m)), arb_midref(acb_imagref(z)));
   acb_poly_t c;
   acb_poly_init(c);
-  acb_poly_set_arb_poly(c, p.get());
-  acb_poly_taylor_shift(c, c, m, prec);
+  centred_shift(c, p, z, r, prec);
   const slong n = acb_poly_length(c);
-  mag_t err, ck, f;
+  mag_t err;
   mag_init(err);
-  mag_init(ck);
-  mag_init(f);
   acb_ptr outs[3] = {v, d1, d2};
   for (int j = 0; j <= 2; ++j) {
     acb_ptr out = outs[j];
     if (!out) continue;
-    // err = sum_{k > j} k!/(k-j)! |c_k| r^(k-j), by Horner on upper bounds
-    mag_zero(err);
-    for (slong k = n - 1; k > j; --k) {
-      acb_get_mag(ck, acb_poly_get_coeff_ptr(c, k));
-      mag_set_ui(f, static_cast<ulong>(j == 0 ? 1 : j == 1 ? k : k * (k - 1)));
-      mag_mul(ck, ck, f);
-      mag_add(err, err, ck);
-      mag_mul(err, err, r);
-    }
+    centred_error(err, c, j, r);
     if (n > j) acb_mul_ui(out, acb_poly_get_coeff_ptr(c, j), static_cast<ulong>(j == 2 ? 2 : 1), prec);
     else acb_zero(out);
     acb_add_error_mag(out, err);
   }
   mag_clear(err);
-  mag_clear(ck);
-  mag_clear(f);
   acb_poly_clear(c);
-  acb_clear(m);
   mag_clear(r);
+}
+
+// p(z) on a complex ball z (see poly_eval_d2).
+void poly_eval(acb_t out, const BallPoly& p, const acb_t z, long prec) {
+  poly_eval_d2(out, nullptr, nullptr, p, p, p, z, prec);
 }
 
 // A wide ball (not a quadrature node): radius >= 2^-24.
