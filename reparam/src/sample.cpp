@@ -22,23 +22,31 @@ Reparameterization Reparameterization::identity(const Ball& mu, const Ball& u) {
   return r;
 }
 
+namespace {
+
+// The joints (T in t, `joints` in the new parameter) and the summary of a
+// radical or Moebius result.
+template <class R>
+void take_summary(const R& x, const std::vector<Ball>& joints, std::vector<Ball>& s, std::vector<RealAlgebraic>& t,
+                  Ball& mu, Ball& u_before, Ball& u_after) {
+  s = joints;
+  for (const auto& b : x.T) t.push_back(b.t);
+  mu = x.mu;
+  u_before = x.u_before;
+  u_after = x.u_after;
+}
+
+}  // namespace
+
 Reparameterization::Reparameterization(RadicalResult r) : result_(std::move(r)) {
   const auto& x = std::get<RadicalResult>(result_);
-  s_ = x.Z;
-  for (const auto& b : x.T) t_.push_back(b.t);
-  mu_ = x.mu;
-  u_before_ = x.u_before;
-  u_after_ = x.u_after;
+  take_summary(x, x.Z, s_, t_, mu_, u_before_, u_after_);
   init_common();
 }
 
 Reparameterization::Reparameterization(MoebiusResult r) : result_(std::move(r)) {
   const auto& x = std::get<MoebiusResult>(result_);
-  s_ = x.S;
-  for (const auto& b : x.T) t_.push_back(b.t);
-  mu_ = x.mu;
-  u_before_ = x.u_before;
-  u_after_ = x.u_after;
+  take_summary(x, x.S, s_, t_, mu_, u_before_, u_after_);
   init_common();
 }
 
