@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-#include "uniparam/algebra/deflation.hpp"
+#include "uniparam/algebra/local_poly.hpp"
 #include "uniparam/algebra/real_roots.hpp"
 #include "uniparam/core/error.hpp"
 
@@ -26,114 +26,8 @@ Poly gcd_all(const std::vector<Poly>& ps) {
   return g;
 }
 
-// sum_{k > j} k!/(k-j)! |c_k| r^(k-j), by Horner on upper bounds: the
-// centred-form bound of p^(j)(z) - j! c_j for j <= 2.
-void centred_error(mag_t err, const acb_poly_t c, int j, const mag_t r) {
-  mag_t ck, f;
-  mag_init(ck);
-  mag_init(f);
-  mag_zero(err);
-  for (slong k = acb_poly_length(c) - 1; k > j; --k) {
-    acb_get_mag(ck, acb_poly_get_coeff_ptr(c, k));
-    mag_set_ui(f, static_cast<ulong>(j == 0 ? 1 : j == 1 ? k : k * (k - 1)));
-    mag_mul(ck, ck, f);
-    mag_add(err, err, ck);
-    mag_mul(err, err, r);
-  }
-  mag_clear(ck);
-  mag_clear(f);
-}
-
-// c_k = p^(k)(m) / k! with m the exact midpoint of z. The shift at precision
-// wp loses to cancellation about as many bits as evaluating p at m does
-// (power-basis coefficients far larger than the values). When that rounding
-// error dominates the enclosure of p(z) (it would hide the true variation
-// sum |c_k| r^k, or exclude nothing), the shift is redone with the lost bits
-// added (the coefficients of p are exact).
-void centred_shift(acb_poly_t c, const BallPoly& p, const acb_t z, const mag_t r, long prec) {
-  acb_t m;
-  acb_init(m);
-  arf_set(arb_midref(acb_realref(m)), arb_midref(acb_realref(z)));
-  arf_set(arb_midref(acb_imagref(m)), arb_midref(acb_imagref(z)));
-  mag_t err, rad, target;
-  mag_init(err);
-  mag_init(rad);
-  mag_init(target);
-  for (long wp = prec;;) {
-    acb_poly_set_arb_poly(c, p.get());
-    acb_poly_taylor_shift(c, c, m, wp);
-    if (acb_poly_length(c) == 0 || wp >= 4 * prec + 256) break;
-    centred_error(err, c, 0, r);
-    const acb_struct* c0 = acb_poly_get_coeff_ptr(c, 0);
-    // target: a 16th of max(variation, |c_0| 2^-prec)
-    acb_get_mag_lower(target, c0);
-    mag_mul_2exp_si(target, target, -prec);
-    mag_max(target, target, err);
-    mag_mul_2exp_si(target, target, -4);
-    mag_hypot(rad, arb_radref(acb_realref(c0)), arb_radref(acb_imagref(c0)));
-    if (mag_cmp(rad, target) <= 0 || mag_is_zero(target)) break;
-    // lost bits ~ log2(rounding / target), plus a margin
-    const long lost = mag_is_inf(rad) ? wp : fmpz_get_si(MAG_EXPREF(rad)) - fmpz_get_si(MAG_EXPREF(target));
-    wp += std::max(lost, 0L) + 16;
-  }
-  mag_clear(err);
-  mag_clear(rad);
-  mag_clear(target);
-  acb_clear(m);
-}
-
-// p(z), and p'(z), p''(z) where d1, d2 are non-null, on a complex ball z.
-// Horner in ball arithmetic (Arb's arb_poly_evaluate_acb) bounds p on a wide
-// ball by roughly sum |a_k| (|m| + r)^k - a huge overestimate for
-// power-basis polynomials with large alternating coefficients (Bezier
-// curves, high degree), which makes the quadrature subdivide its ellipses far
-// more than needed. On a wide ball the centred (Taylor) form is used instead:
-// with m the ball's exact midpoint, |z - m| <= r and c_k = p^(k)(m)/k!,
-//     p^(j)(z) in j! c_j + sum_{k > j} k!/(k-j)! |c_k| r^(k-j) * (unit disk),
-// whose overestimate is of the size of the true variation on the ball; one
-// shift gives all three.
-void poly_eval_d2(acb_t v, acb_t d1, acb_t d2, const BallPoly& p, const BallPoly& p1, const BallPoly& p2,
-                  const acb_t z, long prec) {
-  mag_t r;
-  mag_init(r);
-  mag_hypot(r, arb_radref(acb_realref(z)), arb_radref(acb_imagref(z)));
-  // Narrow balls (the quadrature's nodes) and low degrees: Horner is tight.
-  if (p.length() <= 2 || mag_cmp_2exp_si(r, -24) < 0) {
-    mag_clear(r);
-    p.evaluate(v, z, prec);
-    if (d1) p1.evaluate(d1, z, prec);
-    if (d2) p2.evaluate(d2, z, prec);
-    return;
-  }
-  acb_poly_t c;
-  acb_poly_init(c);
-  centred_shift(c, p, z, r, prec);
-  const slong n = acb_poly_length(c);
-  mag_t err;
-  mag_init(err);
-  acb_ptr outs[3] = {v, d1, d2};
-  for (int j = 0; j <= 2; ++j) {
-    acb_ptr out = outs[j];
-    if (!out) continue;
-    centred_error(err, c, j, r);
-    if (n > j) acb_mul_ui(out, acb_poly_get_coeff_ptr(c, j), static_cast<ulong>(j == 2 ? 2 : 1), prec);
-    else acb_zero(out);
-    acb_add_error_mag(out, err);
-  }
-  mag_clear(err);
-  acb_poly_clear(c);
-  mag_clear(r);
-}
-
-// p(z) on a complex ball z (see poly_eval_d2).
-void poly_eval(acb_t out, const BallPoly& p, const acb_t z, long prec) {
-  poly_eval_d2(out, nullptr, nullptr, p, p, p, z, prec);
-}
-
-// A wide ball (not a quadrature node): radius >= 2^-24.
-bool is_wide(const acb_t z) {
-  return mag_cmp_2exp_si(arb_radref(acb_realref(z)), -24) >= 0 || mag_cmp_2exp_si(arb_radref(acb_imagref(z)), -24) >= 0;
-}
+// p(z) on a complex ball z, from local expansions (LocalPoly).
+void poly_eval(acb_t out, const LocalPoly& p, const acb_t z, long prec) { p.eval(out, z, prec); }
 
 }  // namespace
 
@@ -141,12 +35,8 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
   for (const auto& x : c.components()) {
     Component k;
     Poly n = x.num(), q = x.den();
-    k.N = BallPoly(n);
-    k.N1 = BallPoly(n.derivative());
-    k.N2 = BallPoly(n.derivative().derivative());
-    k.Q = BallPoly(q);
-    k.Q1 = BallPoly(q.derivative());
-    k.Q2 = BallPoly(q.derivative().derivative());
+    k.N = LocalPoly(n);
+    k.Q = LocalPoly(q);
     k.d1 = x.derivative();
     k.d2 = k.d1.derivative();
     comp_.push_back(std::move(k));
@@ -169,7 +59,7 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
     for (const auto& x : X)
       if (!x.is_zero()) N.push_back(x);
     D_ = c.derivative_denominator();
-    W_b_ = BallPoly(D_);
+    W_b_ = LocalPoly(D_);
   }
 
   // D must not vanish on [0, 1] (the speed would be infinite there).
@@ -251,8 +141,8 @@ void Speed::eval_derivatives(acb_ptr d1, acb_ptr d2, const acb_t z, long prec) c
     acb_t n2, q2;
     acb_init(n2);
     acb_init(q2);
-    poly_eval_d2(n, n1, d2 ? n2 : nullptr, k.N, k.N1, k.N2, z, prec);
-    poly_eval_d2(q, q1, d2 ? q2 : nullptr, k.Q, k.Q1, k.Q2, z, prec);
+    k.N.eval(n, n1, d2 ? n2 : nullptr, z, prec);
+    k.Q.eval(q, q1, d2 ? q2 : nullptr, z, prec);
     // A = N'Q - NQ', x' = A / Q^2
     acb_mul(a, n1, q, prec);
     acb_submul(a, n, q1, prec);
@@ -347,9 +237,9 @@ void Speed::eval(acb_t out, const acb_t z, const PieceSigns& p, bool analytic, l
   // components is a difference of products, overestimated on wide balls far
   // beyond the true range (and then sqrt(F) is not certified analytic); the
   // factored form g sqrt(sum K^2) / D is tight there.
-  if (kind_ == SpeedKind::Angular && comp_.size() > 2 && is_wide(z)) acb_indeterminate(out);
+  if (kind_ == SpeedKind::Angular && comp_.size() > 2 && is_wide_ball(z)) acb_indeterminate(out);
   else eval_components(S, F, z, prec);
-  if (kind_ == SpeedKind::Angular && comp_.size() > 2 && is_wide(z)) {
+  if (kind_ == SpeedKind::Angular && comp_.size() > 2 && is_wide_ball(z)) {
     // out stays indeterminate: the factored form below
   } else if (kind_ == SpeedKind::Angular) {
     if (comp_.size() == 2) {
@@ -473,14 +363,8 @@ void Speed::eval_squared_over_zero(acb_t out, const acb_t z, const SpeedZero& ze
     acb_div(out, out, w, prec);
   } else {
     // Near gamma: out = w^(2 mu - power) h_gamma(z)^(2 mu) (c g_1(z))^2 sum K^2 / D^2.
-    auto key = std::make_pair(zero.index, prec);
-    auto it = deflated_.find(key);
-    if (it == deflated_.end()) {
-      if (deflated_.size() > 64) deflated_.clear();
-      it = deflated_.emplace(key, deflate(g_sqf_.factors[j].factor, zero.t, 1, prec + 16)).first;
-    }
     acb_pow_ui(w, w, static_cast<ulong>(2 * mu - power), prec);
-    poly_eval(h, it->second, z, prec);
+    g_h_[j].eval_deflated(h, z, zero.t, prec);
     acb_pow_ui(h, h, static_cast<ulong>(2 * mu), prec);
     acb_mul(w, w, h, prec);
     eval_g(h, z, prec, j);  // c g_1(z): g without the factor vanishing at gamma

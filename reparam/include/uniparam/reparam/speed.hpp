@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "uniparam/algebra/algebraic.hpp"
+#include "uniparam/algebra/local_poly.hpp"
 #include "uniparam/algebra/squarefree.hpp"
 #include "uniparam/core/ball_poly.hpp"
 #include "uniparam/core/ratfunc.hpp"
@@ -89,8 +90,8 @@ class Speed {
   /// sigma and 0 <= power <= 2 mu; side = +1 when the zero is the left end of
   /// the piece (z > gamma), -1 when it is the right end. The removable
   /// singularity is removed exactly (MATH.md section 4): g = c h^mu g_1 with
-  /// h(t) = (t - gamma) h_gamma(t), h_gamma deflated with ball coefficients (no
-  /// division), so
+  /// h(t) = (t - gamma) h_gamma(t), h_gamma deflated in local Taylor bases
+  /// (LocalPoly::eval_deflated: no division by t - gamma), so
   ///     out = (side (z - gamma))^(2 mu - power) h_gamma(z)^(2 mu) c^2 g_1(z)^2 sum K^2 / D^2,
   /// analytic on the piece; no numerical cancellation near gamma.
   void eval_squared_over_zero(acb_t out, const acb_t z, const SpeedZero& zero, int side, int power,
@@ -118,19 +119,17 @@ class Speed {
   // (plane: F is returned unsquared as E = x_1' x_2'' - x_1'' x_2')
   void eval_components(acb_t S, acb_t F, const acb_t z, long prec) const;
   struct Component {
-    BallPoly N, N1, N2, Q, Q1, Q2;  // numerator, denominator, derivatives
+    LocalPoly N, Q;                 // numerator, denominator (with p', p'')
     RatFunc d1, d2;                 // exact x', x'' (for signs)
   };
   std::vector<Component> comp_;
   // ball versions for evaluation
   Integer g_content_;          // g = content * prod h^m; content is 1 here but kept general
-  std::vector<BallPoly> g_h_;  // squarefree factors of g
+  std::vector<LocalPoly> g_h_;  // squarefree factors of g
   std::vector<int> g_m_;
-  std::vector<BallPoly> K_b_;
-  std::vector<BallPoly> Y_b_;  // angular: D = sum Y^2; parametric: empty
-  BallPoly W_b_;               // parametric: D = W
-  // h_gamma = h / (t - gamma) at a precision, per (zero index, prec): deflation cache
-  mutable std::map<std::pair<std::size_t, long>, BallPoly> deflated_;
+  std::vector<LocalPoly> K_b_;
+  std::vector<LocalPoly> Y_b_;  // angular: D = sum Y^2; parametric: empty
+  LocalPoly W_b_;               // parametric: D = W
 };
 
 }  // namespace uniparam

@@ -1,0 +1,105 @@
+// uniparam/algebra/local_poly.hpp -- certified evaluation of an exact
+// polynomial (and its first two derivatives) on complex balls near [0, 1],
+// from cached local Taylor expansions.
+//
+// Why: the power-basis coefficients of a high-degree curve (a Bezier curve of
+// degree 150 has coefficients near 2^150 times its values) make Horner lose
+// about as many bits to cancellation, and a centred form on a wide ball needs
+// a Taylor shift of the whole polynomial (O(n^2) ball operations, about a
+// millisecond at degree 150) for every ball. A local expansion at a nearby
+// dyadic centre has coefficients of the size of p's values there, and away
+// from p's complex zeros only K << n of its terms matter. So:
+//   * [0, 1] is covered by dyadic cells; level l has centres
+//     c = (j + 1/2) 2^-l and half-width h = 2^-(l+1), j = 0 .. 2^l - 1;
+//   * a cell holds p's Taylor coefficients at c, from an exact integer Taylor
+//     shift (FLINT) rounded to the working precision (deep cells: a ball
+//     shift of their parent's expansion), truncated after K terms, with a
+//     rigorous bound of the dropped tail and of its first two derivatives on
+//     the disc |t - c| <= 2h;
+//   * a narrow ball (a quadrature node) is evaluated by Horner in t - c
+//     (O(K)); a wide ball (a quadrature ellipse) by the centred form at its
+//     own midpoint, from the cell's expansion shifted there (O(K^2)).
+// Balls that no cell's disc contains (far from [0, 1]) fall back to the
+// power basis (Horner on narrow balls, a centred form on wide ones).
+#pragma once
+
+#include <acb.h>
+#include <acb_poly.h>
+
+#include <memory>
+
+#include "uniparam/algebra/algebraic.hpp"
+#include "uniparam/core/ball_poly.hpp"
+#include "uniparam/core/poly.hpp"
+
+namespace uniparam {
+
+/// Enclosures of p(z), and p'(z), p''(z) where d1, d2 are non-null, for a
+/// polynomial with ball coefficients p and its derivatives p1 = p', p2 = p''
+/// (p2 may be unused when d2 is null), on a complex ball z at precision prec.
+/// Narrow balls (radius < 2^-24) and polynomials of length <= 2: Horner.
+/// Wide balls: the centred form at the exact midpoint m of z,
+///     p^(j)(z) in j! c_j + sum_{k > j} k!/(k-j)! |c_k| r^(k-j) (unit disc),
+/// c_k = p^(k)(m)/k! by one Taylor shift, redone at a higher precision while
+/// its rounding error dominates the enclosure.
+/// \post every output contains the exact value at every point of z (balls
+///       may be infinite, never wrong). v may not alias d1 or d2.
+void centred_eval(acb_t v, acb_t d1, acb_t d2, const BallPoly& p, const BallPoly& p1, const BallPoly& p2,
+                  const acb_t z, long prec);
+
+/// True when z's radius (real or imaginary) is at least 2^-24: the
+/// quadrature's ellipses rather than its nodes.
+bool is_wide_ball(const acb_t z);
+
+/// An exact integer polynomial with a cache of local expansions (see the
+/// file comment). Copying copies the polynomial, not the cache. Not
+/// thread-safe: evaluation fills a mutable cache (one LocalPoly per thread).
+class LocalPoly {
+ public:
+  LocalPoly();
+  /// \pre none: any integer polynomial (the zero polynomial evaluates to 0).
+  explicit LocalPoly(const Poly& p);
+  LocalPoly(const LocalPoly& o);
+  LocalPoly& operator=(const LocalPoly& o);
+  LocalPoly(LocalPoly&&) noexcept;
+  LocalPoly& operator=(LocalPoly&&) noexcept;
+  ~LocalPoly();
+
+  /// Enclosures of p(z), and of p'(z), p''(z) where d1, d2 are non-null, on a
+  /// complex ball z, computed at working precision prec (>= 2).
+  /// \post every output contains the exact value at every point of z; an
+  ///       output may be infinite (e.g. a non-finite z), never wrong.
+  ///       v may not alias d1 or d2 (z may alias none of them).
+  void eval(acb_t v, acb_t d1, acb_t d2, const acb_t z, long prec) const;
+  /// Same as eval(v, nullptr, nullptr, z, prec).
+  void eval(acb_t v, const acb_t z, long prec) const { eval(v, nullptr, nullptr, z, prec); }
+
+  /// Enclosure of p(z) / (z - gamma) for a real root gamma of p: the
+  /// removable singularity removed by deflation (MATH.md section 4), in the
+  /// local basis of each cell: p(c + w) = (w - (gamma - c)) Q(w) by exact
+  /// synthetic division of the cell's coefficients (balls containing the
+  /// exact ones) by an enclosure of gamma - c, so no division by z - gamma
+  /// and no cancellation near gamma. Low degrees and balls far from [0, 1]
+  /// use the deflated power basis (deflate()).
+  /// \pre gamma is a root of p (checked exactly, once per gamma;
+  ///      DomainError otherwise).
+  /// \post v contains p(t) / (t - gamma) for every t in z (may be infinite).
+  void eval_deflated(acb_t v, const acb_t z, const RealAlgebraic& gamma, long prec) const;
+
+  const Poly& poly() const { return p_; }
+  long length() const { return p_.degree() + 1; }
+
+  /// Number of cached cells (for tests and profiling).
+  std::size_t cells() const;
+
+ private:
+  struct Cache;
+  // Evaluation from the cells of `variant` (-1: p; i >= 0: p / (t - root i));
+  // false when no cell's disc holds z.
+  bool eval_cells(int variant, acb_t v, acb_t d1, acb_t d2, const acb_t z, long prec) const;
+  Poly p_;
+  BallPoly b_, b1_, b2_;  // power basis: the fallback
+  mutable std::unique_ptr<Cache> cache_;
+};
+
+}  // namespace uniparam

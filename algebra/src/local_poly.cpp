@@ -1,0 +1,498 @@
+#include "uniparam/algebra/local_poly.hpp"
+
+#include <arb_poly.h>
+#include <flint/fmpz_poly.h>
+
+#include <algorithm>
+
+#include "uniparam/algebra/deflation.hpp"
+#include "uniparam/core/error.hpp"
+#include <map>
+#include <unordered_map>
+#include <vector>
+
+namespace uniparam {
+
+namespace {
+
+// sum_{k > j} k!/(k-j)! |c_k| r^(k-j), by Horner on upper bounds: the
+// centred-form bound of p^(j)(z) - j! c_j for j <= 2.
+void centred_error(mag_t err, const acb_poly_t c, int j, const mag_t r) {
+  mag_t ck, f;
+  mag_init(ck);
+  mag_init(f);
+  mag_zero(err);
+  for (slong k = acb_poly_length(c) - 1; k > j; --k) {
+    acb_get_mag(ck, acb_poly_get_coeff_ptr(c, k));
+    mag_set_ui(f, static_cast<ulong>(j == 0 ? 1 : j == 1 ? k : k * (k - 1)));
+    mag_mul(ck, ck, f);
+    mag_add(err, err, ck);
+    mag_mul(err, err, r);
+  }
+  mag_clear(ck);
+  mag_clear(f);
+}
+
+// c_k = p^(k)(m) / k! with m the exact midpoint of z. The shift at precision
+// wp loses to cancellation about as many bits as evaluating p at m does
+// (power-basis coefficients far larger than the values). When that rounding
+// error dominates the enclosure of p(z) (it would hide the true variation
+// sum |c_k| r^k, or exclude nothing), the shift is redone with the lost bits
+// added (the coefficients of p are exact).
+void centred_shift(acb_poly_t c, const BallPoly& p, const acb_t z, const mag_t r, long prec) {
+  acb_t m;
+  acb_init(m);
+  arf_set(arb_midref(acb_realref(m)), arb_midref(acb_realref(z)));
+  arf_set(arb_midref(acb_imagref(m)), arb_midref(acb_imagref(z)));
+  mag_t err, rad, target;
+  mag_init(err);
+  mag_init(rad);
+  mag_init(target);
+  for (long wp = prec;;) {
+    acb_poly_set_arb_poly(c, p.get());
+    acb_poly_taylor_shift(c, c, m, wp);
+    if (acb_poly_length(c) == 0 || wp >= 4 * prec + 256) break;
+    centred_error(err, c, 0, r);
+    const acb_struct* c0 = acb_poly_get_coeff_ptr(c, 0);
+    // target: a 16th of max(variation, |c_0| 2^-prec)
+    acb_get_mag_lower(target, c0);
+    mag_mul_2exp_si(target, target, -prec);
+    mag_max(target, target, err);
+    mag_mul_2exp_si(target, target, -4);
+    mag_hypot(rad, arb_radref(acb_realref(c0)), arb_radref(acb_imagref(c0)));
+    if (mag_cmp(rad, target) <= 0 || mag_is_zero(target)) break;
+    // lost bits ~ log2(rounding / target), plus a margin
+    const long lost = mag_is_inf(rad) ? wp : fmpz_get_si(MAG_EXPREF(rad)) - fmpz_get_si(MAG_EXPREF(target));
+    wp += std::max(lost, 0L) + 16;
+  }
+  mag_clear(err);
+  mag_clear(rad);
+  mag_clear(target);
+  acb_clear(m);
+}
+
+// Outputs of the centred form from the coefficients c at the midpoint of a
+// ball of radius r.
+void centred_outputs(acb_ptr outs[3], const acb_poly_t c, const mag_t r, long prec) {
+  const slong n = acb_poly_length(c);
+  mag_t err;
+  mag_init(err);
+  for (int j = 0; j <= 2; ++j) {
+    acb_ptr out = outs[j];
+    if (!out) continue;
+    centred_error(err, c, j, r);
+    if (n > j) acb_mul_ui(out, acb_poly_get_coeff_ptr(c, j), static_cast<ulong>(j == 2 ? 2 : 1), prec);
+    else acb_zero(out);
+    acb_add_error_mag(out, err);
+  }
+  mag_clear(err);
+}
+
+// Radius of a complex ball: an upper bound of |t - mid z| over z.
+void ball_radius(mag_t r, const acb_t z) { mag_hypot(r, arb_radref(acb_realref(z)), arb_radref(acb_imagref(z))); }
+
+// Polynomials of at most this length are evaluated in the power basis: the
+// cells cost more than they save (and low degrees lose little to
+// cancellation).
+constexpr long kMinLength = 10;
+// Cells up to this level are computed by an exact integer Taylor shift;
+// deeper ones from their parent's (truncated) expansion by a ball shift.
+constexpr int kExactLevel = 6;
+// Finest level (cells of width 2^-40).
+constexpr int kMaxLevel = 40;
+// Level of the cells for narrow balls when no wide ball was evaluated yet.
+constexpr int kPointLevel = 6;
+// Extra bits of the cells' working precision over the caller's: deep cells
+// are shifted from their parents, which costs a few bits per level.
+constexpr long kGuardBits = 12;
+// Bounded memory: the cache is emptied when it holds more cells.
+constexpr std::size_t kMaxCells = 20000;
+
+}  // namespace
+
+void centred_eval(acb_t v, acb_t d1, acb_t d2, const BallPoly& p, const BallPoly& p1, const BallPoly& p2,
+                  const acb_t z, long prec) {
+  mag_t r;
+  mag_init(r);
+  ball_radius(r, z);
+  // Narrow balls (the quadrature's nodes) and low degrees: Horner is tight.
+  if (p.length() <= 2 || mag_cmp_2exp_si(r, -24) < 0) {
+    mag_clear(r);
+    p.evaluate(v, z, prec);
+    if (d1) p1.evaluate(d1, z, prec);
+    if (d2) p2.evaluate(d2, z, prec);
+    return;
+  }
+  acb_poly_t c;
+  acb_poly_init(c);
+  centred_shift(c, p, z, r, prec);
+  acb_ptr outs[3] = {v, d1, d2};
+  centred_outputs(outs, c, r, prec);
+  acb_poly_clear(c);
+  mag_clear(r);
+}
+
+bool is_wide_ball(const acb_t z) {
+  return mag_cmp_2exp_si(arb_radref(acb_realref(z)), -24) >= 0 || mag_cmp_2exp_si(arb_radref(acb_imagref(z)), -24) >= 0;
+}
+
+// ---------------------------------------------------------------------------
+
+namespace {
+
+/// One cell: p(c + w) = P(w) + T(w) with |T^(j)(w)| <= tail[j] for
+/// |w| <= 2h, h = 2^-(level+1); P1 = P', P2 = P''.
+struct Cell {
+  int level = 0;
+  arf_t centre;
+  arb_poly_t P, P1, P2;
+  mag_struct tail[3];
+  Cell() {
+    arf_init(centre);
+    arb_poly_init(P);
+    arb_poly_init(P1);
+    arb_poly_init(P2);
+    for (auto& t : tail) mag_init(&t);
+  }
+  ~Cell() {
+    arf_clear(centre);
+    arb_poly_clear(P);
+    arb_poly_clear(P1);
+    arb_poly_clear(P2);
+    for (auto& t : tail) mag_clear(&t);
+  }
+  Cell(const Cell&) = delete;
+  Cell& operator=(const Cell&) = delete;
+};
+
+struct MagBox {
+  mag_t v;
+  MagBox() { mag_init(v); }
+  ~MagBox() { mag_clear(v); }
+  MagBox(const MagBox&) = delete;
+  MagBox& operator=(const MagBox&) = delete;
+};
+
+struct CellKey {
+  long prec;
+  int level;
+  int variant;
+  unsigned long long j;
+  bool operator==(const CellKey& o) const {
+    return prec == o.prec && level == o.level && variant == o.variant && j == o.j;
+  }
+};
+struct CellKeyHash {
+  std::size_t operator()(const CellKey& k) const {
+    return std::hash<unsigned long long>()(k.j * 1000003ULL ^ static_cast<unsigned long long>(k.level) * 7919ULL ^
+                                           static_cast<unsigned long long>(k.prec) * 104729ULL ^
+                                           static_cast<unsigned long long>(k.variant + 1) * 15485863ULL);
+  }
+};
+
+// Drops the high terms of the expansion c (in w = t - centre, on cells of
+// half-width 2^-(level+1)) whose contribution to p, p', p'' on |w| <= 2h is
+// below 2^-wp times the scale sum |c_k| h^k of p on the cell, adding their
+// bound to tail[j]. Keeps at least 3 terms.
+void truncate(Cell& cell, long wp) {
+  const slong n = arb_poly_length(cell.P);
+  if (n <= 3) return;
+  mag_t h, rho, scale, eps, a, t0, t1, t2, n0, n1, n2, c1, c2;
+  for (mag_struct* m : {h, rho, scale, eps, a, t0, t1, t2, n0, n1, n2, c1, c2}) mag_init(m);
+  mag_one(h);
+  mag_mul_2exp_si(h, h, -(cell.level + 1));
+  mag_mul_2exp_si(rho, h, 1);
+  // rpow[k] = rho^k (upper bounds; rho is a power of two)
+  std::vector<MagBox> rpow(static_cast<std::size_t>(n));
+  mag_one(rpow[0].v);
+  for (slong k = 1; k < n; ++k) mag_mul(rpow[static_cast<std::size_t>(k)].v, rpow[static_cast<std::size_t>(k - 1)].v, rho);
+  // scale = sum |c_k| h^k = sum |c_k| rho^k 2^-k (it only sets the tolerance)
+  for (slong k = 0; k < n; ++k) {
+    arb_get_mag(a, cell.P->coeffs + k);
+    mag_mul(a, a, rpow[static_cast<std::size_t>(k)].v);
+    mag_mul_2exp_si(a, a, -k);
+    mag_add(scale, scale, a);
+  }
+  mag_mul_2exp_si(eps, scale, -wp);
+  // Suffix sums from the top: t0 = sum_{k >= K} |c_k| rho^k,
+  // t1 = sum k |c_k| rho^(k-1), t2 = sum k (k-1) |c_k| rho^(k-2); K is
+  // lowered while t0, t1 rho and t2 rho^2 stay below eps.
+  slong K = n;
+  for (slong k = n - 1; k >= 3; --k) {
+    arb_get_mag(a, cell.P->coeffs + k);
+    mag_mul(a, a, rpow[static_cast<std::size_t>(k - 2)].v);  // |c_k| rho^(k-2)
+    mag_mul(n2, a, rho);
+    mag_mul(n2, n2, rho);
+    mag_add(n0, t0, n2);  // + |c_k| rho^k
+    mag_mul(n1, a, rho);
+    mag_mul_ui(n1, n1, static_cast<ulong>(k));
+    mag_add(n1, t1, n1);  // + k |c_k| rho^(k-1)
+    mag_mul_ui(n2, a, static_cast<ulong>(k * (k - 1)));
+    mag_add(n2, t2, n2);  // + k (k-1) |c_k| rho^(k-2)
+    mag_mul(c1, n1, rho);
+    mag_mul(c2, n2, rho);
+    mag_mul(c2, c2, rho);
+    if (mag_cmp(n0, eps) > 0 || mag_cmp(c1, eps) > 0 || mag_cmp(c2, eps) > 0) break;
+    mag_swap(t0, n0);
+    mag_swap(t1, n1);
+    mag_swap(t2, n2);
+    K = k;
+  }
+  if (K < n) {
+    arb_poly_truncate(cell.P, K);
+    mag_add(cell.tail + 0, cell.tail + 0, t0);
+    mag_add(cell.tail + 1, cell.tail + 1, t1);
+    mag_add(cell.tail + 2, cell.tail + 2, t2);
+  }
+  for (mag_struct* m : {h, rho, scale, eps, a, t0, t1, t2, n0, n1, n2, c1, c2}) mag_clear(m);
+}
+
+}  // namespace
+
+struct LocalPoly::Cache {
+  std::unordered_map<CellKey, std::unique_ptr<Cell>, CellKeyHash> cells;
+  std::vector<RealAlgebraic> roots;  // variant i >= 0 expands p / (t - roots[i])
+  std::vector<const Cell*> last;     // per variant + 1: the cell of the last wide ball
+  long last_prec = 0;
+  // fallback for p / (t - roots[i]): the deflated power basis, per (i, prec)
+  std::map<std::pair<int, long>, BallPoly> deflated;
+};
+
+LocalPoly::LocalPoly() = default;
+LocalPoly::LocalPoly(const Poly& p) : p_(p), b_(p), b1_(p.derivative()), b2_(p.derivative().derivative()) {}
+LocalPoly::LocalPoly(const LocalPoly& o) : p_(o.p_), b_(o.b_), b1_(o.b1_), b2_(o.b2_) {}
+LocalPoly& LocalPoly::operator=(const LocalPoly& o) {
+  if (this != &o) {
+    p_ = o.p_;
+    b_ = o.b_;
+    b1_ = o.b1_;
+    b2_ = o.b2_;
+    cache_.reset();
+  }
+  return *this;
+}
+LocalPoly::LocalPoly(LocalPoly&&) noexcept = default;
+LocalPoly& LocalPoly::operator=(LocalPoly&&) noexcept = default;
+LocalPoly::~LocalPoly() = default;
+
+std::size_t LocalPoly::cells() const { return cache_ ? cache_->cells.size() : 0; }
+
+namespace {
+
+using CellMap = std::unordered_map<CellKey, std::unique_ptr<Cell>, CellKeyHash>;
+
+// The cell (level, j) of variant `variant` (-1: p; i >= 0: p / (t - roots[i]))
+// at working precision wp, built on demand.
+const Cell& get_cell(CellMap& cells, const Poly& p, const std::vector<RealAlgebraic>& roots, int variant, long wp,
+                     int level, unsigned long long j) {
+  const CellKey key{wp, level, variant, j};
+  auto it = cells.find(key);
+  if (it != cells.end()) return *it->second;
+  auto cell = std::make_unique<Cell>();
+  cell->level = level;
+  // centre = (2j + 1) 2^-(level+1)
+  arf_set_ui(cell->centre, 2 * j + 1);
+  arf_mul_2exp_si(cell->centre, cell->centre, -(level + 1));
+  const long n = p.degree();
+  if (level <= kExactLevel) {
+    // p(c + w) = 2^(-L n) q(J + 2^L w) with q(x) = 2^(L n) p(x / 2^L),
+    // L = level + 1, J = 2j + 1: an exact integer Taylor shift.
+    const long L = level + 1;
+    fmpz_poly_t q, s;
+    fmpz_poly_init(q);
+    fmpz_poly_init(s);
+    fmpz_poly_fit_length(q, n + 1);
+    for (long k = 0; k <= n; ++k) fmpz_mul_2exp(q->coeffs + k, p.get()->coeffs + k, static_cast<ulong>(L * (n - k)));
+    _fmpz_poly_set_length(q, n + 1);
+    _fmpz_poly_normalise(q);
+    fmpz_t J;
+    fmpz_init_set_ui(J, 2 * j + 1);
+    fmpz_poly_taylor_shift(s, q, J);
+    fmpz_clear(J);
+    const slong len = fmpz_poly_length(s);
+    arb_poly_fit_length(cell->P, len);
+    for (slong k = 0; k < len; ++k) {
+      arb_set_round_fmpz(cell->P->coeffs + k, s->coeffs + k, wp);
+      arb_mul_2exp_si(cell->P->coeffs + k, cell->P->coeffs + k, L * (k - n));
+    }
+    _arb_poly_set_length(cell->P, len);
+    _arb_poly_normalise(cell->P);
+    fmpz_poly_clear(q);
+    fmpz_poly_clear(s);
+    if (variant >= 0 && len > 0) {
+      // Deflation in the local basis: p(c + w) = (w - w_g) Q(w) exactly, with
+      // w_g = gamma - c (p(gamma) = 0); synthetic division from the top
+      // (stable for |w_g| within the cell's disc, where it is used); the
+      // remainder is exactly 0 and is dropped.
+      arb_t wg, acc;
+      arb_init(wg);
+      arb_init(acc);
+      const Ball g = roots[static_cast<std::size_t>(variant)].to_ball(wp + 32);
+      arb_sub_arf(wg, g.get(), cell->centre, wp + 32);
+      arb_poly_t Q;
+      arb_poly_init(Q);
+      arb_poly_fit_length(Q, len - 1);
+      arb_set(acc, cell->P->coeffs + len - 1);
+      for (slong k = len - 1; k >= 1; --k) {
+        arb_set(Q->coeffs + k - 1, acc);
+        arb_mul(acc, acc, wg, wp);
+        arb_add(acc, acc, cell->P->coeffs + k - 1, wp);
+      }
+      _arb_poly_set_length(Q, len - 1);
+      _arb_poly_normalise(Q);
+      arb_poly_swap(cell->P, Q);
+      arb_poly_clear(Q);
+      arb_clear(wg);
+      arb_clear(acc);
+    }
+  } else {
+    // From the parent: its disc |t - c_p| <= 2 h_p holds this cell's disc
+    // |t - c| <= 2h = h_p (|c - c_p| = h_p / 2), so its tail bounds hold here.
+    const Cell& parent = get_cell(cells, p, roots, variant, wp, level - 1, j >> 1);
+    arb_t delta;
+    arb_init(delta);
+    arf_sub(arb_midref(delta), cell->centre, parent.centre, ARF_PREC_EXACT, ARF_RND_DOWN);
+    arb_poly_taylor_shift(cell->P, parent.P, delta, wp);
+    arb_clear(delta);
+    for (int t = 0; t < 3; ++t) mag_set(cell->tail + t, parent.tail + t);
+  }
+  truncate(*cell, wp);
+  arb_poly_derivative(cell->P1, cell->P, wp);
+  arb_poly_derivative(cell->P2, cell->P1, wp);
+  const Cell& ref = *cell;
+  cells.emplace(key, std::move(cell));
+  return ref;
+}
+
+// True when the ball z lies in the cell's disc |t - c| <= 2h; w = z - c.
+bool in_disc(acb_t w, const Cell& cell, const acb_t z, long prec) {
+  acb_set(w, z);
+  arb_sub_arf(acb_realref(w), acb_realref(z), cell.centre, prec);
+  mag_t m;
+  mag_init(m);
+  acb_get_mag(m, w);
+  const bool ok = mag_is_finite(m) && mag_cmp_2exp_si(m, -cell.level) <= 0;
+  mag_clear(m);
+  return ok;
+}
+
+// Index of the level-l cell whose closure holds x (clamped to [0, 1]).
+unsigned long long cell_index(const arf_t x, int level) {
+  const unsigned long long cells = 1ULL << level;
+  if (arf_sgn(x) <= 0) return 0;
+  arf_t y;
+  arf_init(y);
+  arf_mul_2exp_si(y, x, level);
+  fmpz_t f;
+  fmpz_init(f);
+  arf_get_fmpz(f, y, ARF_RND_FLOOR);
+  unsigned long long j = cells - 1;
+  if (fmpz_sgn(f) >= 0 && fmpz_cmp_ui(f, cells - 1) < 0) j = fmpz_get_ui(f);
+  fmpz_clear(f);
+  arf_clear(y);
+  return j;
+}
+
+}  // namespace
+
+bool LocalPoly::eval_cells(int variant, acb_t v, acb_t d1, acb_t d2, const acb_t z, long prec) const {
+  if (!cache_) cache_ = std::make_unique<Cache>();
+  Cache& cache = *cache_;
+  if (cache.cells.size() >= kMaxCells) {  // bounded memory: start again
+    cache.cells.clear();
+    cache.last.clear();
+  }
+  const long wp = prec + kGuardBits;
+  if (cache.last_prec != wp) {
+    cache.last.clear();
+    cache.last_prec = wp;
+  }
+  const std::size_t slot = static_cast<std::size_t>(variant + 1);
+  if (cache.last.size() <= slot) cache.last.resize(slot + 1, nullptr);
+  acb_t w;
+  acb_init(w);
+  const bool wide = is_wide_ball(z);
+  const Cell* cell = nullptr;
+  if (!wide && cache.last[slot] && in_disc(w, *cache.last[slot], z, prec)) {
+    cell = cache.last[slot];  // a node of the last wide ball's subinterval
+  } else {
+    int level;
+    if (wide) {
+      // The deepest level whose disc |t - c| <= 2h holds z for any c within h
+      // of Re(mid z): h = 2^-(level+1) >= rad(z) + |Im(mid z)| =: s; as
+      // s < 2^e with e = MAG_EXP(s), level = -e - 1 will do.
+      mag_t s;
+      mag_init(s);
+      ball_radius(s, z);
+      mag_t im;
+      mag_init(im);
+      arf_get_mag(im, arb_midref(acb_imagref(z)));
+      mag_add(s, s, im);
+      mag_clear(im);
+      const long lv = mag_is_zero(s) ? kMaxLevel : -fmpz_get_si(MAG_EXPREF(s)) - 1;
+      mag_clear(s);
+      level = static_cast<int>(std::min<long>(std::max<long>(lv, 0), kMaxLevel));
+    } else {
+      level = cache.last[slot] ? cache.last[slot]->level : kPointLevel;
+    }
+    for (; level >= 0 && !cell; --level) {
+      const Cell& c =
+          get_cell(cache.cells, p_, cache.roots, variant, wp, level, cell_index(arb_midref(acb_realref(z)), level));
+      if (in_disc(w, c, z, prec)) cell = &c;
+    }
+    if (cell && wide) cache.last[slot] = cell;
+  }
+  if (!cell) {
+    acb_clear(w);
+    return false;
+  }
+  // Horner in w = z - c, plus the tails. On a wide ball this bounds p by its
+  // expansion on the disc |t - c| <= |mid z - c| + rad z, at most twice z's
+  // radius: a little looser than a centred form at mid z, and O(K) instead of
+  // the O(K^2) shift.
+  const arb_poly_struct* polys[3] = {cell->P, cell->P1, cell->P2};
+  acb_ptr outs[3] = {v, d1, d2};
+  for (int j = 0; j <= 2; ++j) {
+    if (!outs[j]) continue;
+    if (acb_is_real(w)) {
+      arb_poly_evaluate(acb_realref(outs[j]), polys[j], acb_realref(w), prec);
+      arb_zero(acb_imagref(outs[j]));
+    } else {
+      arb_poly_evaluate_acb(outs[j], polys[j], w, prec);
+    }
+    acb_add_error_mag(outs[j], cell->tail + j);
+  }
+  acb_clear(w);
+  return true;
+}
+
+void LocalPoly::eval(acb_t v, acb_t d1, acb_t d2, const acb_t z, long prec) const {
+  if (p_.degree() + 1 <= kMinLength || !acb_is_finite(z) || !eval_cells(-1, v, d1, d2, z, prec))
+    centred_eval(v, d1, d2, b_, b1_, b2_, z, prec);
+}
+
+void LocalPoly::eval_deflated(acb_t v, const acb_t z, const RealAlgebraic& gamma, long prec) const {
+  if (!cache_) cache_ = std::make_unique<Cache>();
+  Cache& cache = *cache_;
+  int variant = -1;
+  for (std::size_t i = 0; i < cache.roots.size(); ++i)
+    if (cache.roots[i] == gamma) variant = static_cast<int>(i);
+  if (variant < 0) {
+    if (p_.is_zero() || root_multiplicity(p_, gamma) < 1)
+      throw DomainError("eval_deflated: " + gamma.str() + " is not a root of " + p_.str());
+    cache.roots.push_back(gamma);
+    variant = static_cast<int>(cache.roots.size()) - 1;
+  }
+  if (p_.degree() + 1 > kMinLength && acb_is_finite(z) && eval_cells(variant, v, nullptr, nullptr, z, prec)) return;
+  // Low degree, or far from [0, 1]: the deflated power basis (exact
+  // synthetic division in Z[gamma], see deflate), centred form.
+  const auto key = std::make_pair(variant, prec);
+  auto it = cache.deflated.find(key);
+  if (it == cache.deflated.end()) {
+    if (cache.deflated.size() > 64) cache.deflated.clear();
+    it = cache.deflated.emplace(key, deflate(p_, gamma, 1, prec + 16)).first;
+  }
+  centred_eval(v, nullptr, nullptr, it->second, it->second, it->second, z, prec);
+}
+
+}  // namespace uniparam

@@ -1,0 +1,228 @@
+// Tests of uniparam/algebra/local_poly.hpp: the enclosures of p, p', p'' and
+// of p / (t - gamma) from local expansions contain the values at every
+// sampled point of random balls (narrow and wide, inside and outside
+// [0, 1]), checked against evaluations at 4000 bits at exact points; and
+// narrow balls do not pay for the power basis' cancellation.
+#include <acb_poly.h>
+#include <arb_poly.h>
+#include <gtest/gtest.h>
+
+#include <random>
+#include <vector>
+
+#include "support/curves.hpp"
+#include "support/iterations.hpp"
+#include "uniparam/algebra/local_poly.hpp"
+#include "uniparam/core/error.hpp"
+
+namespace uniparam {
+namespace {
+
+using test_support::iterations;
+using test_support::random_poly;
+
+constexpr long kRefPrec = 4000;
+
+/// Power-basis coefficients of sum_k b_k C(n,k) t^k (1-t)^(n-k): a Bezier
+/// polynomial, whose power-basis coefficients dwarf its values on [0, 1].
+Poly bernstein(const std::vector<long>& b) {
+  const long n = static_cast<long>(b.size()) - 1;
+  fmpz_poly_t acc, term, lin, one_minus;
+  fmpz_poly_init(acc);
+  fmpz_poly_init(term);
+  fmpz_poly_init(lin);
+  fmpz_poly_init(one_minus);
+  fmpz_poly_set_coeff_si(lin, 1, 1);
+  fmpz_poly_set_coeff_si(one_minus, 0, 1);
+  fmpz_poly_set_coeff_si(one_minus, 1, -1);
+  fmpz_t binom;
+  fmpz_init(binom);
+  for (long k = 0; k <= n; ++k) {
+    fmpz_poly_pow(term, lin, static_cast<ulong>(k));
+    fmpz_poly_t r;
+    fmpz_poly_init(r);
+    fmpz_poly_pow(r, one_minus, static_cast<ulong>(n - k));
+    fmpz_poly_mul(term, term, r);
+    fmpz_poly_clear(r);
+    fmpz_bin_uiui(binom, static_cast<ulong>(n), static_cast<ulong>(k));
+    fmpz_mul_si(binom, binom, b[static_cast<std::size_t>(k)]);
+    fmpz_poly_scalar_mul_fmpz(term, term, binom);
+    fmpz_poly_add(acc, acc, term);
+  }
+  Poly p;
+  fmpz_poly_set(p.get(), acc);
+  fmpz_clear(binom);
+  fmpz_poly_clear(acc);
+  fmpz_poly_clear(term);
+  fmpz_poly_clear(lin);
+  fmpz_poly_clear(one_minus);
+  return p;
+}
+
+/// A random test polynomial of degree >= 11 (the cells' range): dense small
+/// coefficients, or a Bezier polynomial of degree up to 160.
+Poly random_test_poly(std::mt19937_64& rng) {
+  std::uniform_int_distribution<int> kind(0, 1);
+  if (kind(rng) == 0) return random_poly(rng, std::uniform_int_distribution<long>(11, 90)(rng), 20);
+  const long n = std::uniform_int_distribution<long>(11, 160)(rng);
+  std::uniform_int_distribution<long> c(-1000, 1000);
+  std::vector<long> b(static_cast<std::size_t>(n + 1));
+  for (auto& x : b) x = c(rng);
+  return bernstein(b);
+}
+
+/// A random complex ball: midpoint in [-0.2, 1.2] (+ a small imaginary part
+/// sometimes), radius 0 (a point), tiny, or wide (2^-3 .. 2^-20).
+void random_ball(acb_t z, std::mt19937_64& rng) {
+  std::uniform_int_distribution<long> re(-209715, 1258291);  // [-0.2, 1.2] * 2^20
+  std::uniform_int_distribution<long> num(-(1L << 20), 1L << 20);
+  std::uniform_int_distribution<int> pick(0, 3);
+  acb_zero(z);
+  arb_set_si(acb_realref(z), re(rng));
+  arb_mul_2exp_si(acb_realref(z), acb_realref(z), -20);
+  if (pick(rng) == 0) {
+    arb_set_si(acb_imagref(z), num(rng));
+    arb_mul_2exp_si(acb_imagref(z), acb_imagref(z), -27);
+  }
+  const int k = pick(rng);
+  if (k == 0) return;  // a point
+  const long e = k == 1 ? -std::uniform_int_distribution<long>(26, 60)(rng)
+                        : -std::uniform_int_distribution<long>(3, 20)(rng);
+  mag_set_ui_2exp_si(arb_radref(acb_realref(z)), 1 + std::uniform_int_distribution<ulong>(0, 7)(rng), e - 3);
+  if (pick(rng) != 0) mag_set_ui_2exp_si(arb_radref(acb_imagref(z)), 1 + std::uniform_int_distribution<ulong>(0, 7)(rng), e - 3);
+}
+
+/// Exact points of the ball z: its midpoint, corners and random points.
+std::vector<std::pair<double, double>> offsets(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<std::pair<double, double>> o{{0, 0}, {1, 1}, {-1, 1}, {1, -1}, {-1, -1}};
+  for (int i = 0; i < 4; ++i) o.emplace_back(u(rng), u(rng));
+  return o;
+}
+void point_of(acb_t t, const acb_t z, double a, double b) {
+  acb_zero(t);
+  arb_set_arf(acb_realref(t), arb_midref(acb_realref(z)));
+  arb_set_arf(acb_imagref(t), arb_midref(acb_imagref(z)));
+  arf_t d, f;
+  arf_init(d);
+  arf_init(f);
+  arf_set_mag(d, arb_radref(acb_realref(z)));
+  arf_set_d(f, a);
+  arf_mul(d, d, f, 53, ARF_RND_DOWN);  // |d| <= rad: rounding toward zero
+  arb_add_arf(acb_realref(t), acb_realref(t), d, ARF_PREC_EXACT);
+  arf_set_mag(d, arb_radref(acb_imagref(z)));
+  arf_set_d(f, b);
+  arf_mul(d, d, f, 53, ARF_RND_DOWN);
+  arb_add_arf(acb_imagref(t), acb_imagref(t), d, ARF_PREC_EXACT);
+  arf_clear(d);
+  arf_clear(f);
+}
+
+TEST(LocalPoly, EnclosesValueAndDerivativesOnRandomBalls) {
+  std::mt19937_64 rng(20261122);
+  const long precs[] = {30, 64, 128, 200};
+  for (long it = 0; it < iterations(60); ++it) {
+    const Poly p = random_test_poly(rng);
+    const LocalPoly lp(p);
+    arb_poly_t ref[3];
+    for (auto& r : ref) arb_poly_init(r);
+    arb_poly_set_fmpz_poly(ref[0], p.get(), ARF_PREC_EXACT);
+    arb_poly_derivative(ref[1], ref[0], ARF_PREC_EXACT);
+    arb_poly_derivative(ref[2], ref[1], ARF_PREC_EXACT);
+    for (int b = 0; b < 25; ++b) {
+      acb_t z, v, d1, d2, t, exact;
+      for (acb_ptr x : {z, v, d1, d2, t, exact}) acb_init(x);
+      random_ball(z, rng);
+      const long prec = precs[std::uniform_int_distribution<int>(0, 3)(rng)];
+      lp.eval(v, d1, d2, z, prec);
+      const acb_struct* outs[3] = {v, d1, d2};
+      for (const auto& [a, c] : offsets(rng)) {
+        point_of(t, z, a, c);
+        ASSERT_TRUE(acb_contains(z, t));
+        for (int j = 0; j < 3; ++j) {
+          arb_poly_evaluate_acb(exact, ref[j], t, kRefPrec);
+          ASSERT_TRUE(acb_contains(outs[j], exact))
+              << "derivative " << j << " of a degree-" << p.degree() << " polynomial at prec " << prec;
+        }
+      }
+      for (acb_ptr x : {z, v, d1, d2, t, exact}) acb_clear(x);
+    }
+    for (auto& r : ref) arb_poly_clear(r);
+  }
+}
+
+TEST(LocalPoly, DeflatedEnclosesQuotientNearAndFarFromTheRoot) {
+  std::mt19937_64 rng(7);
+  // p = q (2t^2 - 1): gamma = 1/sqrt(2), p / (t - gamma) = 2 q (t + gamma).
+  const Poly f(std::vector<long>{-1, 0, 2});
+  const RealAlgebraic gamma(f, Rational(1, 2), Rational(1));
+  for (long it = 0; it < iterations(40); ++it) {
+    const Poly q = random_test_poly(rng);
+    const LocalPoly lp(q * f);
+    arb_poly_t qb;
+    arb_poly_init(qb);
+    arb_poly_set_fmpz_poly(qb, q.get(), ARF_PREC_EXACT);
+    const Ball g = gamma.to_ball(kRefPrec);
+    for (int b = 0; b < 25; ++b) {
+      acb_t z, v, t, exact, s;
+      for (acb_ptr x : {z, v, t, exact, s}) acb_init(x);
+      random_ball(z, rng);
+      if (b % 2 == 0) {  // centred on gamma (to 80 bits): the ball holds it or nearly
+        arb_set_round(acb_realref(s), g.get(), 80);
+        arf_set(arb_midref(acb_realref(z)), arb_midref(acb_realref(s)));
+      }
+      const long prec = b % 3 == 0 ? 64 : 128;
+      lp.eval_deflated(v, z, gamma, prec);
+      for (const auto& [a, c] : offsets(rng)) {
+        point_of(t, z, a, c);
+        arb_poly_evaluate_acb(exact, qb, t, kRefPrec);
+        acb_add_arb(s, t, g.get(), kRefPrec);
+        acb_mul(exact, exact, s, kRefPrec);
+        acb_mul_2exp_si(exact, exact, 1);
+        ASSERT_TRUE(acb_contains(v, exact)) << "degree " << q.degree() + 2 << ", prec " << prec;
+      }
+      for (acb_ptr x : {z, v, t, exact, s}) acb_clear(x);
+    }
+    arb_poly_clear(qb);
+  }
+}
+
+TEST(LocalPoly, DeflatedRefusesANonRoot) {
+  const LocalPoly lp(Poly(std::vector<long>{-1, 0, 2}) * Poly(std::vector<long>{1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1}));
+  const RealAlgebraic not_root(Rational(1, 3));
+  acb_t z, v;
+  acb_init(z);
+  acb_init(v);
+  EXPECT_THROW(lp.eval_deflated(v, z, not_root, 64), DomainError);
+  acb_clear(z);
+  acb_clear(v);
+}
+
+// The point of the local bases: at a node in [0, 1], a Bezier polynomial of
+// degree 150 (power-basis coefficients ~2^150 times its values) evaluated at
+// 80 bits is accurate to about 80 bits of the size of its Bernstein
+// coefficients, where Horner in the power basis would lose ~150 bits.
+TEST(LocalPoly, NarrowBallsDoNotPayForPowerBasisCancellation) {
+  std::mt19937_64 rng(99);
+  std::uniform_int_distribution<long> c(-1000, 1000);
+  std::vector<long> b(151);
+  for (auto& x : b) x = c(rng);
+  const LocalPoly lp(bernstein(b));
+  std::uniform_int_distribution<long> num(0, 1L << 30);
+  for (int i = 0; i < 200; ++i) {
+    acb_t z, v;
+    acb_init(z);
+    acb_init(v);
+    arb_set_si(acb_realref(z), num(rng));
+    arb_mul_2exp_si(acb_realref(z), acb_realref(z), -30);
+    lp.eval(v, z, 80);
+    // |p| <= 1000 on [0, 1]; the radius must stay near 1000 * 2^-80.
+    EXPECT_LT(mag_cmp_2exp_si(arb_radref(acb_realref(v)), 10 - 60), 0) << "at node " << i;
+    acb_clear(z);
+    acb_clear(v);
+  }
+  EXPECT_GT(lp.cells(), 0u);
+}
+
+}  // namespace
+}  // namespace uniparam
