@@ -147,6 +147,7 @@ struct Cell {
   arf_t centre;
   arb_poly_t P, P1, P2;
   mag_struct tail[3];
+  std::vector<double> mid;  // midpoints of P in double (eval_double), lazily
   Cell() {
     arf_init(centre);
     arb_poly_init(P);
@@ -402,7 +403,9 @@ bool LocalPoly::eval_cells(int variant, acb_t v, acb_t d1, acb_t d2, const acb_t
     cache.cells.clear();
     cache.last.clear();
   }
-  const long wp = prec + kGuardBits;
+  // Cells are shared by every caller whose precision rounds to the same
+  // number of limbs (the quadrature's attempts, the optimiser, ...).
+  const long wp = (prec + kGuardBits + FLINT_BITS - 1) / FLINT_BITS * FLINT_BITS;
   if (cache.last_prec != wp) {
     cache.last.clear();
     cache.last_prec = wp;
@@ -446,24 +449,85 @@ bool LocalPoly::eval_cells(int variant, acb_t v, acb_t d1, acb_t d2, const acb_t
     acb_clear(w);
     return false;
   }
-  // Horner in w = z - c, plus the tails. On a wide ball this bounds p by its
-  // expansion on the disc |t - c| <= |mid z - c| + rad z, at most twice z's
-  // radius: a little looser than a centred form at mid z, and O(K) instead of
-  // the O(K^2) shift.
+  // sum c_k w^k with w = z - c, plus the tails: the powers of w once, then
+  // one dot product per output (Arb's arb_dot: no intermediate rounding).
+  // On a wide ball this bounds p by its expansion on the disc
+  // |t - c| <= |mid z - c| + rad z, at most twice z's radius: a little
+  // looser than a centred form at mid z, and O(K) instead of an O(K^2) shift.
   const arb_poly_struct* polys[3] = {cell->P, cell->P1, cell->P2};
   acb_ptr outs[3] = {v, d1, d2};
-  for (int j = 0; j <= 2; ++j) {
-    if (!outs[j]) continue;
-    if (acb_is_real(w)) {
-      arb_poly_evaluate(acb_realref(outs[j]), polys[j], acb_realref(w), prec);
+  const slong K = std::max<slong>(arb_poly_length(cell->P), 1);
+  if (acb_is_real(w)) {
+    arb_ptr pw = _arb_vec_init(K);
+    arb_one(pw);
+    for (slong k = 1; k < K; ++k) arb_mul(pw + k, pw + k - 1, acb_realref(w), prec);
+    for (int j = 0; j <= 2; ++j) {
+      if (!outs[j]) continue;
+      arb_dot(acb_realref(outs[j]), nullptr, 0, polys[j]->coeffs, 1, pw, 1, arb_poly_length(polys[j]), prec);
       arb_zero(acb_imagref(outs[j]));
-    } else {
-      arb_poly_evaluate_acb(outs[j], polys[j], w, prec);
+      acb_add_error_mag(outs[j], cell->tail + j);
     }
-    acb_add_error_mag(outs[j], cell->tail + j);
+    _arb_vec_clear(pw, K);
+  } else {
+    acb_ptr pw = _acb_vec_init(K);
+    acb_one(pw);
+    for (slong k = 1; k < K; ++k) acb_mul(pw + k, pw + k - 1, w, prec);
+    // real coefficients: real and imaginary parts are two real dot products
+    // over the interleaved parts of the powers (stride 2)
+    arb_srcptr parts = reinterpret_cast<arb_srcptr>(pw);
+    for (int j = 0; j <= 2; ++j) {
+      if (!outs[j]) continue;
+      const slong len = arb_poly_length(polys[j]);
+      arb_dot(acb_realref(outs[j]), nullptr, 0, polys[j]->coeffs, 1, parts, 2, len, prec);
+      arb_dot(acb_imagref(outs[j]), nullptr, 0, polys[j]->coeffs, 1, parts + 1, 2, len, prec);
+      acb_add_error_mag(outs[j], cell->tail + j);
+    }
+    _acb_vec_clear(pw, K);
   }
   acb_clear(w);
   return true;
+}
+
+void LocalPoly::eval_double(double t, double* v, double* d1, double* d2) const {
+  double c[3] = {0, 0, 0};
+  const long n = p_.degree();
+  if (n + 1 <= kMinLength || !(t >= 0 && t <= 1)) {
+    for (long k = n; k >= 0; --k) {  // Horner with two derivatives
+      c[2] = c[2] * t + c[1];
+      c[1] = c[1] * t + c[0];
+      c[0] = c[0] * t + fmpz_get_d(p_.get()->coeffs + k);
+    }
+    c[2] *= 2;
+  } else {
+    if (!cache_) cache_ = std::make_unique<Cache>();
+    Cache& cache = *cache_;
+    if (cache.cells.size() >= kMaxCells) {
+      cache.cells.clear();
+      cache.last.clear();
+    }
+    // 64 + guard bits: the same cells as a 64-bit certified evaluation.
+    const long wp = (64 + kGuardBits + FLINT_BITS - 1) / FLINT_BITS * FLINT_BITS;
+    arf_t x;
+    arf_init(x);
+    arf_set_d(x, t);
+    Cell& cell = const_cast<Cell&>(get_cell(cache.cells, p_, cache.roots, -1, wp, kPointLevel, cell_index(x, kPointLevel)));
+    arf_clear(x);
+    if (cell.mid.empty()) {
+      const slong len = arb_poly_length(cell.P);
+      cell.mid.resize(static_cast<std::size_t>(len));
+      for (slong k = 0; k < len; ++k) cell.mid[static_cast<std::size_t>(k)] = arf_get_d(arb_midref(cell.P->coeffs + k), ARF_RND_NEAR);
+    }
+    const double w = t - arf_get_d(cell.centre, ARF_RND_NEAR);
+    for (std::size_t k = cell.mid.size(); k-- > 0;) {
+      c[2] = c[2] * w + c[1];
+      c[1] = c[1] * w + c[0];
+      c[0] = c[0] * w + cell.mid[k];
+    }
+    c[2] *= 2;
+  }
+  if (v) *v = c[0];
+  if (d1) *d1 = c[1];
+  if (d2) *d2 = c[2];
 }
 
 void LocalPoly::eval(acb_t v, acb_t d1, acb_t d2, const acb_t z, long prec) const {

@@ -36,7 +36,14 @@ struct MagVar {
 struct Context {
   const Integrand* f;
   std::exception_ptr error;  ///< first exception thrown by *f, rethrown after the C call
+  long wide_prec;            ///< precision for wide balls (see integrate)
 };
+
+/// True for the balls of the error bounds (a subinterval's segment or
+/// ellipse), as opposed to the Gauss-Legendre nodes: radius >= 2^-30.
+bool is_wide(const acb_t z) {
+  return mag_cmp_2exp_si(arb_radref(acb_realref(z)), -30) >= 0 || mag_cmp_2exp_si(arb_radref(acb_imagref(z)), -30) >= 0;
+}
 
 }  // namespace
 }  // namespace uniparam
@@ -62,7 +69,9 @@ static int uniparam_quadrature_trampoline(acb_ptr out, const acb_t z, void* para
   }
   try {
     uniparam::check_time_budget();  // --timeout, noticed within one evaluation
-    (*ctx->f)(out, z, order == 1, prec);
+    // A wide ball's enclosure is as wide as f's variation on it: the bits
+    // of the goal buy nothing there (only those lost to cancellation do).
+    (*ctx->f)(out, z, order == 1, uniparam::is_wide(z) ? std::min(prec, ctx->wide_prec) : prec);
   } catch (...) {
     ctx->error = std::current_exception();
     acb_zero(out);
@@ -72,6 +81,10 @@ static int uniparam_quadrature_trampoline(acb_ptr out, const acb_t z, void* para
 }  // extern "C"
 
 namespace uniparam {
+// Guard bits of the relative goal handed to Arb over the caller's goal: the
+// per-subinterval tolerances add up over at most a few thousand
+// subintervals (~12 bits). More only raises the Gauss-Legendre degrees.
+constexpr long kGoalGuardBits = 12;
 namespace {
 
 /// Adds rad(end) * sup |f(end)| to the error of `res`: the integral over the
@@ -189,8 +202,8 @@ Ball integrate(const Integrand& f, const RealAlgebraic& a, const RealAlgebraic& 
     arb_set_arf(acb_realref(ma.v), arb_midref(ea.get()));  // exact dyadic midpoints
     arb_set_arf(acb_realref(mb.v), arb_midref(eb.get()));
 
-    // Relative goal for Arb: rel_goal_bits + 32 guard bits (for the sum over
-    // subintervals), raised with each retry; never the extra precision that
+    // Relative goal for Arb: rel_goal_bits + kGoalGuardBits (for the sum
+    // over subintervals), raised with each retry; never the extra precision that
     // only pays for cancellation in f (asking for it would double the nodes
     // and subintervals for nothing). Absolute
     // tolerance: 2^-prec, or 2^-(abs_goal_bits + 32 + growth) when an
@@ -199,9 +212,11 @@ Ball integrate(const Integrand& f, const RealAlgebraic& a, const RealAlgebraic& 
     if (opt.abs_goal_bits > 0) tol_bits = std::min(prec, opt.abs_goal_bits + 32 + (prec - start));
     MagVar tol;
     mag_set_ui_2exp_si(tol.v, 1, -tol_bits);
-    const long goal = std::min(prec, opt.rel_goal_bits + 32 + (prec - start));
+    const long goal = std::min(prec, opt.rel_goal_bits + kGoalGuardBits + (prec - start));
 
-    Context ctx{&f, nullptr};
+    // Wide balls (error bounds) at the bits lost to cancellation plus 64:
+    // prec - rel_goal_bits is what the start precision added for them.
+    Context ctx{&f, nullptr, std::max(64L, prec - opt.rel_goal_bits + 32)};
     const int status =
         acb_calc_integrate(res.v, uniparam_quadrature_trampoline, &ctx, ma.v, mb.v, goal, tol.v, arb_opt, prec);
     if (ctx.error) std::rethrow_exception(ctx.error);

@@ -9,6 +9,10 @@
 namespace uniparam::detail {
 
 double sigma2_double(const Speed& s, double t) {
+  // Double evaluation from local expansions (no power-basis cancellation);
+  // the ball path below only where it is not finite (cusps, 0/0).
+  const double d = s.squared_double(t);
+  if (std::isfinite(d) && d >= 0) return d;
   acb_t z, w;
   acb_init(z);
   acb_init(w);

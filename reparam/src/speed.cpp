@@ -295,6 +295,30 @@ void Speed::eval_squared(acb_t out, const acb_t z, long prec) const {
   acb_clear(F);
 }
 
+double Speed::squared_double(double t) const {
+  if (zero_) return 0;
+  const std::size_t n = comp_.size();
+  std::vector<double> d1(n), d2(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    double nv, n1, n2, q, q1, q2;
+    comp_[i].N.eval_double(t, &nv, &n1, &n2);
+    comp_[i].Q.eval_double(t, &q, &q1, &q2);
+    const double a = n1 * q - nv * q1, qq = q * q;
+    d1[i] = a / qq;
+    d2[i] = (n2 * q - nv * q2) / qq - 2 * q1 * a / (qq * q);
+  }
+  double S = 0;
+  for (double x : d1) S += x * x;
+  if (kind_ == SpeedKind::Parametric) return S;
+  double F = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j) {
+      const double e = d1[i] * d2[j] - d2[i] * d1[j];
+      F += e * e;
+    }
+  return F / (S * S);
+}
+
 void Speed::eval_sumK2(acb_t out, const acb_t z, long prec) const {
   acb_t v;
   acb_init(v);

@@ -86,6 +86,14 @@ class LocalPoly {
   /// \post v contains p(t) / (t - gamma) for every t in z (may be infinite).
   void eval_deflated(acb_t v, const acb_t z, const RealAlgebraic& gamma, long prec) const;
 
+  /// UNCERTIFIED: p(t), p'(t), p''(t) in IEEE double (outputs may be null),
+  /// by Horner on the midpoints of the local expansion around t (no
+  /// power-basis cancellation, so about 15 digits relative to p's size near
+  /// t). For floating-point search only (the optimiser's choice of
+  /// breakpoints), never for a reported number. t outside [0, 1] uses the
+  /// power basis.
+  void eval_double(double t, double* v, double* d1, double* d2) const;
+
   const Poly& poly() const { return p_; }
   long length() const { return p_.degree() + 1; }
 

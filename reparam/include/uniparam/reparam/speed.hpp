@@ -86,6 +86,10 @@ class Speed {
   /// analytic wherever the curve has no pole and, for the angular speed,
   /// p'(z) . p'(z) != 0).
   void eval_squared(acb_t out, const acb_t z, long prec) const;
+  /// UNCERTIFIED: sigma(t)^2 in IEEE double from the components' local
+  /// expansions (LocalPoly::eval_double). For floating-point search only
+  /// (the optimiser's breakpoints); NaN or inf where p'(t) = 0 (cusps).
+  double squared_double(double t) const;
   /// out = sigma(z)^2 / (side * (z - gamma))^power for a zero (gamma, mu) of
   /// sigma and 0 <= power <= 2 mu; side = +1 when the zero is the left end of
   /// the piece (z > gamma), -1 when it is the right end. The removable
