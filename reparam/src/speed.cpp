@@ -233,15 +233,13 @@ void Speed::eval(acb_t out, const acb_t z, const PieceSigns& p, bool analytic, l
   acb_t S, F;
   acb_init(S);
   acb_init(F);
-  // Space curves, angular speed, on a wide ball: F = |p' x p''|^2 from the
-  // components is a difference of products, overestimated on wide balls far
-  // beyond the true range (and then sqrt(F) is not certified analytic); the
-  // factored form g sqrt(sum K^2) / D is tight there.
-  if (kind_ == SpeedKind::Angular && comp_.size() > 2 && is_wide_ball(z)) acb_indeterminate(out);
-  else eval_components(S, F, z, prec);
-  if (kind_ == SpeedKind::Angular && comp_.size() > 2 && is_wide_ball(z)) {
-    // out stays indeterminate: the factored form below
-  } else if (kind_ == SpeedKind::Angular) {
+  // From the components first (low degree: cheap); where that is not
+  // finite (space curves on wide balls: F = |p' x p''|^2 is a difference of
+  // products whose enclosure may reach 0, so sqrt(F) is not certified
+  // analytic; or the branch point near a zero of sigma), the factored form
+  // g sqrt(sum K^2) / D below, tight but of degree ~4x higher.
+  eval_components(S, F, z, prec);
+  if (kind_ == SpeedKind::Angular) {
     if (comp_.size() == 2) {
       acb_div(out, F, S, prec);  // E / S: no square root in the plane
       if (p.component < 0) acb_neg(out, out);
