@@ -94,7 +94,7 @@ void ball_radius(mag_t r, const acb_t z) { mag_hypot(r, arb_radref(acb_realref(z
 // Polynomials of at most this length are evaluated in the power basis: the
 // cells cost more than they save (and low degrees lose little to
 // cancellation).
-constexpr long kMinLength = 10;
+constexpr long kMinLength = 3;
 // Cells up to this level are computed by an exact integer Taylor shift;
 // deeper ones from their parent's (truncated) expansion by a ball shift.
 constexpr int kExactLevel = 6;
@@ -257,6 +257,33 @@ struct LocalPoly::Cache {
   long last_prec = 0;
   // fallback for p / (t - roots[i]): the deflated power basis, per (i, prec)
   std::map<std::pair<int, long>, BallPoly> deflated;
+  // scratch for the powers of w (no allocation per evaluation)
+  arb_ptr rpow = nullptr;
+  acb_ptr cpow = nullptr;
+  slong rcap = 0, ccap = 0;
+  Cache() = default;
+  Cache(const Cache&) = delete;
+  Cache& operator=(const Cache&) = delete;
+  ~Cache() {
+    if (rpow) _arb_vec_clear(rpow, rcap);
+    if (cpow) _acb_vec_clear(cpow, ccap);
+  }
+  arb_ptr real_powers(slong n) {
+    if (n > rcap) {
+      if (rpow) _arb_vec_clear(rpow, rcap);
+      rcap = std::max(n, 2 * rcap);
+      rpow = _arb_vec_init(rcap);
+    }
+    return rpow;
+  }
+  acb_ptr complex_powers(slong n) {
+    if (n > ccap) {
+      if (cpow) _acb_vec_clear(cpow, ccap);
+      ccap = std::max(n, 2 * ccap);
+      cpow = _acb_vec_init(ccap);
+    }
+    return cpow;
+  }
 };
 
 LocalPoly::LocalPoly() = default;
@@ -458,7 +485,7 @@ bool LocalPoly::eval_cells(int variant, acb_t v, acb_t d1, acb_t d2, const acb_t
   acb_ptr outs[3] = {v, d1, d2};
   const slong K = std::max<slong>(arb_poly_length(cell->P), 1);
   if (acb_is_real(w)) {
-    arb_ptr pw = _arb_vec_init(K);
+    arb_ptr pw = cache.real_powers(K);
     arb_one(pw);
     for (slong k = 1; k < K; ++k) arb_mul(pw + k, pw + k - 1, acb_realref(w), prec);
     for (int j = 0; j <= 2; ++j) {
@@ -467,9 +494,8 @@ bool LocalPoly::eval_cells(int variant, acb_t v, acb_t d1, acb_t d2, const acb_t
       arb_zero(acb_imagref(outs[j]));
       acb_add_error_mag(outs[j], cell->tail + j);
     }
-    _arb_vec_clear(pw, K);
   } else {
-    acb_ptr pw = _acb_vec_init(K);
+    acb_ptr pw = cache.complex_powers(K);
     acb_one(pw);
     for (slong k = 1; k < K; ++k) acb_mul(pw + k, pw + k - 1, w, prec);
     // real coefficients: real and imaginary parts are two real dot products
@@ -482,7 +508,6 @@ bool LocalPoly::eval_cells(int variant, acb_t v, acb_t d1, acb_t d2, const acb_t
       arb_dot(acb_imagref(outs[j]), nullptr, 0, polys[j]->coeffs, 1, parts + 1, 2, len, prec);
       acb_add_error_mag(outs[j], cell->tail + j);
     }
-    _acb_vec_clear(pw, K);
   }
   acb_clear(w);
   return true;
