@@ -1,6 +1,6 @@
 // bench/probe.cpp -- runs one certified operation on one benchmark curve and
 // prints the result and the wall time (for profiling with perf / callgrind):
-//   uniparam_probe FAMILY DEGREE uniformity|radical|pieces3|target99 [DIGITS]
+//   uniparam_probe FAMILY DEGREE uniformity|radical|piecesN|target99 [DIGITS]
 #include "bench_curves.hpp"
 #include <chrono>
 #include <iostream>
@@ -12,7 +12,7 @@ int main(int argc, char** argv) {
   auto t0 = std::chrono::steady_clock::now();
   if (op == "uniformity") { auto r = uniparam::uniformity(c, uniparam::SpeedKind::Angular, o); std::cout << r.u.str(20) << " zeros " << r.zeros.size() << "\n"; }
   else if (op == "radical") { auto r = uniparam::radical(c, uniparam::SpeedKind::Angular, o); std::cout << r.u_after.str(20) << " pieces " << r.pieces() << "\n"; }
-  else if (op == "pieces3") { auto r = uniparam::reparam_c0(c, uniparam::SpeedKind::Angular, 3, o); std::cout << r.u_after.str(20) << "\n"; }
+  else if (op.rfind("pieces", 0) == 0) { auto r = uniparam::reparam_c0(c, uniparam::SpeedKind::Angular, atol(op.c_str() + 6), o); std::cout << r.u_after.str(20) << "\n"; }
   else { auto r = uniparam::reparam_c1(c, uniparam::SpeedKind::Angular, uniparam::Rational(99, 100), o); std::cout << r.u_after.str(20) << " pieces " << r.pieces() << (r.target.reached ? "" : " (target not reached)") << "\n"; }
   std::cout << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() << " s\n";
 }

@@ -14,7 +14,10 @@
 # 0.2), BENCH_OUT (results folder, default build/bench-results; results.csv
 # there feeds scripts/plot-scaling). BENCH_REPORT_ONLY=1 prints the table of
 # the results already in BENCH_OUT without running anything. The double column is the UNCERTIFIED
-# baseline of bench/float_baseline.hpp.
+# baseline of bench/float_baseline.hpp. BENCH_PIECES="3 10 30 100 300" (default: unset, skipped)
+# adds a second table: reparam --pieces N on bez-plane degree 50 at 15 digits, time and peak
+# memory against N (build/bench/uniparam_probe under /usr/bin/time), to show that nothing grows
+# quadratically with the number of breakpoints.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD=${BUILD:-build}
@@ -110,3 +113,19 @@ for f in fams:
                 csv.append(f'{f},{d},{op},{dg},{cs},{fs},{dig.split(" ")[0] if dig else ""},{mem.split(" ")[0] if mem else ""}')
 open(os.path.join(out, 'results.csv'), 'w').write('\n'.join(csv) + '\n')
 PY
+
+if [[ -n ${BENCH_PIECES:-} ]]; then
+  cmake --build "$BUILD" -j2 --target uniparam_probe >/dev/null
+  echo
+  echo '| pieces N | certified u after | time | memory (peak RSS) |'
+  echo '|---|---|---|---|'
+  for n in $BENCH_PIECES; do
+    if res=$(timeout "$TIMEOUT" /usr/bin/time -f '%e %M' "$BUILD/bench/uniparam_probe" bez-plane 50 "pieces$n" 2>&1); then
+      u=$(echo "$res" | head -1 | cut -d' ' -f1-3)
+      read -r secs kb <<<"$(echo "$res" | tail -1)"
+      echo "| $n | $u | $secs s | $((kb / 1024)) MB |"
+    else
+      echo "| $n | timeout (> $TIMEOUT s) | | |"
+    fi
+  done
+fi
