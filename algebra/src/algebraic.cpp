@@ -106,30 +106,44 @@ void RealAlgebraic::refine(long bits) const {
 
 Ball RealAlgebraic::to_ball(long prec) const {
   if (prec < 1) prec = 1;
-  if (prec <= ball_prec_) return ball_;  // meets every smaller precision too
-  for (long extra = 4; extra <= kMaxBits; extra *= 2) {
-    Ball b;
-    if (is_rational()) {
-      b = Ball(lo_, prec + extra);
-    } else {
-      refine(prec + extra);
-      b = detail::interval_ball(lo_, hi_, prec + 2 * extra + 16);
+  if (prec == ball_prec_) return ball_;
+  Ball b;
+  if (is_rational()) {
+    b = Ball(lo_, prec + 4);
+  } else {
+    // Canonical: the ball of the grid cell [k, k + 1] 2^-p holding x, with
+    // p = prec + 1 and k = floor(x 2^p) decided exactly, so the enclosure
+    // depends on (x, prec) alone, never on earlier refinements (results do
+    // not depend on the order of evaluations, e.g. on threads).
+    // Radius 2^-(prec + 2) <= 2^-prec max(1, |x|).
+    const long p = prec + 1;
+    refine(p + 2);
+    fmpz_t klo, khi;
+    fmpz_init(klo);
+    fmpz_init(khi);
+    Rational t = lo_ * detail::pow2(p);
+    fmpz_fdiv_q(klo, fmpq_numref(t.get()), fmpq_denref(t.get()));
+    t = hi_ * detail::pow2(p);
+    fmpz_fdiv_q(khi, fmpq_numref(t.get()), fmpq_denref(t.get()));
+    if (!fmpz_equal(klo, khi)) {
+      // hi - lo <= 2^-(p+2): one grid point g = khi 2^-p in (lo, hi]
+      Integer kh;
+      fmpz_set(kh.get(), khi);
+      const Rational g = Rational(kh) * detail::pow2(-p);
+      if (compare_rational(*this, g) >= 0) fmpz_set(klo, khi);
     }
-    // Check the contract rad <= 2^-prec * max(1, |x|) on the ball itself.
-    mag_t bound;
-    mag_init(bound);
-    arb_get_mag_lower(bound, b.get());
-    if (mag_cmp_2exp_si(bound, 0) < 0) mag_one(bound);
-    mag_mul_2exp_si(bound, bound, -prec);
-    const bool ok = mag_cmp(arb_radref(b.get()), bound) <= 0;
-    mag_clear(bound);
-    if (ok) {
-      ball_ = b;
-      ball_prec_ = prec;
-      return b;
-    }
+    // midpoint (2k + 1) 2^-(p+1), radius 2^-(p+1)
+    fmpz_mul_2exp(klo, klo, 1);
+    fmpz_add_ui(klo, klo, 1);
+    arb_set_fmpz(b.get(), klo);
+    arb_mul_2exp_si(b.get(), b.get(), -(p + 1));
+    mag_set_ui_2exp_si(arb_radref(b.get()), 1, -(p + 1));
+    fmpz_clear(klo);
+    fmpz_clear(khi);
   }
-  throw BudgetExceeded("could not enclose " + str() + " to " + std::to_string(prec) + " bits");
+  ball_ = b;
+  ball_prec_ = prec;
+  return b;
 }
 
 int RealAlgebraic::sign() const {

@@ -100,7 +100,7 @@ constexpr long kMinLength = 3;
 constexpr int kExactLevel = 6;
 // Finest level (cells of width 2^-40).
 constexpr int kMaxLevel = 40;
-// Level of the cells for narrow balls when no wide ball was evaluated yet.
+// Level of the cells for narrow balls (quadrature nodes): 64 cells on [0, 1].
 constexpr int kPointLevel = 6;
 // Extra bits of the cells' working precision over the caller's: deep cells
 // are shifted from their parents, which costs a few bits per level.
@@ -253,8 +253,6 @@ void truncate(Cell& cell, long wp) {
 struct LocalPoly::Cache {
   std::unordered_map<CellKey, std::unique_ptr<Cell>, CellKeyHash> cells;
   std::vector<RealAlgebraic> roots;  // variant i >= 0 expands p / (t - roots[i])
-  std::vector<const Cell*> last;     // per variant + 1: the cell of the last wide ball
-  long last_prec = 0;
   // fallback for p / (t - roots[i]): the deflated power basis, per (i, prec)
   std::map<std::pair<int, long>, BallPoly> deflated;
   // scratch for the powers of w (no allocation per evaluation)
@@ -426,51 +424,37 @@ unsigned long long cell_index(const arf_t x, int level) {
 bool LocalPoly::eval_cells(int variant, acb_t v, acb_t d1, acb_t d2, const acb_t z, long prec) const {
   if (!cache_) cache_ = std::make_unique<Cache>();
   Cache& cache = *cache_;
-  if (cache.cells.size() >= kMaxCells) {  // bounded memory: start again
-    cache.cells.clear();
-    cache.last.clear();
-  }
+  if (cache.cells.size() >= kMaxCells) cache.cells.clear();  // bounded memory: start again
   // Cells are shared by every caller whose precision rounds to the same
   // number of limbs (the quadrature's attempts, the optimiser, ...).
   const long wp = (prec + kGuardBits + FLINT_BITS - 1) / FLINT_BITS * FLINT_BITS;
-  if (cache.last_prec != wp) {
-    cache.last.clear();
-    cache.last_prec = wp;
-  }
-  const std::size_t slot = static_cast<std::size_t>(variant + 1);
-  if (cache.last.size() <= slot) cache.last.resize(slot + 1, nullptr);
   acb_t w;
   acb_init(w);
   const bool wide = is_wide_ball(z);
   const Cell* cell = nullptr;
-  if (!wide && cache.last[slot] && in_disc(w, *cache.last[slot], z, prec)) {
-    cell = cache.last[slot];  // a node of the last wide ball's subinterval
-  } else {
-    int level;
-    if (wide) {
-      // The deepest level whose disc |t - c| <= 2h holds z for any c within h
-      // of Re(mid z): h = 2^-(level+1) >= rad(z) + |Im(mid z)| =: s; as
-      // s < 2^e with e = MAG_EXP(s), level = -e - 1 will do.
-      mag_t s;
-      mag_init(s);
-      ball_radius(s, z);
-      mag_t im;
-      mag_init(im);
-      arf_get_mag(im, arb_midref(acb_imagref(z)));
-      mag_add(s, s, im);
-      mag_clear(im);
-      const long lv = mag_is_zero(s) ? kMaxLevel : -fmpz_get_si(MAG_EXPREF(s)) - 1;
-      mag_clear(s);
-      level = static_cast<int>(std::min<long>(std::max<long>(lv, 0), kMaxLevel));
-    } else {
-      level = cache.last[slot] ? cache.last[slot]->level : kPointLevel;
-    }
-    for (; level >= 0 && !cell; --level) {
-      const Cell& c =
-          get_cell(cache.cells, p_, cache.roots, variant, wp, level, cell_index(arb_midref(acb_realref(z)), level));
-      if (in_disc(w, c, z, prec)) cell = &c;
-    }
-    if (cell && wide) cache.last[slot] = cell;
+  // The cell depends on z alone (never on what was evaluated before), so
+  // results do not depend on the order of evaluations or on threads.
+  int level = kPointLevel;
+  if (wide) {
+    // The deepest level whose disc |t - c| <= 2h holds z for any c within h
+    // of Re(mid z): h = 2^-(level+1) >= rad(z) + |Im(mid z)| =: s; as
+    // s < 2^e with e = MAG_EXP(s), level = -e - 1 will do.
+    mag_t s;
+    mag_init(s);
+    ball_radius(s, z);
+    mag_t im;
+    mag_init(im);
+    arf_get_mag(im, arb_midref(acb_imagref(z)));
+    mag_add(s, s, im);
+    mag_clear(im);
+    const long lv = mag_is_zero(s) ? kMaxLevel : -fmpz_get_si(MAG_EXPREF(s)) - 1;
+    mag_clear(s);
+    level = static_cast<int>(std::min<long>(std::max<long>(lv, 0), kMaxLevel));
+  }
+  for (; level >= 0 && !cell; --level) {
+    const Cell& c =
+        get_cell(cache.cells, p_, cache.roots, variant, wp, level, cell_index(arb_midref(acb_realref(z)), level));
+    if (in_disc(w, c, z, prec)) cell = &c;
   }
   if (!cell) {
     acb_clear(w);
@@ -526,10 +510,7 @@ void LocalPoly::eval_double(double t, double* v, double* d1, double* d2) const {
   } else {
     if (!cache_) cache_ = std::make_unique<Cache>();
     Cache& cache = *cache_;
-    if (cache.cells.size() >= kMaxCells) {
-      cache.cells.clear();
-      cache.last.clear();
-    }
+    if (cache.cells.size() >= kMaxCells) cache.cells.clear();
     // 64 + guard bits: the same cells as a 64-bit certified evaluation.
     const long wp = (64 + kGuardBits + FLINT_BITS - 1) / FLINT_BITS * FLINT_BITS;
     arf_t x;

@@ -14,11 +14,6 @@ using Clock = std::chrono::steady_clock;
 
 /// The deadline in force in this thread, and the length of the budget that
 /// set it (for the message).
-struct Deadline {
-  bool active = false;
-  Clock::time_point at{};
-  double seconds = 0.0;
-};
 thread_local Deadline g_deadline;
 
 std::string seconds_text(double s) {
@@ -56,5 +51,11 @@ void check_time_budget() {
 }
 
 bool has_time_budget() { return g_deadline.active; }
+
+Deadline current_deadline() { return g_deadline; }
+
+ScopedDeadline::ScopedDeadline(const Deadline& d) : prev_(g_deadline) { g_deadline = d; }
+
+ScopedDeadline::~ScopedDeadline() { g_deadline = prev_; }
 
 }  // namespace uniparam

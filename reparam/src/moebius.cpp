@@ -159,11 +159,10 @@ MoebiusResult moebius_c0(const Speed& s, const UniformityResult& base, const std
   for (long bits = digits_to_bits(opt.digits) + 8;; bits += 32) {
     check_time_budget();
     const long prec = 2 * bits + 64;
-    r.integrals.clear();
+    r.integrals = all_piece_integrals(s, r.T, bits, opt.max_prec);
     std::vector<Ball> sqrtM(N);
     Ball sum(0);
     for (std::size_t i = 0; i < N; ++i) {
-      r.integrals.push_back(piece_integrals(s, r.T[i], r.T[i + 1], bits, opt.max_prec));
       arb_sqrt(sqrtM[i].get(), r.integrals[i].M.get(), prec);
       arb_add(sum.get(), sum.get(), sqrtM[i].get(), prec);
     }
@@ -211,11 +210,12 @@ Ball phi_of(const MoebiusResult& r, long prec) {
 }
 
 Ball certified_phi(const Speed& s, const std::vector<RealAlgebraic>& T, long bits, long max_prec) {
-  std::vector<Breakpoint> bp = mark_zeros(s, T);
+  // Phi of the Moebius pieces: every piece integrated as if free of zeros
+  // (sigma^2 is analytic on each; no radical substitution here).
+  std::vector<Breakpoint> bp;
+  for (const auto& b : mark_zeros(s, T)) bp.push_back(Breakpoint{b.t, 0, 0, 0});
   Ball phi(0);
-  for (std::size_t i = 0; i + 1 < bp.size(); ++i) {
-    const PieceIntegrals p =
-        piece_integrals(s, Breakpoint{bp[i].t, 0, 0, 0}, Breakpoint{bp[i + 1].t, 0, 0, 0}, bits, max_prec);
+  for (const PieceIntegrals& p : all_piece_integrals(s, bp, bits, max_prec)) {
     Ball q;
     arb_sqrtpos(q.get(), p.M.get(), 2 * bits + 64);
     arb_add(phi.get(), phi.get(), q.get(), 2 * bits + 64);

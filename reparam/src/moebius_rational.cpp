@@ -79,9 +79,7 @@ MoebiusResult make_rational(const Curve& c, const MoebiusResult& in, long ration
 
   for (long bits = digits_to_bits(opt.digits) + 8;; bits += 32) {
     const long prec = 2 * bits + 64;
-    r.integrals.clear();
-    for (std::size_t i = 0; i < N; ++i)
-      r.integrals.push_back(piece_integrals(s, r.T[i], r.T[i + 1], bits, opt.max_prec));
+    r.integrals = all_piece_integrals(s, r.T, bits, opt.max_prec);
     std::vector<Rational> k(N);
     if (in.continuity == Continuity::C0) {
       for (std::size_t i = 0; i < N; ++i) {

@@ -8,6 +8,7 @@
 #include "uniparam/algebra/quadrature.hpp"
 #include "uniparam/algebra/real_roots.hpp"
 #include "uniparam/core/error.hpp"
+#include "uniparam/core/parallel.hpp"
 
 namespace uniparam {
 
@@ -215,6 +216,26 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
   arb_add_ui(t.get(), t.get(), 1, prec);
   arb_inv(r.alpha.get(), t.get(), prec);
   return r;
+}
+
+std::vector<PieceIntegrals> all_piece_integrals(const Speed& s, const std::vector<Breakpoint>& T,
+                                                long rel_goal_bits, long max_prec) {
+  if (T.size() < 2) throw InvalidArgument("all_piece_integrals: needs at least two breakpoints");
+  const std::size_t n = T.size() - 1;
+  std::vector<PieceIntegrals> out(n);
+  const std::size_t workers = std::min(worker_count(), n);
+  std::vector<Speed> speeds;
+  std::vector<std::vector<Breakpoint>> ends;
+  for (std::size_t w = 1; w < workers; ++w) {
+    speeds.push_back(s);
+    ends.push_back(T);
+  }
+  parallel_for(n, workers, [&](std::size_t w, std::size_t i) {
+    const Speed& sw = w == 0 ? s : speeds[w - 1];
+    const std::vector<Breakpoint>& tw = w == 0 ? T : ends[w - 1];
+    out[i] = piece_integrals(sw, tw[i], tw[i + 1], rel_goal_bits, max_prec);
+  });
+  return out;
 }
 
 }  // namespace uniparam

@@ -64,11 +64,10 @@ RadicalResult radical(const Curve& c, SpeedKind kind, const Options& opt) {
   for (long bits = digits_to_bits(opt.digits) + 8;; bits += 32) {
     check_time_budget();
     const long prec = 2 * bits + 64;
-    r.integrals.clear();
+    r.integrals = all_piece_integrals(s, r.T, bits, opt.max_prec);
     std::vector<Ball> sqrtL(N), sqrtM(N);
     Ball sumL(0), sumM(0);
     for (std::size_t i = 0; i < N; ++i) {
-      r.integrals.push_back(piece_integrals(s, r.T[i], r.T[i + 1], bits, opt.max_prec));
       arb_sqrt(sqrtL[i].get(), r.integrals[i].L.get(), prec);
       arb_sqrt(sqrtM[i].get(), r.integrals[i].M.get(), prec);
       arb_add(sumL.get(), sumL.get(), sqrtL[i].get(), prec);

@@ -1,10 +1,13 @@
 #include "uniparam/reparam/uniformity.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "uniparam/algebra/quadrature.hpp"
 #include "uniparam/core/budget.hpp"
 #include "uniparam/core/error.hpp"
+#include "uniparam/core/parallel.hpp"
 
 namespace uniparam {
 
@@ -19,25 +22,40 @@ void validate(const Options& o) {
 
 long digits_to_bits(long digits) { return static_cast<long>(std::ceil(digits * 3.3219280948873623)) + 8; }
 
-Ball integrate_speed(const Speed& s, const RealAlgebraic& a, const RealAlgebraic& b, long rel_goal_bits,
-                     long max_prec) {
-  Ball total(0);
-  if (s.identically_zero() || a == b) return total;
-  // Piece ends: a, the zeros of sigma strictly inside (a, b), b.
+namespace {
+
+// The integral of sigma over one piece [a, b] free of zeros of sigma inside.
+Ball integrate_speed_piece(const Speed& s, const RealAlgebraic& a, const RealAlgebraic& b, long rel_goal_bits,
+                           long max_prec) {
+  const Speed::PieceSigns sign = s.piece_signs(a, b);
+  Integrand f = [&s, sign](acb_t out, const acb_t z, bool analytic, long prec) {
+    s.eval(out, z, sign, analytic, prec);
+  };
+  QuadratureOptions qo;
+  qo.rel_goal_bits = rel_goal_bits;
+  qo.max_prec = max_prec;
+  qo.what = "the integral of the " + to_string(s.kind()) + " speed";
+  return integrate(f, a, b, qo);
+}
+
+// a, the zeros of sigma strictly inside (a, b), b.
+std::vector<RealAlgebraic> speed_piece_ends(const Speed& s, const RealAlgebraic& a, const RealAlgebraic& b) {
   std::vector<RealAlgebraic> ends{a};
   for (const auto& z : s.zeros())
     if (a < z.t && z.t < b) ends.push_back(z.t);
   ends.push_back(b);
+  return ends;
+}
+
+}  // namespace
+
+Ball integrate_speed(const Speed& s, const RealAlgebraic& a, const RealAlgebraic& b, long rel_goal_bits,
+                     long max_prec) {
+  Ball total(0);
+  if (s.identically_zero() || a == b) return total;
+  const std::vector<RealAlgebraic> ends = speed_piece_ends(s, a, b);
   for (std::size_t i = 0; i + 1 < ends.size(); ++i) {
-    const Speed::PieceSigns sign = s.piece_signs(ends[i], ends[i + 1]);
-    Integrand f = [&s, sign](acb_t out, const acb_t z, bool analytic, long prec) {
-      s.eval(out, z, sign, analytic, prec);
-    };
-    QuadratureOptions qo;
-    qo.rel_goal_bits = rel_goal_bits;
-    qo.max_prec = max_prec;
-    qo.what = "the integral of the " + to_string(s.kind()) + " speed";
-    Ball piece = integrate(f, ends[i], ends[i + 1], qo);
+    Ball piece = integrate_speed_piece(s, ends[i], ends[i + 1], rel_goal_bits, max_prec);
     arb_add(total.get(), total.get(), piece.get(), 2 * rel_goal_bits + 64);
   }
   return total;
@@ -89,8 +107,24 @@ UniformityResult uniformity(const Speed& s, const Options& opt) {
   // Each integral to relative accuracy 2^-bits gives u to about 4 * 2^-bits.
   for (long bits = digits_to_bits(opt.digits); ; bits += 32) {
     check_time_budget();
-    r.mu = integrate_speed(s, zero, one, bits, opt.max_prec);
-    r.mean_square = integrate_speed_squared(s, zero, one, bits, opt.max_prec);
+    // The pieces of mu and the integral of sigma^2 are independent: spread
+    // over worker threads, each extra worker with its own copies of the
+    // speed and the ends (both keep mutable caches), made before any starts.
+    const std::vector<RealAlgebraic> ends = speed_piece_ends(s, zero, one);
+    const std::size_t pieces = ends.size() - 1, tasks = pieces + 1;
+    const std::size_t workers = std::min(worker_count(), tasks);
+    std::vector<Speed> speeds(workers > 1 ? workers - 1 : 0, s);
+    std::vector<std::vector<RealAlgebraic>> ends_copies(speeds.size(), ends);
+    std::vector<Ball> parts(tasks);
+    parallel_for(tasks, workers, [&](std::size_t w, std::size_t i) {
+      const Speed& sw = w == 0 ? s : speeds[w - 1];
+      const std::vector<RealAlgebraic>& ew = w == 0 ? ends : ends_copies[w - 1];
+      parts[i] = i < pieces ? integrate_speed_piece(sw, ew[i], ew[i + 1], bits, opt.max_prec)
+                            : integrate_speed_squared(sw, ew.front(), ew.back(), bits, opt.max_prec);
+    });
+    r.mu = Ball(0);
+    for (std::size_t i = 0; i < pieces; ++i) arb_add(r.mu.get(), r.mu.get(), parts[i].get(), 2 * bits + 64);
+    r.mean_square = parts[pieces];
     const long prec = 2 * bits + 64;
     arb_mul(r.u.get(), r.mu.get(), r.mu.get(), prec);
     arb_div(r.u.get(), r.u.get(), r.mean_square.get(), prec);

@@ -41,7 +41,10 @@ class RealAlgebraic {
   /// Shrinks the interval until hi - lo <= 2^-bits (no-op for rationals).
   void refine(long bits) const;
   /// Ball containing the number with radius <= 2^-prec * max(1, |x|).
-  /// Memoised: a request at or below the last precision costs a copy.
+  /// Canonical: a function of (x, prec) alone, whatever was refined before
+  /// (irrational x: the dyadic cell [k, k + 1] 2^-(prec+1) holding x, k
+  /// decided exactly), so computations do not depend on evaluation order.
+  /// Memoised for the last precision asked.
   Ball to_ball(long prec) const;
   /// Exact sign.
   int sign() const;
@@ -56,9 +59,8 @@ class RealAlgebraic {
  private:
   Poly poly_;
   mutable Rational lo_, hi_;
-  // The last enclosure handed out and the precision it meets. The number never
-  // changes, so it stays valid; integrands ask for the same precision many
-  // thousand times per quadrature.
+  // The last enclosure handed out and its precision (integrands ask for the
+  // same precision many thousand times per quadrature).
   mutable Ball ball_;
   mutable long ball_prec_ = -1;
 };

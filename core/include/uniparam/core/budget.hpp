@@ -44,4 +44,27 @@ void check_time_budget();
 /// True when a TimeBudget is in force in the calling thread.
 bool has_time_budget();
 
+/// The calling thread's deadline (inactive when no budget is in force), to
+/// hand to the worker threads it starts.
+struct Deadline {
+  bool active = false;
+  std::chrono::steady_clock::time_point at{};
+  double seconds = 0.0;  ///< length of the budget that set it (for messages)
+};
+Deadline current_deadline();
+
+/// Installs `d` as the calling thread's deadline for the scope's lifetime
+/// (a worker thread inheriting its parent's budget); the previous one is
+/// restored at destruction.
+class ScopedDeadline {
+ public:
+  explicit ScopedDeadline(const Deadline& d);
+  ~ScopedDeadline();
+  ScopedDeadline(const ScopedDeadline&) = delete;
+  ScopedDeadline& operator=(const ScopedDeadline&) = delete;
+
+ private:
+  Deadline prev_;
+};
+
 }  // namespace uniparam

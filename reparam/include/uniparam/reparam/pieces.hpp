@@ -55,4 +55,14 @@ struct PieceIntegrals {
 PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakpoint& b, long rel_goal_bits,
                                long max_prec);
 
+/// piece_integrals of every piece [T_i, T_i+1] of T (size >= 2, else
+/// InvalidArgument), the pieces spread over worker_count() threads
+/// (core/parallel.hpp; UNIPARAM_THREADS=1 for one thread). Each extra worker
+/// gets its own copy of s and T, made before any thread starts (both keep
+/// mutable caches), so s and T are only touched by the calling thread.
+/// \post out[i] is exactly what piece_integrals(s, T[i], T[i+1], ...) gives;
+///       the first exception of any piece is rethrown.
+std::vector<PieceIntegrals> all_piece_integrals(const Speed& s, const std::vector<Breakpoint>& T,
+                                                long rel_goal_bits, long max_prec);
+
 }  // namespace uniparam
