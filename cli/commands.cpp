@@ -69,6 +69,8 @@ std::vector<OptionSpec> common_options() {
       {"max-length", "N", "largest length of CURVE in characters", "1048576"},
       {"max-depth", "N", "deepest nesting of parentheses, signs and powers in CURVE", "500"},
       {"timeout", "SECONDS", "wall-clock time limit of the whole command", kDefaultTimeout},
+      {"threads", "N", "worker threads for independent pieces (default: UNIPARAM_THREADS, else the cores, at most 8)",
+       ""},
       {"control", "POINTS", "the curve as Bezier control points \"[[x0,y0],[x1,y1],...]\" (instead of CURVE)", ""},
       {"weights", "LIST", "weights \"[w0,w1,...]\" of a rational Bezier curve (with --control; positive)", ""},
   };
@@ -140,6 +142,11 @@ int run_command(const Command& c, int argc, char** argv, bool watchdog) {
   const Args a = parse_args(c.spec, argc, argv, 2);
   if (a.help) return c.run(argc, argv);
   const double seconds = read_timeout(a);
+  if (a.has("threads")) {
+    // Every parallel loop reads UNIPARAM_THREADS (core/parallel.hpp).
+    const long n = a.get_long("threads", 1, 1, 64);
+    setenv("UNIPARAM_THREADS", std::to_string(n).c_str(), 1);
+  }
   const TimeBudget budget(seconds);
   if (!watchdog) return c.run(argc, argv);
   const Watchdog backstop(seconds, c.spec.name);
