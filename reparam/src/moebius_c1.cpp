@@ -1,11 +1,18 @@
 // reparam/src/moebius_c1.cpp -- ImUp's ReparameterizationU: a C1 piecewise
 // Moebius map refined until a target uniformity (MATH.md section 3).
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "float_quadrature.hpp"
 #include "moebius_detail.hpp"
+#include "uniparam/algebra/local_poly.hpp"
 #include "uniparam/algebra/real_roots.hpp"
+#include "uniparam/core/budget.hpp"
 #include "uniparam/core/error.hpp"
 #include "uniparam/reparam/moebius.hpp"
 
@@ -96,12 +103,12 @@ struct Built {
 
 // The C1 map for breakpoints T: S from int sigma / mu, alpha from the C1
 // condition (optimal free parameter), certified to `digits` digits (checked
-// on u, S and alpha) or, with digits == 0, to about 40 bits (a draft to steer
-// the refinement).
+// on u, S and alpha).
 Built build(const Speed& s, const UniformityResult& base, const std::vector<RealAlgebraic>& T, long digits,
             const Options& opt) {
   const std::size_t N = T.size() - 1;
-  for (long bits = digits > 0 ? digits_to_bits(digits) + 8 : 40;; bits += 32) {
+  for (long bits = digits_to_bits(digits) + 8;; bits += 32) {
+    check_time_budget();
     const long prec = 2 * bits + 64;
     Built b;
     MoebiusResult& r = b.r;
@@ -132,7 +139,6 @@ Built build(const Speed& s, const UniformityResult& base, const std::vector<Real
     b.d = detail::c1_from_pieces(T, r.S, r.integrals, base.mu, prec);
     r.alpha = b.d.alpha;
     r.u_after = b.d.u;
-    if (digits == 0) return b;
     const long d = digits + 1;
     bool ok = r.u_after.meets_digits(d);
     for (const auto& x : r.S) ok = ok && x.meets_digits(d);
@@ -145,44 +151,343 @@ Built build(const Speed& s, const UniformityResult& base, const std::vector<Real
   }
 }
 
+// ---- The UNCERTIFIED floating-point draft that steers the refinement ----
+// Every refinement round needs the C1 map of the current T only to choose the
+// next T (and to decide when to try a certification): the same formulas as
+// build() and c1_from_pieces, in IEEE double from double-precision quadrature.
+// Nothing computed here is reported; reparam_c1 certifies the chosen T with
+// build() and decides target.reached from that certified map only.
+
+constexpr int kGL = 20;
+
+struct GaussLegendre {
+  std::array<double, kGL> x{}, w{};
+  GaussLegendre() {
+    for (int i = 0; i < kGL; ++i) {
+      double z = std::cos(M_PI * (i + 0.75) / (kGL + 0.5)), dp = 0;
+      for (int it = 0; it < 100; ++it) {
+        double p0 = 1, p1 = z;
+        for (int k = 2; k <= kGL; ++k) {
+          const double p2 = ((2.0 * k - 1) * z * p1 - (k - 1.0) * p0) / k;
+          p0 = p1;
+          p1 = p2;
+        }
+        dp = kGL * (z * p1 - p0) / (z * z - 1);
+        const double dz = p1 / dp;
+        z -= dz;
+        if (std::fabs(dz) < 1e-16) break;
+      }
+      x[i] = z;
+      w[i] = 2 / ((1 - z * z) * dp * dp);
+    }
+  }
+};
+
+const GaussLegendre& gauss_legendre() {
+  static const GaussLegendre g;
+  return g;
+}
+
+// Over a piece [a, a + h]: int sigma^2 (1-t~)^2, 2 t~ (1-t~), t~^2 and int sigma,
+// all over dt (uncertified).
+struct FloatPiece {
+  double A = 0, B = 0, C = 0, len = 0;
+};
+
+FloatPiece operator+(const FloatPiece& x, const FloatPiece& y) {
+  return FloatPiece{x.A + y.A, x.B + y.B, x.C + y.C, x.len + y.len};
+}
+
+FloatPiece panel(const Speed& s, double a, double h, double l, double r) {
+  const GaussLegendre& g = gauss_legendre();
+  FloatPiece out;
+  const double m = (l + r) / 2, k = (r - l) / 2;
+  for (int i = 0; i < kGL; ++i) {
+    const double t = m + k * g.x[i], u = (t - a) / h, s2 = detail::sigma2_double(s, t), f = s2 * g.w[i] * k;
+    out.A += f * (1 - u) * (1 - u);
+    out.B += f * 2 * u * (1 - u);
+    out.C += f * u * u;
+    out.len += std::sqrt(s2) * g.w[i] * k;
+  }
+  return out;
+}
+
+// Adaptive bisection until both the sigma^2 moments and the length of [l, r]
+// change by at most 1e-13 of the piece's first estimates. sigma is smooth on
+// [l, r] (zeros of sigma, where |g| has a kink, are panel ends).
+FloatPiece adapt(const Speed& s, double a, double h, double l, double r, const FloatPiece& whole,
+                 double scale2, double scale1, int depth) {
+  const double m = (l + r) / 2;
+  const FloatPiece left = panel(s, a, h, l, m), right = panel(s, a, h, m, r), both = left + right;
+  const double d2 = std::fabs(both.A - whole.A) + std::fabs(both.B - whole.B) + std::fabs(both.C - whole.C);
+  const double d1 = std::fabs(both.len - whole.len);
+  if (depth >= 30 || r - l < 1e-15 || (d2 <= 1e-13 * scale2 && d1 <= 1e-13 * scale1)) return both;
+  return adapt(s, a, h, l, m, left, scale2, scale1, depth + 1) + adapt(s, a, h, m, r, right, scale2, scale1, depth + 1);
+}
+
+double to_double(const RealAlgebraic& x) { return arf_get_d(arb_midref(x.to_ball(64).get()), ARF_RND_NEAR); }
+
+// Float integrals of the pieces of T, cached per pair of breakpoints: a
+// refinement round keeps most breakpoints, so most pieces are reused.
+class FloatPieces {
+ public:
+  explicit FloatPieces(const Speed& s) : s_(s) {
+    for (const auto& z : s.zeros()) zeros_.push_back(to_double(z.t));
+  }
+  const FloatPiece& get(double a, double b) {
+    const auto key = std::make_pair(a, b);
+    auto it = cache_.find(key);
+    if (it != cache_.end()) return it->second;
+    const double h = b - a;
+    FloatPiece total;
+    // split at the zeros of sigma inside (a, b): sigma = |g| ... is not smooth there
+    std::vector<double> ends{a};
+    for (double z : zeros_)
+      if (z > a && z < b) ends.push_back(z);
+    ends.push_back(b);
+    FloatPiece first;
+    for (std::size_t j = 0; j + 1 < ends.size(); ++j) first = first + panel(s_, a, h, ends[j], ends[j + 1]);
+    const double scale2 = std::fabs(first.A) + std::fabs(first.B) + std::fabs(first.C) + 1e-300;
+    const double scale1 = std::fabs(first.len) + 1e-300;
+    for (std::size_t j = 0; j + 1 < ends.size(); ++j) {
+      const FloatPiece w = panel(s_, a, h, ends[j], ends[j + 1]);
+      total = total + adapt(s_, a, h, ends[j], ends[j + 1], w, scale2, scale1, 0);
+    }
+    return cache_.emplace(key, total).first->second;
+  }
+
+ private:
+  const Speed& s_;
+  std::vector<double> zeros_;
+  std::map<std::pair<double, double>, FloatPiece> cache_;
+};
+
+// The draft C1 map of T (UNCERTIFIED, double): t, S, alpha, F and u, the same
+// quantities as build() / c1_from_pieces. u is NaN if the floating point
+// breaks down (then the draft counts as worst).
+struct Draft {
+  std::vector<double> t, S, alpha, F;
+  double u = std::nan("");
+};
+
+Draft draft_c1(FloatPieces& fp, const std::vector<RealAlgebraic>& T, double mu) {
+  const std::size_t N = T.size() - 1;
+  Draft d;
+  for (const auto& x : T) d.t.push_back(to_double(x));
+  d.t.front() = 0;
+  d.t.back() = 1;
+  std::vector<FloatPiece> I(N);
+  double total = 0;
+  for (std::size_t i = 0; i < N; ++i) {
+    I[i] = fp.get(d.t[i], d.t[i + 1]);
+    const double h = d.t[i + 1] - d.t[i];
+    I[i].A *= h;  // the PieceIntegrals convention: dt_i times the integrals over dt
+    I[i].B *= h;
+    I[i].C *= h;
+    total += I[i].len;
+  }
+  d.S.assign(1, 0.0);
+  double acc = 0;
+  for (std::size_t i = 0; i + 1 < N; ++i) {
+    acc += I[i].len;
+    d.S.push_back(acc / total);
+  }
+  d.S.push_back(1.0);
+  std::vector<double> rho(N), w(N), cc(N);
+  for (std::size_t i = 0; i < N; ++i) {
+    const double ds = d.S[i + 1] - d.S[i];
+    rho[i] = (d.t[i + 1] - d.t[i]) / ds;
+    w[i] = 1 / ds;
+  }
+  cc[0] = 1;
+  for (std::size_t i = 0; i + 1 < N; ++i) cc[i + 1] = rho[i] / (rho[i + 1] * cc[i]);
+  double P = 0, Q = 0;
+  for (std::size_t i = 0; i < N; ++i) {
+    const double ca = i % 2 == 0 ? cc[i] * I[i].A : I[i].C / cc[i];
+    const double cq = i % 2 == 0 ? I[i].C / cc[i] : cc[i] * I[i].A;
+    P += w[i] * ca;
+    Q += w[i] * cq;
+  }
+  const double x = std::sqrt(Q / P);
+  double sumF = 0;
+  for (std::size_t i = 0; i < N; ++i) {
+    const double k = i % 2 == 0 ? cc[i] * x : cc[i] / x;
+    d.alpha.push_back(1 / (k + 1));
+    d.F.push_back((k * I[i].A + I[i].B + I[i].C / k) * w[i]);
+    sumF += d.F.back();
+  }
+  d.u = mu * mu / sumF;
+  return d;
+}
+
+// A short rational within w of the double x.
+Rational rational_near(double x, const Rational& w) {
+  Ball b;
+  arb_set_d(b.get(), x);
+  const Rational m = mid_rational(b);
+  return Rational::simplest_between(m - w, m + w);
+}
+
 // A short rational in the ball x +- w (x a ball, w > 0 a rational width).
 Rational short_rational(const Ball& x, const Rational& w) {
   const Rational m = mid_rational(x);
   return Rational::simplest_between(m - w, m + w);
 }
 
-// New breakpoints of the slides' refinement: on each piece, the roots of
-//   sigma' dt [alpha t~ + (1 - alpha)(1 - t~)] - 2 sigma (1 - 2 alpha) = 0,
-// i.e. with sigma'/sigma = N1 / (2 g S D) and l(t) = dt [alpha t~ + (1-alpha)(1-t~)]
-// = (2 alpha - 1) t + (1 - alpha) b - alpha a:
-//   N1 l - 4 (1 - 2 alpha) g S D = 0.
-// The roots are choices (computed from rounded alpha and ends), not results.
-std::vector<RealAlgebraic> refine(const Poly& N1, const Poly& gSD,
-                                  const std::vector<RealAlgebraic>& T, const detail::C1Data& d) {
+// The slides' equation of one piece,
+//   F(t) = N1(t) l(t) - k2 gSD(t),  l(t) = c1 t + c0,
+// with sigma'/sigma = N1 / (2 g S D), l(t) = dt [alpha t~ + (1-alpha)(1-t~)]
+// = (2 alpha - 1) t + (1 - alpha) b - alpha a and k2 = 4 (1 - 2 alpha):
+// F = 0 iff sigma' dt [alpha t~ + (1 - alpha)(1 - t~)] - 2 sigma (1 - 2 alpha) = 0
+// where g S D != 0. Its roots are choices (the coefficients come from the
+// draft's alpha), found by certified subdivision in ball arithmetic: N1 and
+// gSD are evaluated (with derivatives) from their cached local expansions
+// (LocalPoly), an interval whose enclosure of F excludes 0 certainly has no
+// root, and one where F' excludes 0 and F changes sign certainly has exactly
+// one, located by bisection. Only intervals narrower than 2^-34 of the piece
+// stay undecided (a double root or a cluster): they count as a root when F
+// certainly changes sign across them. Far cheaper than exact isolation of the
+// degree ~4n polynomial per piece and round, with the same roots except such
+// undecided clusters.
+class SlidesEquation {
+ public:
+  SlidesEquation(const Poly& N1, const Poly& gSD) : n1_(N1), g_(gSD) {
+    acb_init(z_);
+    acb_init(n_);
+    acb_init(dn_);
+    acb_init(v_);
+    acb_init(dv_);
+  }
+  ~SlidesEquation() {
+    acb_clear(z_);
+    acb_clear(n_);
+    acb_clear(dn_);
+    acb_clear(v_);
+    acb_clear(dv_);
+  }
+  SlidesEquation(const SlidesEquation&) = delete;
+  SlidesEquation& operator=(const SlidesEquation&) = delete;
+
+  /// Midpoints of (tiny brackets of) the roots in (lo, hi), increasing, for
+  /// l(t) = c1 t + c0 and k2 (exact balls); h is the piece's width.
+  std::vector<Ball> roots(const Ball& lo, const Ball& hi, const Ball& c1, const Ball& c0, const Ball& k2,
+                          double h) {
+    c1_ = &c1;
+    c0_ = &c0;
+    k2_ = &k2;
+    tol_ = std::ldexp(h, -34);
+    std::vector<Ball> out;
+    solve(lo, hi, 0, out);
+    return out;
+  }
+
+ private:
+  static constexpr long kPrec = 128;
+
+  // F (and F' if df) on the real ball x.
+  void eval(Ball& f, Ball* df, const arb_t x) {
+    acb_set_arb(z_, x);
+    n1_.eval(n_, df ? dn_ : nullptr, nullptr, z_, kPrec);
+    g_.eval(v_, df ? dv_ : nullptr, nullptr, z_, kPrec);
+    Ball l;
+    arb_mul(l.get(), c1_->get(), x, kPrec);
+    arb_add(l.get(), l.get(), c0_->get(), kPrec);
+    arb_mul(f.get(), acb_realref(n_), l.get(), kPrec);
+    arb_submul(f.get(), k2_->get(), acb_realref(v_), kPrec);
+    if (df) {
+      // F' = N1' l + N1 c1 - k2 gSD'
+      arb_mul(df->get(), acb_realref(dn_), l.get(), kPrec);
+      arb_addmul(df->get(), acb_realref(n_), c1_->get(), kPrec);
+      arb_submul(df->get(), k2_->get(), acb_realref(dv_), kPrec);
+    }
+  }
+  // -1, 1, or 0 when the sign of F at the point x is not certain.
+  int sign_at(const Ball& x) {
+    Ball f;
+    eval(f, nullptr, x.get());
+    return arb_is_positive(f.get()) ? 1 : arb_is_negative(f.get()) ? -1 : 0;
+  }
+  static Ball midpoint(const Ball& lo, const Ball& hi) {
+    Ball m;
+    arb_add(m.get(), lo.get(), hi.get(), 4 * kPrec);
+    arb_mul_2exp_si(m.get(), m.get(), -1);
+    arb_get_mid_arb(m.get(), m.get());
+    return m;
+  }
+  static double width(const Ball& lo, const Ball& hi) {
+    Ball w;
+    arb_sub(w.get(), hi.get(), lo.get(), 4 * kPrec);
+    return arf_get_d(arb_midref(w.get()), ARF_RND_NEAR);
+  }
+
+  void solve(const Ball& lo, const Ball& hi, int depth, std::vector<Ball>& out) {
+    Ball x, f, df;
+    arb_union(x.get(), lo.get(), hi.get(), kPrec);
+    eval(f, &df, x.get());
+    if (!arb_contains_zero(f.get())) return;  // certainly no root
+    const double w = width(lo, hi);
+    if (!arb_contains_zero(df.get()) || w < tol_ || depth > 60) {
+      const int sl = sign_at(lo), sh = sign_at(hi);
+      if (sl != 0 && sh != 0) {
+        if (sl == sh) {
+          if (!arb_contains_zero(df.get())) return;  // monotone without a sign change: no root
+          if (w < tol_ || depth > 60) return;        // undecided cluster without a sign change
+        } else {
+          // exactly one root when monotone (at least one otherwise): bisect
+          Ball a = lo, b = hi;
+          while (width(a, b) > tol_) {
+            const Ball m = midpoint(a, b);
+            const int sm = sign_at(m);
+            if (sm == 0) {
+              a = m;
+              b = m;
+              break;
+            }
+            (sm == sl ? a : b) = m;
+          }
+          out.push_back(midpoint(a, b));
+          return;
+        }
+      } else if (w < tol_ || depth > 60) {
+        out.push_back(midpoint(lo, hi));  // F is ~0 at an end: the root is there
+        return;
+      }
+    }
+    const Ball m = midpoint(lo, hi);
+    solve(lo, m, depth + 1, out);
+    solve(m, hi, depth + 1, out);
+  }
+
+  LocalPoly n1_, g_;
+  const Ball *c1_ = nullptr, *c0_ = nullptr, *k2_ = nullptr;
+  double tol_ = 0;
+  acb_t z_, n_, dn_, v_, dv_;
+};
+
+// New breakpoints of the slides' refinement: on each piece of T, the roots of
+// its slides' equation (SlidesEquation) at least 1/1000 of the piece away from
+// its ends, rounded to short rationals (within 10^-6 of the piece's width).
+std::vector<RealAlgebraic> refine(SlidesEquation& eq, const std::vector<RealAlgebraic>& T, const Draft& d) {
   std::vector<RealAlgebraic> out;
   const Rational tiny(1, 1000000000);
   for (std::size_t i = 0; i + 1 < T.size(); ++i) {
     out.push_back(T[i]);
     const Ball ab = T[i].to_ball(128), bb = T[i + 1].to_ball(128);
     const Rational a = short_rational(ab, tiny), b = short_rational(bb, tiny);
-    const Rational al = short_rational(d.alpha[i], Rational(1, 1000000000000L));
+    const Rational al = rational_near(d.alpha[i], Rational(1, 1000000000000L));
     const Rational h = b - a;
     if (h.sign() <= 0) continue;
-    // l(t) = c1 t + c0, and the equation N1 l - 4 (1 - 2 alpha) gSD, scaled to Z[t].
-    const Rational c1 = Rational(2) * al - Rational(1);
-    const Rational c0 = (Rational(1) - al) * b - al * a;
-    const Rational c2 = Rational(4) * (Rational(1) - Rational(2) * al);
-    const Integer den = Integer(c1.den()) * Integer(c0.den()) * Integer(c2.den());
-    const Rational k1 = c1 * Rational(den), k0 = c0 * Rational(den), k2 = c2 * Rational(den);
-    // den clears every denominator, so k0, k1, k2 are integers
-    const Poly lin(std::vector<Integer>{k0.num(), k1.num()});
-    const Poly eq = N1 * lin - Poly(std::vector<Integer>{k2.num()}) * gSD;
-    if (eq.is_zero()) continue;
+    const long p = 256;
+    const Ball c1(Rational(2) * al - Rational(1), p), c0((Rational(1) - al) * b - al * a, p),
+        k2(Rational(4) * (Rational(1) - Rational(2) * al), p);
     const Rational margin = h * Rational(1, 1000);
-    std::vector<IsolatedRoot> roots = isolate_real_roots(eq, a + margin, b - margin);
-    for (const auto& rt : roots) {
-      const RealAlgebraic x(rt);
-      const Rational q = short_rational(x.to_ball(64), h * Rational(1, 1000000));
+    const Ball lo(a + margin, p), hi(b - margin, p);
+    Ball lom, him;
+    arb_get_mid_arb(lom.get(), lo.get());
+    arb_get_mid_arb(him.get(), hi.get());
+    const double hd = arf_get_d(arb_midref(Ball(h, 64).get()), ARF_RND_NEAR);
+    for (const auto& x : eq.roots(lom, him, c1, c0, k2, hd)) {
+      const Rational q = short_rational(x, h * Rational(1, 1000000));
       if (q > a + margin && q < b - margin && (out.empty() || compare(out.back(), RealAlgebraic(q)) < 0))
         out.emplace_back(q);
     }
@@ -221,32 +526,48 @@ MoebiusResult reparam_c1(const Curve& c, SpeedKind kind, const Rational& target,
   Poly S2(0);
   for (const auto& k : s.cofactors()) S2 = S2 + k * k;
   const Poly gSD = s.g() * S2 * s.denominator();
+  SlidesEquation slides(N1, gSD);
 
-  std::vector<RealAlgebraic> best = T;
+  // The rounds choose T in floating point (draft_c1, UNCERTIFIED); a T whose
+  // draft meets the target is certified (build) and accepted only if the
+  // certified u_after >= target. Otherwise the best draft is certified at the end.
+  FloatPieces fp(s);
+  const double mu_d = arf_get_d(arb_midref(base.mu.get()), ARF_RND_NEAR);
+  const double target_d = arf_get_d(arb_midref(Ball(target, 128).get()), ARF_RND_NEAR);
+  const Ball tq(target, 2 * digits_to_bits(opt.digits) + 64);
+  std::vector<RealAlgebraic> best = T, certified_T;
   double best_u = -1;
+  Built certified;
+  bool have_certified = false, reached = false;
   long rounds = 0;
   for (;; ++rounds) {
-    const Built draft = build(s, base, T, 0, opt);
-    const double u = arf_get_d(arb_midref(draft.r.u_after.get()), ARF_RND_NEAR);
+    check_time_budget();
+    const Draft draft = draft_c1(fp, T, mu_d);
+    const double u = draft.u;
     if (u > best_u) {
       best_u = u;
       best = T;
     }
-    Ball tq(target, 128);
-    if (arb_ge(draft.r.u_after.get(), tq.get())) break;
+    if (u >= target_d) {
+      certified = build(s, base, T, opt.digits, opt);
+      certified_T = T;
+      have_certified = true;
+      if (arb_ge(certified.r.u_after.get(), tq.get())) {
+        reached = true;
+        break;
+      }
+      // the floating point was optimistic: refine on
+    }
     if (static_cast<long>(T.size()) - 1 >= max_pieces) break;
-    std::vector<RealAlgebraic> next = refine(N1, gSD, T, draft.d);
+    std::vector<RealAlgebraic> next = refine(slides, T, draft);
     if (next.size() == T.size()) {
       // The slides' rule added nothing: split the piece with the largest
       // excess F_i - mu^2 Delta s_i (its share of int sigma_{p o m}^2 above the
       // ideal) at its midpoint.
       std::size_t worst = 0;
       double wv = -1;
-      const double mu = arf_get_d(arb_midref(base.mu.get()), ARF_RND_NEAR);
       for (std::size_t i = 0; i + 1 < T.size(); ++i) {
-        const double ds = arf_get_d(arb_midref(draft.r.S[i + 1].get()), ARF_RND_NEAR) -
-                          arf_get_d(arb_midref(draft.r.S[i].get()), ARF_RND_NEAR);
-        const double e = arf_get_d(arb_midref(draft.d.F[i].get()), ARF_RND_NEAR) - mu * mu * ds;
+        const double e = draft.F[i] - mu_d * mu_d * (draft.S[i + 1] - draft.S[i]);
         if (e > wv) {
           wv = e;
           worst = i;
@@ -265,12 +586,13 @@ MoebiusResult reparam_c1(const Curve& c, SpeedKind kind, const Rational& target,
     if (static_cast<long>(next.size()) - 1 > max_pieces) break;
     T = next;
   }
-  Built fin = build(s, base, best, opt.digits, opt);
-  MoebiusResult r = fin.r;
+  if (!reached && !(have_certified && certified_T.size() == best.size() &&
+                    std::equal(best.begin(), best.end(), certified_T.begin())))
+    certified = build(s, base, best, opt.digits, opt);
+  MoebiusResult r = certified.r;
   r.target.used = true;
   r.target.value = target;
   r.target.rounds = rounds;
-  const Ball tq(target, 2 * digits_to_bits(opt.digits) + 64);
   r.target.reached = arb_ge(r.u_after.get(), tq.get());
   return r;
 }
