@@ -339,31 +339,44 @@ Rational short_rational(const Ball& x, const Rational& w) {
 // with sigma'/sigma = N1 / (2 g S D), l(t) = dt [alpha t~ + (1-alpha)(1-t~)]
 // = (2 alpha - 1) t + (1 - alpha) b - alpha a and k2 = 4 (1 - 2 alpha):
 // F = 0 iff sigma' dt [alpha t~ + (1 - alpha)(1 - t~)] - 2 sigma (1 - 2 alpha) = 0
-// where g S D != 0. Its roots are choices (the coefficients come from the
-// draft's alpha), found by certified subdivision in ball arithmetic: N1 and
-// gSD are evaluated (with derivatives) from their cached local expansions
-// (LocalPoly), an interval whose enclosure of F excludes 0 certainly has no
-// root, and one where F' excludes 0 and F changes sign certainly has exactly
-// one, located by bisection. Only intervals narrower than 2^-34 of the piece
-// stay undecided (a double root or a cluster): they count as a root when F
-// certainly changes sign across them. Far cheaper than exact isolation of the
-// degree ~4n polynomial per piece and round, with the same roots except such
-// undecided clusters.
+// where g S D != 0. N1 and gSD have degree ~4n (plane) to ~12n (space): too
+// large for cheap evaluation. Instead
+//   E(t) = (sigma^2)'(t) l(t) - k2 sigma^2(t) = sigma^2 F / (g S D) = g S F / D^3
+// is evaluated from the curve's components (degree n) by truncated Taylor
+// series: the jets of x_i = N_i / Q_i to order 5 (N, N', N'' and N''',
+// N'''', N''''' from the LocalPoly expansions of N and of its third
+// derivative) give sigma^2 to order 3 (angular: sigma^2 = (A B - C^2) / A^2
+// with A = |p'|^2, B = |p''|^2, C = p'.p''; parametric: sigma^2 = A), hence
+// E, E' and E'' in ball arithmetic. S > 0 and D != 0 on [0, 1], so the roots of E are those of F
+// and the zeros of sigma (roots of g, where E changes sign); brackets holding
+// a zero of sigma are dropped. The roots are choices (the coefficients come
+// from the draft's alpha), found by certified subdivision: an interval whose
+// enclosure of E excludes 0 has no root, one where E' excludes 0 and E
+// changes sign has exactly one, located by Newton steps safeguarded by the
+// bracket. Enclosures of E and E' on an interval are mean-value forms about
+// its midpoint (the direct series enclosure overestimates badly where
+// A B - C^2 cancels); a budget of evaluations per piece bounds the search.
+// Only intervals narrower than 2^-36 of the piece stay undecided (a double
+// root or a cluster): they count as one root when E certainly changes sign
+// across them. Far cheaper than the exact isolation of F per piece and round, with
+// the same roots except such clusters.
 class SlidesEquation {
  public:
-  SlidesEquation(const Poly& N1, const Poly& gSD) : n1_(N1), g_(gSD) {
+  SlidesEquation(const Curve& c, const Speed& s) : angular_(s.kind() == SpeedKind::Angular) {
+    for (const auto& x : c.components()) {
+      const Poly n = x.num(), q = x.den();
+      comp_.push_back(Comp{LocalPoly(n), LocalPoly(n.derivative().derivative().derivative()), LocalPoly(q),
+                           LocalPoly(q.derivative().derivative().derivative())});
+    }
+    for (const auto& z : s.zeros()) zeros_.push_back(z.t.to_ball(kPrec));
     acb_init(z_);
-    acb_init(n_);
-    acb_init(dn_);
-    acb_init(v_);
-    acb_init(dv_);
+    for (auto& w : w_) acb_init(w);
+    for (auto* p : polys()) arb_poly_init(p);
   }
   ~SlidesEquation() {
     acb_clear(z_);
-    acb_clear(n_);
-    acb_clear(dn_);
-    acb_clear(v_);
-    acb_clear(dv_);
+    for (auto& w : w_) acb_clear(w);
+    for (auto* p : polys()) arb_poly_clear(p);
   }
   SlidesEquation(const SlidesEquation&) = delete;
   SlidesEquation& operator=(const SlidesEquation&) = delete;
@@ -375,7 +388,8 @@ class SlidesEquation {
     c1_ = &c1;
     c0_ = &c0;
     k2_ = &k2;
-    tol_ = std::ldexp(h, -34);
+    tol_ = std::ldexp(h, -36);
+    evals_ = 0;
     std::vector<Ball> out;
     solve(lo, hi, 0, out);
     return out;
@@ -383,29 +397,116 @@ class SlidesEquation {
 
  private:
   static constexpr long kPrec = 128;
+  // Evaluations of E per piece before the search gives up (a safeguard: the
+  // roots are choices, and a piece needs a few hundred at most).
+  static constexpr long kMaxEvals = 20000;
+  struct Comp {
+    LocalPoly n, n3, q, q3;  // N, N''', Q, Q'''
+  };
+  std::array<arb_poly_struct*, 9> polys() { return {ns_, qs_, xs_, d1_, d2_, t_, A_, B_, C_}; }
 
-  // F (and F' if df) on the real ball x.
-  void eval(Ball& f, Ball* df, const arb_t x) {
+  // The jet of p at the real ball in z_ (length 6: p^(k) / k!), into ps.
+  void jet(arb_poly_t ps, const LocalPoly& p, const LocalPoly& p3) {
+    p.eval(w_[0], w_[1], w_[2], z_, kPrec);
+    p3.eval(w_[3], w_[4], w_[5], z_, kPrec);
+    static const long fact[6] = {1, 1, 2, 6, 24, 120};
+    arb_poly_fit_length(ps, 6);
+    for (int k = 0; k < 6; ++k) arb_div_si(ps->coeffs + k, acb_realref(w_[k]), fact[k], kPrec);
+    _arb_poly_set_length(ps, 6);
+    _arb_poly_normalise(ps);
+  }
+
+  // The series of sigma^2 at the real ball x to order 3, into A_.
+  void sigma2_series(const arb_t x) {
     acb_set_arb(z_, x);
-    n1_.eval(n_, df ? dn_ : nullptr, nullptr, z_, kPrec);
-    g_.eval(v_, df ? dv_ : nullptr, nullptr, z_, kPrec);
-    Ball l;
-    arb_mul(l.get(), c1_->get(), x, kPrec);
-    arb_add(l.get(), l.get(), c0_->get(), kPrec);
-    arb_mul(f.get(), acb_realref(n_), l.get(), kPrec);
-    arb_submul(f.get(), k2_->get(), acb_realref(v_), kPrec);
-    if (df) {
-      // F' = N1' l + N1 c1 - k2 gSD'
-      arb_mul(df->get(), acb_realref(dn_), l.get(), kPrec);
-      arb_addmul(df->get(), acb_realref(n_), c1_->get(), kPrec);
-      arb_submul(df->get(), k2_->get(), acb_realref(dv_), kPrec);
+    arb_poly_zero(A_);
+    arb_poly_zero(B_);
+    arb_poly_zero(C_);
+    for (const auto& c : comp_) {
+      jet(ns_, c.n, c.n3);
+      jet(qs_, c.q, c.q3);
+      arb_poly_div_series(xs_, ns_, qs_, 6, kPrec);
+      arb_poly_derivative(d1_, xs_, kPrec);  // p' to order 4
+      arb_poly_derivative(d2_, d1_, kPrec);  // p'' to order 3
+      arb_poly_mullow(t_, d1_, d1_, 4, kPrec);
+      arb_poly_add(A_, A_, t_, kPrec);
+      arb_poly_mullow(t_, d2_, d2_, 4, kPrec);
+      arb_poly_add(B_, B_, t_, kPrec);
+      arb_poly_mullow(t_, d1_, d2_, 4, kPrec);
+      arb_poly_add(C_, C_, t_, kPrec);
+    }
+    if (angular_) {
+      arb_poly_mullow(t_, A_, B_, 4, kPrec);
+      arb_poly_mullow(B_, C_, C_, 4, kPrec);
+      arb_poly_sub(t_, t_, B_, kPrec);  // A B - C^2 = |p' x p''|^2
+      arb_poly_mullow(C_, A_, A_, 4, kPrec);
+      arb_poly_div_series(A_, t_, C_, 4, kPrec);
     }
   }
-  // -1, 1, or 0 when the sign of F at the point x is not certain.
+  // (sigma^2)^(k) from the series: k! times its coefficient k.
+  Ball deriv(int k) const {
+    static const long fact[4] = {1, 1, 2, 6};
+    Ball b;
+    arb_poly_get_coeff_arb(b.get(), A_, k);
+    arb_mul_si(b.get(), b.get(), fact[k], kPrec);
+    return b;
+  }
+
+  // E, and E', E'' where non-null, on the real ball x directly from the series.
+  void eval_direct(Ball& e, Ball* e1, Ball* e2, const arb_t x) {
+    sigma2_series(x);
+    const Ball s0 = deriv(0), s1 = deriv(1);
+    Ball l, t;
+    arb_mul(l.get(), c1_->get(), x, kPrec);
+    arb_add(l.get(), l.get(), c0_->get(), kPrec);
+    // E = (sigma^2)' l - k2 sigma^2
+    arb_mul(e.get(), s1.get(), l.get(), kPrec);
+    arb_submul(e.get(), k2_->get(), s0.get(), kPrec);
+    if (!e1 && !e2) return;
+    const Ball s2 = deriv(2);
+    if (e1) {
+      // E' = (sigma^2)'' l + (sigma^2)' (c1 - k2)
+      arb_mul(e1->get(), s2.get(), l.get(), kPrec);
+      arb_sub(t.get(), c1_->get(), k2_->get(), kPrec);
+      arb_addmul(e1->get(), s1.get(), t.get(), kPrec);
+    }
+    if (e2) {
+      // E'' = (sigma^2)''' l + (sigma^2)'' (2 c1 - k2)
+      const Ball s3 = deriv(3);
+      arb_mul(e2->get(), s3.get(), l.get(), kPrec);
+      arb_mul_2exp_si(t.get(), c1_->get(), 1);
+      arb_sub(t.get(), t.get(), k2_->get(), kPrec);
+      arb_addmul(e2->get(), s2.get(), t.get(), kPrec);
+    }
+  }
+  // Enclosures of E and E' on J = [lo, hi] by mean-value forms about the
+  // midpoint m (E(m) + E'(J) [-r, r] and E'(m) + E''(J) [-r, r]), intersected
+  // with the direct ones: far tighter on wide intervals, where the series
+  // arithmetic overestimates (A B - C^2 cancels).
+  void eval_interval(Ball& e, Ball& e1, const Ball& lo, const Ball& hi) {
+    Ball x, r, em, e1m, e1j, e2j, t, pm;
+    arb_union(x.get(), lo.get(), hi.get(), kPrec);
+    const Ball m = midpoint(lo, hi);
+    arb_sub(r.get(), hi.get(), lo.get(), kPrec);
+    arb_mul_2exp_si(r.get(), r.get(), -1);
+    arb_zero(pm.get());
+    arb_add_error(pm.get(), r.get());  // [-r, r]
+    eval_direct(e, &e1j, &e2j, x.get());
+    eval_direct(em, &e1m, nullptr, m.get());
+    arb_mul(t.get(), e2j.get(), pm.get(), kPrec);
+    arb_add(t.get(), t.get(), e1m.get(), kPrec);
+    if (!arb_intersection(e1.get(), e1j.get(), t.get(), kPrec)) e1 = t;
+    arb_mul(t.get(), e1.get(), pm.get(), kPrec);
+    arb_add(t.get(), t.get(), em.get(), kPrec);
+    const Ball ed = e;
+    if (!arb_intersection(e.get(), ed.get(), t.get(), kPrec)) e = t;
+  }
+  // -1, 1, or 0 when the sign of E at the point x is not certain.
   int sign_at(const Ball& x) {
-    Ball f;
-    eval(f, nullptr, x.get());
-    return arb_is_positive(f.get()) ? 1 : arb_is_negative(f.get()) ? -1 : 0;
+    Ball e;
+    ++evals_;
+    eval_direct(e, nullptr, nullptr, x.get());
+    return arb_is_positive(e.get()) ? 1 : arb_is_negative(e.get()) ? -1 : 0;
   }
   static Ball midpoint(const Ball& lo, const Ball& hi) {
     Ball m;
@@ -419,37 +520,65 @@ class SlidesEquation {
     arb_sub(w.get(), hi.get(), lo.get(), 4 * kPrec);
     return arf_get_d(arb_midref(w.get()), ARF_RND_NEAR);
   }
+  // A root of E located in [lo, hi] (to about tol_): kept unless a zero of
+  // sigma lies within 2^10 tol_ of it (then it is that zero, a root of g).
+  void found(const Ball& lo, const Ball& hi, std::vector<Ball>& out) const {
+    Ball x, r;
+    arb_union(x.get(), lo.get(), hi.get(), kPrec);
+    arb_set_d(r.get(), std::ldexp(tol_, 10));
+    arb_add_error(x.get(), r.get());
+    for (const auto& z : zeros_)
+      if (arb_overlaps(x.get(), z.get())) return;
+    out.push_back(midpoint(lo, hi));
+  }
 
   void solve(const Ball& lo, const Ball& hi, int depth, std::vector<Ball>& out) {
-    Ball x, f, df;
-    arb_union(x.get(), lo.get(), hi.get(), kPrec);
-    eval(f, &df, x.get());
-    if (!arb_contains_zero(f.get())) return;  // certainly no root
+    if (evals_ > kMaxEvals) return;  // budget spent: no more choices from this piece
+    evals_ += 2;
+    Ball e, de;
+    eval_interval(e, de, lo, hi);
+    if (!arb_contains_zero(e.get())) return;  // certainly no root
     const double w = width(lo, hi);
-    if (!arb_contains_zero(df.get()) || w < tol_ || depth > 60) {
+    const bool tiny = w < tol_ || depth > 60;
+    const bool monotone = !arb_contains_zero(de.get());
+    if (monotone || tiny) {
       const int sl = sign_at(lo), sh = sign_at(hi);
       if (sl != 0 && sh != 0) {
-        if (sl == sh) {
-          if (!arb_contains_zero(df.get())) return;  // monotone without a sign change: no root
-          if (w < tol_ || depth > 60) return;        // undecided cluster without a sign change
-        } else {
-          // exactly one root when monotone (at least one otherwise): bisect
-          Ball a = lo, b = hi;
-          while (width(a, b) > tol_) {
-            const Ball m = midpoint(a, b);
-            const int sm = sign_at(m);
-            if (sm == 0) {
-              a = m;
-              b = m;
+        if (sl == sh) return;  // monotone, or an undecided cluster, without a sign change
+        // exactly one root when monotone (at least one otherwise): Newton
+        // steps safeguarded by the bracket (bisection when a step leaves it)
+        Ball a = lo, b = hi, x = midpoint(lo, hi);
+        for (int it = 0; it < 200 && width(a, b) > tol_; ++it) {
+          Ball ex, e1x, q;
+          ++evals_;
+          eval_direct(ex, &e1x, nullptr, x.get());
+          const int sx = arb_is_positive(ex.get()) ? 1 : arb_is_negative(ex.get()) ? -1 : 0;
+          if (sx == 0) {  // E(x) ~ 0 at this precision: x is the root
+            a = x;
+            b = x;
+            break;
+          }
+          (sx == sl ? a : b) = x;
+          arb_div(q.get(), ex.get(), e1x.get(), kPrec);
+          arb_sub(q.get(), x.get(), q.get(), kPrec);
+          arb_get_mid_arb(q.get(), q.get());
+          const double step = std::fabs(width(x, q));
+          if (arb_is_finite(q.get()) && arb_gt(q.get(), a.get()) && arb_lt(q.get(), b.get())) {
+            x = q;
+            if (step < tol_) {  // converged: x is within ~tol of the root
+              a = x;
+              b = x;
               break;
             }
-            (sm == sl ? a : b) = m;
+          } else {
+            x = midpoint(a, b);
           }
-          out.push_back(midpoint(a, b));
-          return;
         }
-      } else if (w < tol_ || depth > 60) {
-        out.push_back(midpoint(lo, hi));  // F is ~0 at an end: the root is there
+        found(a, b, out);
+        return;
+      }
+      if (tiny) {
+        found(lo, hi, out);  // E is ~0 at an end: the root is there
         return;
       }
     }
@@ -458,10 +587,14 @@ class SlidesEquation {
     solve(m, hi, depth + 1, out);
   }
 
-  LocalPoly n1_, g_;
+  bool angular_;
+  std::vector<Comp> comp_;
+  std::vector<Ball> zeros_;
   const Ball *c1_ = nullptr, *c0_ = nullptr, *k2_ = nullptr;
   double tol_ = 0;
-  acb_t z_, n_, dn_, v_, dv_;
+  long evals_ = 0;
+  acb_t z_, w_[6];
+  arb_poly_t ns_, qs_, xs_, d1_, d2_, t_, A_, B_, C_;
 };
 
 // New breakpoints of the slides' refinement: on each piece of T, the roots of
@@ -523,10 +656,7 @@ MoebiusResult reparam_c1(const Curve& c, SpeedKind kind, const Rational& target,
       T.emplace_back(rt);
     }
   T.emplace_back(RealAlgebraic(1));
-  Poly S2(0);
-  for (const auto& k : s.cofactors()) S2 = S2 + k * k;
-  const Poly gSD = s.g() * S2 * s.denominator();
-  SlidesEquation slides(N1, gSD);
+  SlidesEquation slides(c, s);
 
   // The rounds choose T in floating point (draft_c1, UNCERTIFIED); a T whose
   // draft meets the target is certified (build) and accepted only if the
