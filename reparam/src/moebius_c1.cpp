@@ -339,27 +339,20 @@ Rational short_rational(const Ball& x, const Rational& w) {
 // with sigma'/sigma = N1 / (2 g S D), l(t) = dt [alpha t~ + (1-alpha)(1-t~)]
 // = (2 alpha - 1) t + (1 - alpha) b - alpha a and k2 = 4 (1 - 2 alpha):
 // F = 0 iff sigma' dt [alpha t~ + (1 - alpha)(1 - t~)] - 2 sigma (1 - 2 alpha) = 0
-// where g S D != 0. N1 and gSD have degree ~4n (plane) to ~12n (space): too
-// large for cheap evaluation. Instead
+// where g S D != 0. Its roots are choices (the coefficients come from the
+// draft's alpha), so they are searched in floating point. N1 and gSD have
+// degree ~4n (plane) to ~12n (space), too large for cheap evaluation (their
+// exact isolation per piece and round, or even their local expansions, cost
+// seconds); instead
 //   E(t) = (sigma^2)'(t) l(t) - k2 sigma^2(t) = sigma^2 F / (g S D) = g S F / D^3
 // is evaluated from the curve's components (degree n) by truncated Taylor
 // series: the jets of x_i = N_i / Q_i to order 5 (N, N', N'' and N''',
 // N'''', N''''' from the LocalPoly expansions of N and of its third
-// derivative) give sigma^2 to order 3 (angular: sigma^2 = (A B - C^2) / A^2
-// with A = |p'|^2, B = |p''|^2, C = p'.p''; parametric: sigma^2 = A), hence
-// E, E' and E'' in ball arithmetic. S > 0 and D != 0 on [0, 1], so the roots of E are those of F
-// and the zeros of sigma (roots of g, where E changes sign); brackets holding
-// a zero of sigma are dropped. The roots are choices (the coefficients come
-// from the draft's alpha), found by certified subdivision: an interval whose
-// enclosure of E excludes 0 has no root, one where E' excludes 0 and E
-// changes sign has exactly one, located by Newton steps safeguarded by the
-// bracket. Enclosures of E and E' on an interval are mean-value forms about
-// its midpoint (the direct series enclosure overestimates badly where
-// A B - C^2 cancels); a budget of evaluations per piece bounds the search.
-// Only intervals narrower than 2^-36 of the piece stay undecided (a double
-// root or a cluster): they count as one root when E certainly changes sign
-// across them. Far cheaper than the exact isolation of F per piece and round, with
-// the same roots except such clusters.
+// derivative, in double) give sigma^2 to order 3 (angular: sigma^2 =
+// (A B - C^2) / A^2 with A = |p'|^2, B = |p''|^2, C = p'.p''; parametric:
+// sigma^2 = A), hence E and E'. S > 0 and D != 0 on [0, 1], so the roots of
+// E are those of F and the zeros of sigma (roots of g, where E changes sign);
+// roots at a zero of sigma are dropped.
 class SlidesEquation {
  public:
   SlidesEquation(const Curve& c, const Speed& s) : angular_(s.kind() == SpeedKind::Angular) {
@@ -368,237 +361,114 @@ class SlidesEquation {
       comp_.push_back(Comp{LocalPoly(n), LocalPoly(n.derivative().derivative().derivative()), LocalPoly(q),
                            LocalPoly(q.derivative().derivative().derivative())});
     }
-    for (const auto& z : s.zeros()) zeros_.push_back(z.t.to_ball(kPrec));
-    acb_init(z_);
-    for (auto& w : w_) acb_init(w);
-    for (auto* p : polys()) arb_poly_init(p);
+    for (const auto& z : s.zeros()) zeros_d_.push_back(arf_get_d(arb_midref(z.t.to_ball(64).get()), ARF_RND_NEAR));
   }
-  ~SlidesEquation() {
-    acb_clear(z_);
-    for (auto& w : w_) acb_clear(w);
-    for (auto* p : polys()) arb_poly_clear(p);
-  }
-  SlidesEquation(const SlidesEquation&) = delete;
-  SlidesEquation& operator=(const SlidesEquation&) = delete;
 
-  /// Midpoints of (tiny brackets of) the roots in (lo, hi), increasing, for
-  /// l(t) = c1 t + c0 and k2 (exact balls); h is the piece's width.
-  std::vector<Ball> roots(const Ball& lo, const Ball& hi, const Ball& c1, const Ball& c0, const Ball& k2,
-                          double h) {
-    c1_ = &c1;
-    c0_ = &c0;
-    k2_ = &k2;
-    tol_ = std::ldexp(h, -36);
-    evals_ = 0;
-    std::vector<Ball> out;
-    solve(lo, hi, 0, out);
+  /// UNCERTIFIED floating-point search (a choice only): the roots of E in
+  /// (lo, hi) from a scan of kScan equally spaced points, each sign change
+  /// refined by safeguarded Newton steps in double; roots at a zero of sigma
+  /// dropped. Two roots closer than the scan's spacing may be missed.
+  std::vector<double> roots_double(double lo, double hi, double c1, double c0, double k2) const {
+    std::vector<double> out;
+    const double step = (hi - lo) / kScan, tol = (hi - lo) * 1e-13;
+    double xa = lo, ea = e_double(lo, c1, c0, k2, nullptr);
+    for (int i = 1; i <= kScan; ++i) {
+      const double xb = i == kScan ? hi : lo + step * i, eb = e_double(xb, c1, c0, k2, nullptr);
+      if (std::isfinite(ea) && std::isfinite(eb) && ((ea < 0 && eb > 0) || (ea > 0 && eb < 0))) {
+        double a = xa, b = xb, x = (a + b) / 2;
+        const bool neg_a = ea < 0;
+        for (int it = 0; it < 100 && b - a > tol; ++it) {
+          double d1 = 0;
+          const double ex = e_double(x, c1, c0, k2, &d1);
+          if (ex == 0 || !std::isfinite(ex)) break;
+          ((ex < 0) == neg_a ? a : b) = x;
+          const double nx = x - ex / d1;
+          if (std::isfinite(nx) && nx > a && nx < b) {
+            const bool done = std::fabs(nx - x) < tol;
+            x = nx;
+            if (done) break;
+          } else {
+            x = (a + b) / 2;
+          }
+        }
+        bool at_zero = false;
+        for (double z : zeros_d_) at_zero = at_zero || std::fabs(x - z) <= (hi - lo) * 1e-9;
+        if (!at_zero) out.push_back(x);
+      } else if (ea == 0 && i > 1) {
+        out.push_back(xa);
+      }
+      xa = xb;
+      ea = eb;
+    }
     return out;
   }
 
  private:
-  static constexpr long kPrec = 128;
-  // Evaluations of E per piece before the search gives up (a safeguard: the
-  // roots are choices, and a piece needs a few hundred at most).
-  static constexpr long kMaxEvals = 20000;
+  static constexpr int kScan = 64;
+  // E(t) (and E'(t) into d1 if non-null) in IEEE double from the jets of the
+  // components (LocalPoly::eval_double): UNCERTIFIED.
+  double e_double(double t, double c1, double c0, double k2, double* d1) const {
+    double A[4] = {0, 0, 0, 0}, B[4] = {0, 0, 0, 0}, C[4] = {0, 0, 0, 0};
+    static const double fact[6] = {1, 1, 2, 6, 24, 120};
+    for (const auto& c : comp_) {
+      double n[6], q[6], x[6], p1[5], p2[4];
+      c.n.eval_double(t, &n[0], &n[1], &n[2]);
+      c.n3.eval_double(t, &n[3], &n[4], &n[5]);
+      c.q.eval_double(t, &q[0], &q[1], &q[2]);
+      c.q3.eval_double(t, &q[3], &q[4], &q[5]);
+      for (int k = 0; k < 6; ++k) {
+        n[k] /= fact[k];
+        q[k] /= fact[k];
+      }
+      for (int k = 0; k < 6; ++k) {  // x = n / q as series
+        double v = n[k];
+        for (int j = 1; j <= k; ++j) v -= q[j] * x[k - j];
+        x[k] = v / q[0];
+      }
+      for (int k = 0; k < 5; ++k) p1[k] = (k + 1) * x[k + 1];
+      for (int k = 0; k < 4; ++k) p2[k] = (k + 1) * p1[k + 1];
+      for (int k = 0; k < 4; ++k)
+        for (int j = 0; j <= k; ++j) {
+          A[k] += p1[j] * p1[k - j];
+          B[k] += p2[j] * p2[k - j];
+          C[k] += p1[j] * p2[k - j];
+        }
+    }
+    double s[4];
+    if (angular_) {
+      double num[4], den[4];
+      for (int k = 0; k < 4; ++k) {
+        num[k] = den[k] = 0;
+        for (int j = 0; j <= k; ++j) {
+          num[k] += A[j] * B[k - j] - C[j] * C[k - j];
+          den[k] += A[j] * A[k - j];
+        }
+      }
+      for (int k = 0; k < 4; ++k) {
+        double v = num[k];
+        for (int j = 1; j <= k; ++j) v -= den[j] * s[k - j];
+        s[k] = v / den[0];
+      }
+    } else {
+      for (int k = 0; k < 4; ++k) s[k] = A[k];
+    }
+    // sigma^2 = s0, (sigma^2)' = s1, (sigma^2)'' = 2 s2
+    const double l = c1 * t + c0;
+    if (d1) *d1 = 2 * s[2] * l + s[1] * (c1 - k2);
+    return s[1] * l - k2 * s[0];
+  }
+
   struct Comp {
     LocalPoly n, n3, q, q3;  // N, N''', Q, Q'''
   };
-  std::array<arb_poly_struct*, 9> polys() { return {ns_, qs_, xs_, d1_, d2_, t_, A_, B_, C_}; }
-
-  // The jet of p at the real ball in z_ (length 6: p^(k) / k!), into ps.
-  void jet(arb_poly_t ps, const LocalPoly& p, const LocalPoly& p3) {
-    p.eval(w_[0], w_[1], w_[2], z_, kPrec);
-    p3.eval(w_[3], w_[4], w_[5], z_, kPrec);
-    static const long fact[6] = {1, 1, 2, 6, 24, 120};
-    arb_poly_fit_length(ps, 6);
-    for (int k = 0; k < 6; ++k) arb_div_si(ps->coeffs + k, acb_realref(w_[k]), fact[k], kPrec);
-    _arb_poly_set_length(ps, 6);
-    _arb_poly_normalise(ps);
-  }
-
-  // The series of sigma^2 at the real ball x to order 3, into A_.
-  void sigma2_series(const arb_t x) {
-    acb_set_arb(z_, x);
-    arb_poly_zero(A_);
-    arb_poly_zero(B_);
-    arb_poly_zero(C_);
-    for (const auto& c : comp_) {
-      jet(ns_, c.n, c.n3);
-      jet(qs_, c.q, c.q3);
-      arb_poly_div_series(xs_, ns_, qs_, 6, kPrec);
-      arb_poly_derivative(d1_, xs_, kPrec);  // p' to order 4
-      arb_poly_derivative(d2_, d1_, kPrec);  // p'' to order 3
-      arb_poly_mullow(t_, d1_, d1_, 4, kPrec);
-      arb_poly_add(A_, A_, t_, kPrec);
-      arb_poly_mullow(t_, d2_, d2_, 4, kPrec);
-      arb_poly_add(B_, B_, t_, kPrec);
-      arb_poly_mullow(t_, d1_, d2_, 4, kPrec);
-      arb_poly_add(C_, C_, t_, kPrec);
-    }
-    if (angular_) {
-      arb_poly_mullow(t_, A_, B_, 4, kPrec);
-      arb_poly_mullow(B_, C_, C_, 4, kPrec);
-      arb_poly_sub(t_, t_, B_, kPrec);  // A B - C^2 = |p' x p''|^2
-      arb_poly_mullow(C_, A_, A_, 4, kPrec);
-      arb_poly_div_series(A_, t_, C_, 4, kPrec);
-    }
-  }
-  // (sigma^2)^(k) from the series: k! times its coefficient k.
-  Ball deriv(int k) const {
-    static const long fact[4] = {1, 1, 2, 6};
-    Ball b;
-    arb_poly_get_coeff_arb(b.get(), A_, k);
-    arb_mul_si(b.get(), b.get(), fact[k], kPrec);
-    return b;
-  }
-
-  // E, and E', E'' where non-null, on the real ball x directly from the series.
-  void eval_direct(Ball& e, Ball* e1, Ball* e2, const arb_t x) {
-    sigma2_series(x);
-    const Ball s0 = deriv(0), s1 = deriv(1);
-    Ball l, t;
-    arb_mul(l.get(), c1_->get(), x, kPrec);
-    arb_add(l.get(), l.get(), c0_->get(), kPrec);
-    // E = (sigma^2)' l - k2 sigma^2
-    arb_mul(e.get(), s1.get(), l.get(), kPrec);
-    arb_submul(e.get(), k2_->get(), s0.get(), kPrec);
-    if (!e1 && !e2) return;
-    const Ball s2 = deriv(2);
-    if (e1) {
-      // E' = (sigma^2)'' l + (sigma^2)' (c1 - k2)
-      arb_mul(e1->get(), s2.get(), l.get(), kPrec);
-      arb_sub(t.get(), c1_->get(), k2_->get(), kPrec);
-      arb_addmul(e1->get(), s1.get(), t.get(), kPrec);
-    }
-    if (e2) {
-      // E'' = (sigma^2)''' l + (sigma^2)'' (2 c1 - k2)
-      const Ball s3 = deriv(3);
-      arb_mul(e2->get(), s3.get(), l.get(), kPrec);
-      arb_mul_2exp_si(t.get(), c1_->get(), 1);
-      arb_sub(t.get(), t.get(), k2_->get(), kPrec);
-      arb_addmul(e2->get(), s2.get(), t.get(), kPrec);
-    }
-  }
-  // Enclosures of E and E' on J = [lo, hi] by mean-value forms about the
-  // midpoint m (E(m) + E'(J) [-r, r] and E'(m) + E''(J) [-r, r]), intersected
-  // with the direct ones: far tighter on wide intervals, where the series
-  // arithmetic overestimates (A B - C^2 cancels).
-  void eval_interval(Ball& e, Ball& e1, const Ball& lo, const Ball& hi) {
-    Ball x, r, em, e1m, e1j, e2j, t, pm;
-    arb_union(x.get(), lo.get(), hi.get(), kPrec);
-    const Ball m = midpoint(lo, hi);
-    arb_sub(r.get(), hi.get(), lo.get(), kPrec);
-    arb_mul_2exp_si(r.get(), r.get(), -1);
-    arb_zero(pm.get());
-    arb_add_error(pm.get(), r.get());  // [-r, r]
-    eval_direct(e, &e1j, &e2j, x.get());
-    eval_direct(em, &e1m, nullptr, m.get());
-    arb_mul(t.get(), e2j.get(), pm.get(), kPrec);
-    arb_add(t.get(), t.get(), e1m.get(), kPrec);
-    if (!arb_intersection(e1.get(), e1j.get(), t.get(), kPrec)) e1 = t;
-    arb_mul(t.get(), e1.get(), pm.get(), kPrec);
-    arb_add(t.get(), t.get(), em.get(), kPrec);
-    const Ball ed = e;
-    if (!arb_intersection(e.get(), ed.get(), t.get(), kPrec)) e = t;
-  }
-  // -1, 1, or 0 when the sign of E at the point x is not certain.
-  int sign_at(const Ball& x) {
-    Ball e;
-    ++evals_;
-    eval_direct(e, nullptr, nullptr, x.get());
-    return arb_is_positive(e.get()) ? 1 : arb_is_negative(e.get()) ? -1 : 0;
-  }
-  static Ball midpoint(const Ball& lo, const Ball& hi) {
-    Ball m;
-    arb_add(m.get(), lo.get(), hi.get(), 4 * kPrec);
-    arb_mul_2exp_si(m.get(), m.get(), -1);
-    arb_get_mid_arb(m.get(), m.get());
-    return m;
-  }
-  static double width(const Ball& lo, const Ball& hi) {
-    Ball w;
-    arb_sub(w.get(), hi.get(), lo.get(), 4 * kPrec);
-    return arf_get_d(arb_midref(w.get()), ARF_RND_NEAR);
-  }
-  // A root of E located in [lo, hi] (to about tol_): kept unless a zero of
-  // sigma lies within 2^10 tol_ of it (then it is that zero, a root of g).
-  void found(const Ball& lo, const Ball& hi, std::vector<Ball>& out) const {
-    Ball x, r;
-    arb_union(x.get(), lo.get(), hi.get(), kPrec);
-    arb_set_d(r.get(), std::ldexp(tol_, 10));
-    arb_add_error(x.get(), r.get());
-    for (const auto& z : zeros_)
-      if (arb_overlaps(x.get(), z.get())) return;
-    out.push_back(midpoint(lo, hi));
-  }
-
-  void solve(const Ball& lo, const Ball& hi, int depth, std::vector<Ball>& out) {
-    if (evals_ > kMaxEvals) return;  // budget spent: no more choices from this piece
-    evals_ += 2;
-    Ball e, de;
-    eval_interval(e, de, lo, hi);
-    if (!arb_contains_zero(e.get())) return;  // certainly no root
-    const double w = width(lo, hi);
-    const bool tiny = w < tol_ || depth > 60;
-    const bool monotone = !arb_contains_zero(de.get());
-    if (monotone || tiny) {
-      const int sl = sign_at(lo), sh = sign_at(hi);
-      if (sl != 0 && sh != 0) {
-        if (sl == sh) return;  // monotone, or an undecided cluster, without a sign change
-        // exactly one root when monotone (at least one otherwise): Newton
-        // steps safeguarded by the bracket (bisection when a step leaves it)
-        Ball a = lo, b = hi, x = midpoint(lo, hi);
-        for (int it = 0; it < 200 && width(a, b) > tol_; ++it) {
-          Ball ex, e1x, q;
-          ++evals_;
-          eval_direct(ex, &e1x, nullptr, x.get());
-          const int sx = arb_is_positive(ex.get()) ? 1 : arb_is_negative(ex.get()) ? -1 : 0;
-          if (sx == 0) {  // E(x) ~ 0 at this precision: x is the root
-            a = x;
-            b = x;
-            break;
-          }
-          (sx == sl ? a : b) = x;
-          arb_div(q.get(), ex.get(), e1x.get(), kPrec);
-          arb_sub(q.get(), x.get(), q.get(), kPrec);
-          arb_get_mid_arb(q.get(), q.get());
-          const double step = std::fabs(width(x, q));
-          if (arb_is_finite(q.get()) && arb_gt(q.get(), a.get()) && arb_lt(q.get(), b.get())) {
-            x = q;
-            if (step < tol_) {  // converged: x is within ~tol of the root
-              a = x;
-              b = x;
-              break;
-            }
-          } else {
-            x = midpoint(a, b);
-          }
-        }
-        found(a, b, out);
-        return;
-      }
-      if (tiny) {
-        found(lo, hi, out);  // E is ~0 at an end: the root is there
-        return;
-      }
-    }
-    const Ball m = midpoint(lo, hi);
-    solve(lo, m, depth + 1, out);
-    solve(m, hi, depth + 1, out);
-  }
-
   bool angular_;
   std::vector<Comp> comp_;
-  std::vector<Ball> zeros_;
-  const Ball *c1_ = nullptr, *c0_ = nullptr, *k2_ = nullptr;
-  double tol_ = 0;
-  long evals_ = 0;
-  acb_t z_, w_[6];
-  arb_poly_t ns_, qs_, xs_, d1_, d2_, t_, A_, B_, C_;
+  std::vector<double> zeros_d_;
 };
 
 // New breakpoints of the slides' refinement: on each piece of T, the roots of
-// its slides' equation (SlidesEquation) at least 1/1000 of the piece away from
+// its slides' equation (SlidesEquation, found in floating point: UNCERTIFIED
+// choices, certified later as part of the map) at least 1/1000 of the piece away from
 // its ends, rounded to short rationals (within 10^-6 of the piece's width).
 std::vector<RealAlgebraic> refine(SlidesEquation& eq, const std::vector<RealAlgebraic>& T, const Draft& d) {
   std::vector<RealAlgebraic> out;
@@ -615,11 +485,10 @@ std::vector<RealAlgebraic> refine(SlidesEquation& eq, const std::vector<RealAlge
         k2(Rational(4) * (Rational(1) - Rational(2) * al), p);
     const Rational margin = h * Rational(1, 1000);
     const Ball lo(a + margin, p), hi(b - margin, p);
-    Ball lom, him;
-    arb_get_mid_arb(lom.get(), lo.get());
-    arb_get_mid_arb(him.get(), hi.get());
-    const double hd = arf_get_d(arb_midref(Ball(h, 64).get()), ARF_RND_NEAR);
-    for (const auto& x : eq.roots(lom, him, c1, c0, k2, hd)) {
+    auto dbl = [](const Ball& x) { return arf_get_d(arb_midref(x.get()), ARF_RND_NEAR); };
+    for (const double r : eq.roots_double(dbl(lo), dbl(hi), dbl(c1), dbl(c0), dbl(k2))) {
+      Ball x;
+      arb_set_d(x.get(), r);
       const Rational q = short_rational(x, h * Rational(1, 1000000));
       if (q > a + margin && q < b - margin && (out.empty() || compare(out.back(), RealAlgebraic(q)) < 0))
         out.emplace_back(q);
