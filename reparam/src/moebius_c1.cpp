@@ -1,11 +1,18 @@
 // reparam/src/moebius_c1.cpp -- ImUp's ReparameterizationU: a C1 piecewise
 // Moebius map refined until a target uniformity (MATH.md section 3).
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "float_quadrature.hpp"
 #include "moebius_detail.hpp"
+#include "uniparam/algebra/local_poly.hpp"
 #include "uniparam/algebra/real_roots.hpp"
+#include "uniparam/core/budget.hpp"
 #include "uniparam/core/error.hpp"
 #include "uniparam/reparam/moebius.hpp"
 
@@ -96,12 +103,12 @@ struct Built {
 
 // The C1 map for breakpoints T: S from int sigma / mu, alpha from the C1
 // condition (optimal free parameter), certified to `digits` digits (checked
-// on u, S and alpha) or, with digits == 0, to about 40 bits (a draft to steer
-// the refinement).
+// on u, S and alpha).
 Built build(const Speed& s, const UniformityResult& base, const std::vector<RealAlgebraic>& T, long digits,
             const Options& opt) {
   const std::size_t N = T.size() - 1;
-  for (long bits = digits > 0 ? digits_to_bits(digits) + 8 : 40;; bits += 32) {
+  for (long bits = digits_to_bits(digits) + 8;; bits += 32) {
+    check_time_budget();
     const long prec = 2 * bits + 64;
     Built b;
     MoebiusResult& r = b.r;
@@ -132,7 +139,6 @@ Built build(const Speed& s, const UniformityResult& base, const std::vector<Real
     b.d = detail::c1_from_pieces(T, r.S, r.integrals, base.mu, prec);
     r.alpha = b.d.alpha;
     r.u_after = b.d.u;
-    if (digits == 0) return b;
     const long d = digits + 1;
     bool ok = r.u_after.meets_digits(d);
     for (const auto& x : r.S) ok = ok && x.meets_digits(d);
@@ -145,44 +151,345 @@ Built build(const Speed& s, const UniformityResult& base, const std::vector<Real
   }
 }
 
+// ---- The UNCERTIFIED floating-point draft that steers the refinement ----
+// Every refinement round needs the C1 map of the current T only to choose the
+// next T (and to decide when to try a certification): the same formulas as
+// build() and c1_from_pieces, in IEEE double from double-precision quadrature.
+// Nothing computed here is reported; reparam_c1 certifies the chosen T with
+// build() and decides target.reached from that certified map only.
+
+constexpr int kGL = 20;
+
+struct GaussLegendre {
+  std::array<double, kGL> x{}, w{};
+  GaussLegendre() {
+    for (int i = 0; i < kGL; ++i) {
+      double z = std::cos(M_PI * (i + 0.75) / (kGL + 0.5)), dp = 0;
+      for (int it = 0; it < 100; ++it) {
+        double p0 = 1, p1 = z;
+        for (int k = 2; k <= kGL; ++k) {
+          const double p2 = ((2.0 * k - 1) * z * p1 - (k - 1.0) * p0) / k;
+          p0 = p1;
+          p1 = p2;
+        }
+        dp = kGL * (z * p1 - p0) / (z * z - 1);
+        const double dz = p1 / dp;
+        z -= dz;
+        if (std::fabs(dz) < 1e-16) break;
+      }
+      x[i] = z;
+      w[i] = 2 / ((1 - z * z) * dp * dp);
+    }
+  }
+};
+
+const GaussLegendre& gauss_legendre() {
+  static const GaussLegendre g;
+  return g;
+}
+
+// Over a piece [a, a + h]: int sigma^2 (1-t~)^2, 2 t~ (1-t~), t~^2 and int sigma,
+// all over dt (uncertified).
+struct FloatPiece {
+  double A = 0, B = 0, C = 0, len = 0;
+};
+
+FloatPiece operator+(const FloatPiece& x, const FloatPiece& y) {
+  return FloatPiece{x.A + y.A, x.B + y.B, x.C + y.C, x.len + y.len};
+}
+
+FloatPiece panel(const Speed& s, double a, double h, double l, double r) {
+  const GaussLegendre& g = gauss_legendre();
+  FloatPiece out;
+  const double m = (l + r) / 2, k = (r - l) / 2;
+  for (int i = 0; i < kGL; ++i) {
+    const double t = m + k * g.x[i], u = (t - a) / h, s2 = detail::sigma2_double(s, t), f = s2 * g.w[i] * k;
+    out.A += f * (1 - u) * (1 - u);
+    out.B += f * 2 * u * (1 - u);
+    out.C += f * u * u;
+    out.len += std::sqrt(s2) * g.w[i] * k;
+  }
+  return out;
+}
+
+// Adaptive bisection until both the sigma^2 moments and the length of [l, r]
+// change by at most 1e-13 of the piece's first estimates. sigma is smooth on
+// [l, r] (zeros of sigma, where |g| has a kink, are panel ends).
+FloatPiece adapt(const Speed& s, double a, double h, double l, double r, const FloatPiece& whole,
+                 double scale2, double scale1, int depth) {
+  const double m = (l + r) / 2;
+  const FloatPiece left = panel(s, a, h, l, m), right = panel(s, a, h, m, r), both = left + right;
+  const double d2 = std::fabs(both.A - whole.A) + std::fabs(both.B - whole.B) + std::fabs(both.C - whole.C);
+  const double d1 = std::fabs(both.len - whole.len);
+  if (depth >= 30 || r - l < 1e-15 || (d2 <= 1e-13 * scale2 && d1 <= 1e-13 * scale1)) return both;
+  return adapt(s, a, h, l, m, left, scale2, scale1, depth + 1) + adapt(s, a, h, m, r, right, scale2, scale1, depth + 1);
+}
+
+double to_double(const RealAlgebraic& x) { return arf_get_d(arb_midref(x.to_ball(64).get()), ARF_RND_NEAR); }
+
+// Float integrals of the pieces of T, cached per pair of breakpoints: a
+// refinement round keeps most breakpoints, so most pieces are reused.
+class FloatPieces {
+ public:
+  explicit FloatPieces(const Speed& s) : s_(s) {
+    for (const auto& z : s.zeros()) zeros_.push_back(to_double(z.t));
+  }
+  const FloatPiece& get(double a, double b) {
+    const auto key = std::make_pair(a, b);
+    auto it = cache_.find(key);
+    if (it != cache_.end()) return it->second;
+    const double h = b - a;
+    FloatPiece total;
+    // split at the zeros of sigma inside (a, b): sigma = |g| ... is not smooth there
+    std::vector<double> ends{a};
+    for (double z : zeros_)
+      if (z > a && z < b) ends.push_back(z);
+    ends.push_back(b);
+    FloatPiece first;
+    for (std::size_t j = 0; j + 1 < ends.size(); ++j) first = first + panel(s_, a, h, ends[j], ends[j + 1]);
+    const double scale2 = std::fabs(first.A) + std::fabs(first.B) + std::fabs(first.C) + 1e-300;
+    const double scale1 = std::fabs(first.len) + 1e-300;
+    for (std::size_t j = 0; j + 1 < ends.size(); ++j) {
+      const FloatPiece w = panel(s_, a, h, ends[j], ends[j + 1]);
+      total = total + adapt(s_, a, h, ends[j], ends[j + 1], w, scale2, scale1, 0);
+    }
+    return cache_.emplace(key, total).first->second;
+  }
+
+ private:
+  const Speed& s_;
+  std::vector<double> zeros_;
+  std::map<std::pair<double, double>, FloatPiece> cache_;
+};
+
+// The draft C1 map of T (UNCERTIFIED, double): t, S, alpha, F and u, the same
+// quantities as build() / c1_from_pieces. u is NaN if the floating point
+// breaks down (then the draft counts as worst).
+struct Draft {
+  std::vector<double> t, S, alpha, F;
+  double u = std::nan("");
+};
+
+Draft draft_c1(FloatPieces& fp, const std::vector<RealAlgebraic>& T, double mu) {
+  const std::size_t N = T.size() - 1;
+  Draft d;
+  for (const auto& x : T) d.t.push_back(to_double(x));
+  d.t.front() = 0;
+  d.t.back() = 1;
+  std::vector<FloatPiece> I(N);
+  double total = 0;
+  for (std::size_t i = 0; i < N; ++i) {
+    I[i] = fp.get(d.t[i], d.t[i + 1]);
+    const double h = d.t[i + 1] - d.t[i];
+    I[i].A *= h;  // the PieceIntegrals convention: dt_i times the integrals over dt
+    I[i].B *= h;
+    I[i].C *= h;
+    total += I[i].len;
+  }
+  d.S.assign(1, 0.0);
+  double acc = 0;
+  for (std::size_t i = 0; i + 1 < N; ++i) {
+    acc += I[i].len;
+    d.S.push_back(acc / total);
+  }
+  d.S.push_back(1.0);
+  std::vector<double> rho(N), w(N), cc(N);
+  for (std::size_t i = 0; i < N; ++i) {
+    const double ds = d.S[i + 1] - d.S[i];
+    rho[i] = (d.t[i + 1] - d.t[i]) / ds;
+    w[i] = 1 / ds;
+  }
+  cc[0] = 1;
+  for (std::size_t i = 0; i + 1 < N; ++i) cc[i + 1] = rho[i] / (rho[i + 1] * cc[i]);
+  double P = 0, Q = 0;
+  for (std::size_t i = 0; i < N; ++i) {
+    const double ca = i % 2 == 0 ? cc[i] * I[i].A : I[i].C / cc[i];
+    const double cq = i % 2 == 0 ? I[i].C / cc[i] : cc[i] * I[i].A;
+    P += w[i] * ca;
+    Q += w[i] * cq;
+  }
+  const double x = std::sqrt(Q / P);
+  double sumF = 0;
+  for (std::size_t i = 0; i < N; ++i) {
+    const double k = i % 2 == 0 ? cc[i] * x : cc[i] / x;
+    d.alpha.push_back(1 / (k + 1));
+    d.F.push_back((k * I[i].A + I[i].B + I[i].C / k) * w[i]);
+    sumF += d.F.back();
+  }
+  d.u = mu * mu / sumF;
+  return d;
+}
+
+// A short rational within w of the double x.
+Rational rational_near(double x, const Rational& w) {
+  Ball b;
+  arb_set_d(b.get(), x);
+  const Rational m = mid_rational(b);
+  return Rational::simplest_between(m - w, m + w);
+}
+
 // A short rational in the ball x +- w (x a ball, w > 0 a rational width).
 Rational short_rational(const Ball& x, const Rational& w) {
   const Rational m = mid_rational(x);
   return Rational::simplest_between(m - w, m + w);
 }
 
-// New breakpoints of the slides' refinement: on each piece, the roots of
-//   sigma' dt [alpha t~ + (1 - alpha)(1 - t~)] - 2 sigma (1 - 2 alpha) = 0,
-// i.e. with sigma'/sigma = N1 / (2 g S D) and l(t) = dt [alpha t~ + (1-alpha)(1-t~)]
-// = (2 alpha - 1) t + (1 - alpha) b - alpha a:
-//   N1 l - 4 (1 - 2 alpha) g S D = 0.
-// The roots are choices (computed from rounded alpha and ends), not results.
-std::vector<RealAlgebraic> refine(const Poly& N1, const Poly& gSD,
-                                  const std::vector<RealAlgebraic>& T, const detail::C1Data& d) {
+// The slides' equation of one piece,
+//   F(t) = N1(t) l(t) - k2 gSD(t),  l(t) = c1 t + c0,
+// with sigma'/sigma = N1 / (2 g S D), l(t) = dt [alpha t~ + (1-alpha)(1-t~)]
+// = (2 alpha - 1) t + (1 - alpha) b - alpha a and k2 = 4 (1 - 2 alpha):
+// F = 0 iff sigma' dt [alpha t~ + (1 - alpha)(1 - t~)] - 2 sigma (1 - 2 alpha) = 0
+// where g S D != 0. Its roots are choices (the coefficients come from the
+// draft's alpha), so they are searched in floating point. N1 and gSD have
+// degree ~4n (plane) to ~12n (space), too large for cheap evaluation (their
+// exact isolation per piece and round, or even their local expansions, cost
+// seconds); instead
+//   E(t) = (sigma^2)'(t) l(t) - k2 sigma^2(t) = sigma^2 F / (g S D) = g S F / D^3
+// is evaluated from the curve's components (degree n) by truncated Taylor
+// series: the jets of x_i = N_i / Q_i to order 5 (N, N', N'' and N''',
+// N'''', N''''' from the LocalPoly expansions of N and of its third
+// derivative, in double) give sigma^2 to order 3 (angular: sigma^2 =
+// (A B - C^2) / A^2 with A = |p'|^2, B = |p''|^2, C = p'.p''; parametric:
+// sigma^2 = A), hence E and E'. S > 0 and D != 0 on [0, 1], so the roots of
+// E are those of F and the zeros of sigma (roots of g, where E changes sign);
+// roots at a zero of sigma are dropped.
+class SlidesEquation {
+ public:
+  SlidesEquation(const Curve& c, const Speed& s) : angular_(s.kind() == SpeedKind::Angular) {
+    for (const auto& x : c.components()) {
+      const Poly n = x.num(), q = x.den();
+      comp_.push_back(Comp{LocalPoly(n), LocalPoly(n.derivative().derivative().derivative()), LocalPoly(q),
+                           LocalPoly(q.derivative().derivative().derivative())});
+    }
+    for (const auto& z : s.zeros()) zeros_d_.push_back(arf_get_d(arb_midref(z.t.to_ball(64).get()), ARF_RND_NEAR));
+  }
+
+  /// UNCERTIFIED floating-point search (a choice only): the roots of E in
+  /// (lo, hi) from a scan of kScan equally spaced points, each sign change
+  /// refined by safeguarded Newton steps in double; roots at a zero of sigma
+  /// dropped. Two roots closer than the scan's spacing may be missed.
+  std::vector<double> roots_double(double lo, double hi, double c1, double c0, double k2) const {
+    std::vector<double> out;
+    const double step = (hi - lo) / kScan, tol = (hi - lo) * 1e-13;
+    double xa = lo, ea = e_double(lo, c1, c0, k2, nullptr);
+    for (int i = 1; i <= kScan; ++i) {
+      const double xb = i == kScan ? hi : lo + step * i, eb = e_double(xb, c1, c0, k2, nullptr);
+      if (std::isfinite(ea) && std::isfinite(eb) && ((ea < 0 && eb > 0) || (ea > 0 && eb < 0))) {
+        double a = xa, b = xb, x = (a + b) / 2;
+        const bool neg_a = ea < 0;
+        for (int it = 0; it < 100 && b - a > tol; ++it) {
+          double d1 = 0;
+          const double ex = e_double(x, c1, c0, k2, &d1);
+          if (ex == 0 || !std::isfinite(ex)) break;
+          ((ex < 0) == neg_a ? a : b) = x;
+          const double nx = x - ex / d1;
+          if (std::isfinite(nx) && nx > a && nx < b) {
+            const bool done = std::fabs(nx - x) < tol;
+            x = nx;
+            if (done) break;
+          } else {
+            x = (a + b) / 2;
+          }
+        }
+        bool at_zero = false;
+        for (double z : zeros_d_) at_zero = at_zero || std::fabs(x - z) <= (hi - lo) * 1e-9;
+        if (!at_zero) out.push_back(x);
+      } else if (ea == 0 && i > 1) {
+        out.push_back(xa);
+      }
+      xa = xb;
+      ea = eb;
+    }
+    return out;
+  }
+
+ private:
+  static constexpr int kScan = 64;
+  // E(t) (and E'(t) into d1 if non-null) in IEEE double from the jets of the
+  // components (LocalPoly::eval_double): UNCERTIFIED.
+  double e_double(double t, double c1, double c0, double k2, double* d1) const {
+    double A[4] = {0, 0, 0, 0}, B[4] = {0, 0, 0, 0}, C[4] = {0, 0, 0, 0};
+    static const double fact[6] = {1, 1, 2, 6, 24, 120};
+    for (const auto& c : comp_) {
+      double n[6], q[6], x[6], p1[5], p2[4];
+      c.n.eval_double(t, &n[0], &n[1], &n[2]);
+      c.n3.eval_double(t, &n[3], &n[4], &n[5]);
+      c.q.eval_double(t, &q[0], &q[1], &q[2]);
+      c.q3.eval_double(t, &q[3], &q[4], &q[5]);
+      for (int k = 0; k < 6; ++k) {
+        n[k] /= fact[k];
+        q[k] /= fact[k];
+      }
+      for (int k = 0; k < 6; ++k) {  // x = n / q as series
+        double v = n[k];
+        for (int j = 1; j <= k; ++j) v -= q[j] * x[k - j];
+        x[k] = v / q[0];
+      }
+      for (int k = 0; k < 5; ++k) p1[k] = (k + 1) * x[k + 1];
+      for (int k = 0; k < 4; ++k) p2[k] = (k + 1) * p1[k + 1];
+      for (int k = 0; k < 4; ++k)
+        for (int j = 0; j <= k; ++j) {
+          A[k] += p1[j] * p1[k - j];
+          B[k] += p2[j] * p2[k - j];
+          C[k] += p1[j] * p2[k - j];
+        }
+    }
+    double s[4];
+    if (angular_) {
+      double num[4], den[4];
+      for (int k = 0; k < 4; ++k) {
+        num[k] = den[k] = 0;
+        for (int j = 0; j <= k; ++j) {
+          num[k] += A[j] * B[k - j] - C[j] * C[k - j];
+          den[k] += A[j] * A[k - j];
+        }
+      }
+      for (int k = 0; k < 4; ++k) {
+        double v = num[k];
+        for (int j = 1; j <= k; ++j) v -= den[j] * s[k - j];
+        s[k] = v / den[0];
+      }
+    } else {
+      for (int k = 0; k < 4; ++k) s[k] = A[k];
+    }
+    // sigma^2 = s0, (sigma^2)' = s1, (sigma^2)'' = 2 s2
+    const double l = c1 * t + c0;
+    if (d1) *d1 = 2 * s[2] * l + s[1] * (c1 - k2);
+    return s[1] * l - k2 * s[0];
+  }
+
+  struct Comp {
+    LocalPoly n, n3, q, q3;  // N, N''', Q, Q'''
+  };
+  bool angular_;
+  std::vector<Comp> comp_;
+  std::vector<double> zeros_d_;
+};
+
+// New breakpoints of the slides' refinement: on each piece of T, the roots of
+// its slides' equation (SlidesEquation, found in floating point: UNCERTIFIED
+// choices, certified later as part of the map) at least 1/1000 of the piece away from
+// its ends, rounded to short rationals (within 10^-6 of the piece's width).
+std::vector<RealAlgebraic> refine(SlidesEquation& eq, const std::vector<RealAlgebraic>& T, const Draft& d) {
   std::vector<RealAlgebraic> out;
   const Rational tiny(1, 1000000000);
   for (std::size_t i = 0; i + 1 < T.size(); ++i) {
     out.push_back(T[i]);
     const Ball ab = T[i].to_ball(128), bb = T[i + 1].to_ball(128);
     const Rational a = short_rational(ab, tiny), b = short_rational(bb, tiny);
-    const Rational al = short_rational(d.alpha[i], Rational(1, 1000000000000L));
+    const Rational al = rational_near(d.alpha[i], Rational(1, 1000000000000L));
     const Rational h = b - a;
     if (h.sign() <= 0) continue;
-    // l(t) = c1 t + c0, and the equation N1 l - 4 (1 - 2 alpha) gSD, scaled to Z[t].
-    const Rational c1 = Rational(2) * al - Rational(1);
-    const Rational c0 = (Rational(1) - al) * b - al * a;
-    const Rational c2 = Rational(4) * (Rational(1) - Rational(2) * al);
-    const Integer den = Integer(c1.den()) * Integer(c0.den()) * Integer(c2.den());
-    const Rational k1 = c1 * Rational(den), k0 = c0 * Rational(den), k2 = c2 * Rational(den);
-    // den clears every denominator, so k0, k1, k2 are integers
-    const Poly lin(std::vector<Integer>{k0.num(), k1.num()});
-    const Poly eq = N1 * lin - Poly(std::vector<Integer>{k2.num()}) * gSD;
-    if (eq.is_zero()) continue;
+    const long p = 256;
+    const Ball c1(Rational(2) * al - Rational(1), p), c0((Rational(1) - al) * b - al * a, p),
+        k2(Rational(4) * (Rational(1) - Rational(2) * al), p);
     const Rational margin = h * Rational(1, 1000);
-    std::vector<IsolatedRoot> roots = isolate_real_roots(eq, a + margin, b - margin);
-    for (const auto& rt : roots) {
-      const RealAlgebraic x(rt);
-      const Rational q = short_rational(x.to_ball(64), h * Rational(1, 1000000));
+    const Ball lo(a + margin, p), hi(b - margin, p);
+    auto dbl = [](const Ball& x) { return arf_get_d(arb_midref(x.get()), ARF_RND_NEAR); };
+    for (const double r : eq.roots_double(dbl(lo), dbl(hi), dbl(c1), dbl(c0), dbl(k2))) {
+      Ball x;
+      arb_set_d(x.get(), r);
+      const Rational q = short_rational(x, h * Rational(1, 1000000));
       if (q > a + margin && q < b - margin && (out.empty() || compare(out.back(), RealAlgebraic(q)) < 0))
         out.emplace_back(q);
     }
@@ -218,35 +525,48 @@ MoebiusResult reparam_c1(const Curve& c, SpeedKind kind, const Rational& target,
       T.emplace_back(rt);
     }
   T.emplace_back(RealAlgebraic(1));
-  Poly S2(0);
-  for (const auto& k : s.cofactors()) S2 = S2 + k * k;
-  const Poly gSD = s.g() * S2 * s.denominator();
+  SlidesEquation slides(c, s);
 
-  std::vector<RealAlgebraic> best = T;
+  // The rounds choose T in floating point (draft_c1, UNCERTIFIED); a T whose
+  // draft meets the target is certified (build) and accepted only if the
+  // certified u_after >= target. Otherwise the best draft is certified at the end.
+  FloatPieces fp(s);
+  const double mu_d = arf_get_d(arb_midref(base.mu.get()), ARF_RND_NEAR);
+  const double target_d = arf_get_d(arb_midref(Ball(target, 128).get()), ARF_RND_NEAR);
+  const Ball tq(target, 2 * digits_to_bits(opt.digits) + 64);
+  std::vector<RealAlgebraic> best = T, certified_T;
   double best_u = -1;
+  Built certified;
+  bool have_certified = false, reached = false;
   long rounds = 0;
   for (;; ++rounds) {
-    const Built draft = build(s, base, T, 0, opt);
-    const double u = arf_get_d(arb_midref(draft.r.u_after.get()), ARF_RND_NEAR);
+    check_time_budget();
+    const Draft draft = draft_c1(fp, T, mu_d);
+    const double u = draft.u;
     if (u > best_u) {
       best_u = u;
       best = T;
     }
-    Ball tq(target, 128);
-    if (arb_ge(draft.r.u_after.get(), tq.get())) break;
+    if (u >= target_d) {
+      certified = build(s, base, T, opt.digits, opt);
+      certified_T = T;
+      have_certified = true;
+      if (arb_ge(certified.r.u_after.get(), tq.get())) {
+        reached = true;
+        break;
+      }
+      // the floating point was optimistic: refine on
+    }
     if (static_cast<long>(T.size()) - 1 >= max_pieces) break;
-    std::vector<RealAlgebraic> next = refine(N1, gSD, T, draft.d);
+    std::vector<RealAlgebraic> next = refine(slides, T, draft);
     if (next.size() == T.size()) {
       // The slides' rule added nothing: split the piece with the largest
       // excess F_i - mu^2 Delta s_i (its share of int sigma_{p o m}^2 above the
       // ideal) at its midpoint.
       std::size_t worst = 0;
       double wv = -1;
-      const double mu = arf_get_d(arb_midref(base.mu.get()), ARF_RND_NEAR);
       for (std::size_t i = 0; i + 1 < T.size(); ++i) {
-        const double ds = arf_get_d(arb_midref(draft.r.S[i + 1].get()), ARF_RND_NEAR) -
-                          arf_get_d(arb_midref(draft.r.S[i].get()), ARF_RND_NEAR);
-        const double e = arf_get_d(arb_midref(draft.d.F[i].get()), ARF_RND_NEAR) - mu * mu * ds;
+        const double e = draft.F[i] - mu_d * mu_d * (draft.S[i + 1] - draft.S[i]);
         if (e > wv) {
           wv = e;
           worst = i;
@@ -265,12 +585,13 @@ MoebiusResult reparam_c1(const Curve& c, SpeedKind kind, const Rational& target,
     if (static_cast<long>(next.size()) - 1 > max_pieces) break;
     T = next;
   }
-  Built fin = build(s, base, best, opt.digits, opt);
-  MoebiusResult r = fin.r;
+  if (!reached && !(have_certified && certified_T.size() == best.size() &&
+                    std::equal(best.begin(), best.end(), certified_T.begin())))
+    certified = build(s, base, best, opt.digits, opt);
+  MoebiusResult r = certified.r;
   r.target.used = true;
   r.target.value = target;
   r.target.rounds = rounds;
-  const Ball tq(target, 2 * digits_to_bits(opt.digits) + 64);
   r.target.reached = arb_ge(r.u_after.get(), tq.get());
   return r;
 }
