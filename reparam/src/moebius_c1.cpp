@@ -14,6 +14,7 @@
 #include "uniparam/algebra/real_roots.hpp"
 #include "uniparam/core/budget.hpp"
 #include "uniparam/core/error.hpp"
+#include "uniparam/core/parallel.hpp"
 #include "uniparam/reparam/moebius.hpp"
 
 namespace uniparam {
@@ -119,11 +120,21 @@ Built build(const Speed& s, const UniformityResult& base, const std::vector<Real
     r.speed_vanishes = !s.zeros().empty();
     std::vector<Ball> len(N);
     Ball total(0);
+    // Pieces on worker threads, each extra worker with its own copies of the
+    // speed and the breakpoints (both keep mutable caches).
+    r.integrals.resize(N);
+    const std::size_t workers = std::min(worker_count(), N);
+    std::vector<Speed> speeds(workers > 1 ? workers - 1 : 0, s);
+    std::vector<std::vector<RealAlgebraic>> Ts(speeds.size(), T);
+    parallel_for(N, workers, [&](std::size_t w, std::size_t i) {
+      const Speed& sw = w == 0 ? s : speeds[w - 1];
+      const std::vector<RealAlgebraic>& tw = w == 0 ? T : Ts[w - 1];
+      r.integrals[i] = piece_integrals(sw, Breakpoint{tw[i], 0, 0, 0}, Breakpoint{tw[i + 1], 0, 0, 0}, bits,
+                                       opt.max_prec);
+      len[i] = integrate_speed(sw, tw[i], tw[i + 1], bits, opt.max_prec);
+    });
     for (std::size_t i = 0; i < N; ++i) {
       r.T.push_back(Breakpoint{T[i], 0, 0, 0});
-      r.integrals.push_back(piece_integrals(s, Breakpoint{T[i], 0, 0, 0}, Breakpoint{T[i + 1], 0, 0, 0}, bits,
-                                            opt.max_prec));
-      len[i] = integrate_speed(s, T[i], T[i + 1], bits, opt.max_prec);
       arb_add(total.get(), total.get(), len[i].get(), prec);
     }
     r.T.push_back(Breakpoint{T[N], 0, 0, 0});
