@@ -24,10 +24,28 @@ struct IsolatedRoot {
   bool is_exact() const { return lo == hi; }
 };
 
+/// How the roots of each squarefree factor, mapped to [0, 1], are isolated.
+/// Every method is exact/certified and gives the same roots (the intervals
+/// may differ); they differ only in cost.
+enum class RootIsolationMethod {
+  /// Exact below a small degree, Subdivision above it.
+  Auto,
+  /// Descartes' rule of signs with bisection and exact integer Taylor shifts
+  /// (Vincent-Collins-Akritas) on the whole of [0, 1].
+  Exact,
+  /// Certified ball-arithmetic subdivision from truncated local Taylor
+  /// expansions (a cell without a root: the enclosure of the factor
+  /// excludes 0; a cell with exactly one: the derivative's excludes 0 and the
+  /// signs at its ends differ), then Exact on the cells it leaves undecided.
+  Subdivision,
+};
+
 /// Options of the isolator.
 struct RootIsolationOptions {
   /// Refuse inputs of larger degree (BudgetExceeded naming this limit).
   long max_degree = 20000;
+  /// The isolation method (for tests and benchmarks; Auto is the fastest).
+  RootIsolationMethod method = RootIsolationMethod::Auto;
 };
 
 /// All real roots of p in the closed interval [a, b].
