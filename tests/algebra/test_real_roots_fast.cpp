@@ -154,6 +154,32 @@ TEST(RealRootsFast, BernsteinTimesKnownFactors) {
   }
 }
 
+/// Exactly one interior root next to roots at the ends of [0, 1] (Descartes'
+/// count of the open interval is then 1 while the ends are roots): every
+/// root must be found, by every method.
+TEST(RealRootsFast, OneInteriorRootAndRootsAtTheEnds) {
+  std::mt19937_64 rng(4242);
+  for (long it = 0; it < iterations(3); ++it) {
+    const long n = 300 + static_cast<long>(rng() % 100);
+    // (t + 2)^n: no root near [0, 1], so Descartes' count on (0, 1) is 1.
+    const Poly B = Poly(std::vector<long>{2, 1}).pow(static_cast<unsigned long>(n));
+    const long d = 3 + static_cast<long>(rng() % 50);
+    const Rational q(1, d);
+    std::vector<Known> all{{true, q, 1}};
+    Poly p = B * lin(q.den(), q.num());
+    if (it != 1) {
+      all.push_back({true, Rational(0), 1});
+      p = p * Poly::t();
+    }
+    if (it != 0) {
+      all.push_back({true, Rational(1), 1});
+      p = p * lin(Integer(1), Integer(1));
+    }
+    for (RootIsolationMethod m : {RootIsolationMethod::Subdivision, RootIsolationMethod::Auto, RootIsolationMethod::Exact})
+      check_against_known(p, Rational(0), Rational(1), all, isolate_real_roots(p, Rational(0), Rational(1), with(m)));
+  }
+}
+
 /// Roots 1e-30 apart (rational and irrational) inside a high-degree
 /// polynomial: the subdivision cannot separate them at its precision and
 /// must hand the cell to the exact VCA.
