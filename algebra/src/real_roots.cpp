@@ -657,6 +657,14 @@ void subdivide(const Poly& G, std::vector<Cell>& leaves, std::vector<Cell>& exac
     const long log2h = -(sc.cell.k + 1);
     variations(e, log2h, var0.v, var1.v);
     const slong len = arb_poly_length(e.P);
+    // Working precision of what is derived from this expansion (children, end
+    // values): its rounding error, relative to the terms on the cell (at most
+    // 2^log_scale), must stay below eps.
+    if (len > 0) arb_get_mag(rad.v, e.P->coeffs);
+    else mag_zero(rad.v);
+    mag_max(rad.v, rad.v, var0.v);
+    const long log_scale = mag_is_finite(rad.v) && !mag_is_zero(rad.v) ? fmpz_get_si(MAG_EXPREF(rad.v)) : an.log_v;
+    const long cwp = limb_bits(std::max(64L, log_scale - an.log_v + kExtraBits + 32));
     // G on the cell: P_0 +- (var0 + tail0)
     mag_add(err.v, var0.v, e.tail0);
     if (len > 0) arb_get_mag_lower(lo.v, e.P->coeffs);
@@ -667,20 +675,17 @@ void subdivide(const Poly& G, std::vector<Cell>& leaves, std::vector<Cell>& exac
     if (len > 1) arb_get_mag_lower(lo.v, e.P->coeffs + 1);
     else mag_zero(lo.v);
     if (mag_cmp(lo.v, err.v) > 0) {  // G monotone: at most one root
-      const long ewp = std::max(64L, arb_rel_accuracy_bits(e.P->coeffs) + 16);
-      const int sl = end_sign(e, G, sc.cell, -1, ewp), sr = end_sign(e, G, sc.cell, 1, ewp);
+      const int sl = end_sign(e, G, sc.cell, -1, cwp), sr = end_sign(e, G, sc.cell, 1, cwp);
       if (sl != 0 && sr != 0 && sl != sr) leaves.push_back(std::move(sc.cell));
       continue;  // a root at an end is reported by the bisection that made it
     }
     // Cells where |G| grows steeply one way (the centred form above fails):
     // the expansion at the other end, O(K^2) like a bisection.
-    const long cwp0 = limb_bits(std::max(64L, arb_rel_accuracy_bits(e.P->coeffs) + 32));
     if (const int dir = growth_direction(e, log2h, var0.v)) {
-      const int t = end_test(e, log2h, dir, cwp0);
+      const int t = end_test(e, log2h, dir, cwp);
       if (t == 1) continue;
       if (t == 2) {
-        const long ewp = std::max(64L, arb_rel_accuracy_bits(e.P->coeffs) + 16);
-        const int sl = end_sign(e, G, sc.cell, -1, ewp), sr = end_sign(e, G, sc.cell, 1, ewp);
+        const int sl = end_sign(e, G, sc.cell, -1, cwp), sr = end_sign(e, G, sc.cell, 1, cwp);
         if (sl != 0 && sr != 0 && sl != sr) leaves.push_back(std::move(sc.cell));
         continue;
       }
@@ -705,18 +710,18 @@ void subdivide(const Poly& G, std::vector<Cell>& leaves, std::vector<Cell>& exac
     Integer c2;
     fmpz_mul_2exp(c2.get(), sc.cell.c.get(), 1);
     const long k2 = sc.cell.k + 1;
-    // the midpoint: a dyadic root is reported here, once
-    if (len == 0 || arb_contains_zero(e.P->coeffs)) {
+    // the midpoint: a dyadic root is reported here, once (G(m) = P_0 + T(0))
+    bool mid_may_vanish = len == 0;
+    if (!mid_may_vanish) {
+      ArbVar g;
+      arb_set(g.v, e.P->coeffs);
+      arb_add_error_mag(g.v, e.tail0);
+      mid_may_vanish = arb_contains_zero(g.v);
+    }
+    if (mid_may_vanish) {
       const Rational m = Rational(c2 + Integer(1)) * pow2(-k2);
       if (exact_sign(G, m) == 0) exact.push_back({c2 + Integer(1), k2});
     }
-    // The children's rounding error, relative to the parent's terms on the
-    // cell (at most 2^log_scale), must stay below eps.
-    if (len > 0) arb_get_mag(rad.v, e.P->coeffs);
-    else mag_zero(rad.v);
-    mag_max(rad.v, rad.v, var0.v);
-    const long log_scale = mag_is_finite(rad.v) && !mag_is_zero(rad.v) ? fmpz_get_si(MAG_EXPREF(rad.v)) : an.log_v;
-    const long cwp = limb_bits(std::max(64L, log_scale - an.log_v + kExtraBits + 32));
     for (int side : {1, -1}) {  // the right child first: the left is processed first
       auto ch = std::make_unique<Expansion>();
       arb_one(delta.v);
