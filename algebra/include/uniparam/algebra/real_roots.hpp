@@ -54,8 +54,11 @@ struct RootIsolationOptions {
 ///       contained in [a, b]; every root of p in [a, b] appears exactly once,
 ///       with its multiplicity; rational roots (in particular roots at a or b)
 ///       are exact (lo == hi).
-/// Works on [a, b] only (Descartes' rule of signs with Taylor shifts on the
-/// squarefree factors), so its cost does not depend on roots elsewhere.
+/// Works on [a, b] only (each squarefree factor mapped to [0, 1]: Descartes'
+/// rule of signs with exact Taylor shifts, from degree 300 after a certified
+/// ball subdivision, see RootIsolationMethod), so its cost does not depend on
+/// roots elsewhere. BudgetExceeded when the isolation does not finish within
+/// its subdivision budget or the time budget.
 std::vector<IsolatedRoot> isolate_real_roots(const Poly& p, const Rational& a, const Rational& b,
                                              const RootIsolationOptions& opt = {});
 
