@@ -4,6 +4,7 @@
 #include "uniparam/algebra/real_roots.hpp"
 
 #include <arb.h>
+#include <arb_poly.h>
 #include <arb_fmpz_poly.h>
 #include <flint/fmpq.h>
 #include <flint/fmpz_poly.h>
@@ -11,6 +12,7 @@
 #include <flint/ulong_extras.h>
 
 #include <algorithm>
+#include <memory>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -23,9 +25,8 @@
 
 namespace uniparam {
 namespace detail {
-namespace {
 
-/// Owning arb_t for local use.
+/// Owning arb_t for local use (also used by the subdivision below).
 struct ArbVar {
   arb_t v;
   ArbVar() { arb_init(v); }
@@ -33,6 +34,8 @@ struct ArbVar {
   ArbVar(const ArbVar&) = delete;
   ArbVar& operator=(const ArbVar&) = delete;
 };
+
+namespace {
 
 bool is_dyadic(const Rational& x) {
   const fmpz* d = fmpq_denref(x.get());
@@ -219,6 +222,7 @@ namespace {
 
 using detail::exact_sign;
 using detail::pow2;
+using ArbVar = detail::ArbVar;
 
 /// d*t - n for q = n/d.
 Poly linear_poly(const Rational& q) { return Poly(std::vector<Integer>{Integer(0) - q.num(), q.den()}); }
@@ -236,6 +240,17 @@ long separation_bits(const Poly& g) {
 /// d | lc(f), would reduce to one). A few primes; false means "unknown".
 bool provably_no_rational_root(const Poly& f) {
   if (f.degree() < 2) return false;
+  // Small primes first: every residue is tried by evaluation, O(n p) each.
+  for (ulong p = 3; p < 256; p = n_nextprime(p, 1)) {
+    if (fmpz_fdiv_ui(f.get()->coeffs + f.degree(), p) == 0) continue;
+    nmod_poly_t fp;
+    nmod_poly_init(fp, p);
+    fmpz_poly_get_nmod_poly(fp, f.get());
+    bool no_root = true;
+    for (ulong x = 0; x < p && no_root; ++x) no_root = nmod_poly_evaluate_nmod(fp, x) != 0;
+    nmod_poly_clear(fp);
+    if (no_root) return true;
+  }
   ulong p = 1000003;
   for (int tries = 0; tries < 8; ++tries) {
     p = n_nextprime(p, 1);
@@ -307,13 +322,15 @@ Poly left_half(const Poly& P) {
 /// not reported: the caller tests them).
 /// Leaves: cells holding exactly one root, whose ends are not roots. Exact:
 /// dyadic roots met as bisection midpoints.
-void vca(const Poly& G, std::vector<Cell>& leaves, std::vector<Cell>& exact) {
+/// Same on the cell (c/2^k, (c+1)/2^k) of [0, 1], from P(x) = 2^(k n) G((c + x) / 2^k)
+/// up to a positive factor (roots at the cell's ends are not reported).
+void vca_from(const Poly& G, Node start, std::vector<Cell>& leaves, std::vector<Cell>& exact) {
   if (G.degree() < 1) return;
   const long depth_cap = separation_bits(G) + 4;
   const long node_cap = 4 * (G.degree() + 1) * (depth_cap + 1) + 1000;
   long nodes = 0;
   std::vector<Node> stack;
-  stack.push_back({G, {Integer(0), 0}});
+  stack.push_back(std::move(start));
   Integer p1;
   while (!stack.empty()) {
     Node nd = std::move(stack.back());
@@ -340,6 +357,393 @@ void vca(const Poly& G, std::vector<Cell>& leaves, std::vector<Cell>& exact) {
     stack.push_back({std::move(R), {c2 + Integer(1), k2}});
     stack.push_back({std::move(L), {c2, k2}});
   }
+}
+
+void vca(const Poly& G, std::vector<Cell>& leaves, std::vector<Cell>& exact) {
+  vca_from(G, {G, {Integer(0), 0}}, leaves, exact);
+}
+
+/// 2^(k n) G((c + x) / 2^k) exactly: G on the cell (c/2^k, (c+1)/2^k) mapped to (0, 1).
+Poly cell_poly(const Poly& G, const Cell& cell) {
+  const slong n = G.degree();
+  Poly H(G);
+  fmpz* h = H.get()->coeffs;
+  for (slong i = 0; i <= n; ++i) fmpz_mul_2exp(h + i, h + i, static_cast<ulong>(cell.k * (n - i)));
+  Poly P;
+  fmpz_poly_taylor_shift(P.get(), H.get(), cell.c.get());
+  return P;
+}
+
+// ---------------------------------------------------------------------------
+// Certified ball subdivision (the fast path at high degree). G(m + w) on a
+// dyadic cell [m - h, m + h] of [0, 1] is held as a truncated local expansion
+// sum P_k w^k (Arb balls containing the exact coefficients of the truncated
+// polynomial) plus a dropped tail T with |T| <= tail0, |T'| <= tail1 on the
+// real interval |w| <= h. A child's expansion is its parent's shifted by
+// +-h/2 (the child's interval lies in the parent's, so the tail bounds carry
+// over), then truncated again: away from G's complex roots only a few terms
+// matter, so a cell costs O(K^2) with K << n instead of an O(n^2) exact shift.
+
+/// A local expansion of G at a cell's centre (see above).
+struct Expansion {
+  arb_poly_t P;
+  mag_t tail0, tail1;
+  Expansion() {
+    arb_poly_init(P);
+    mag_init(tail0);
+    mag_init(tail1);
+  }
+  ~Expansion() {
+    arb_poly_clear(P);
+    mag_clear(tail0);
+    mag_clear(tail1);
+  }
+  Expansion(const Expansion&) = delete;
+  Expansion& operator=(const Expansion&) = delete;
+};
+
+/// Owning mag_t for local use.
+struct MagVar {
+  mag_t v;
+  MagVar() { mag_init(v); }
+  ~MagVar() { mag_clear(v); }
+  MagVar(const MagVar&) = delete;
+  MagVar& operator=(const MagVar&) = delete;
+};
+
+/// Drops the top terms of e (cell half-width h = 2^log2h) while their
+/// contributions sum |c_k| h^k to G and h sum k |c_k| h^(k-1) to h G' on
+/// |w| <= h stay below eps, adding their bounds to the tails. Keeps >= 2 terms.
+void truncate_expansion(Expansion& e, long log2h, const mag_t eps) {
+  const slong n = arb_poly_length(e.P);
+  MagVar s0, s1, n0, n1, a, c1;
+  slong K = n;
+  for (slong k = n - 1; k >= 2; --k) {
+    arb_get_mag(a.v, e.P->coeffs + k);
+    mag_mul_2exp_si(a.v, a.v, log2h * (k - 1));  // |c_k| h^(k-1)
+    mag_mul_ui(n1.v, a.v, static_cast<ulong>(k));
+    mag_add(n1.v, n1.v, s1.v);
+    mag_mul_2exp_si(a.v, a.v, log2h);  // |c_k| h^k
+    mag_add(n0.v, s0.v, a.v);
+    mag_mul_2exp_si(c1.v, n1.v, log2h);
+    if (mag_cmp(n0.v, eps) > 0 || mag_cmp(c1.v, eps) > 0) break;
+    mag_swap(s0.v, n0.v);
+    mag_swap(s1.v, n1.v);
+    K = k;
+  }
+  if (K < n) {
+    arb_poly_truncate(e.P, K);
+    mag_add(e.tail0, e.tail0, s0.v);
+    mag_add(e.tail1, e.tail1, s1.v);
+  }
+}
+
+/// Upper bounds var0 = sum_{k>=1} |c_k| h^k and var1 = sum_{k>=2} k |c_k| h^(k-1).
+void variations(const Expansion& e, long log2h, mag_t var0, mag_t var1) {
+  mag_zero(var0);
+  mag_zero(var1);
+  MagVar a, b;
+  const slong n = arb_poly_length(e.P);
+  for (slong k = 1; k < n; ++k) {
+    arb_get_mag(a.v, e.P->coeffs + k);
+    mag_mul_2exp_si(a.v, a.v, log2h * (k - 1));
+    if (k >= 2) {
+      mag_mul_ui(b.v, a.v, static_cast<ulong>(k));
+      mag_add(var1, var1, b.v);
+    }
+    mag_mul_2exp_si(a.v, a.v, log2h);
+    mag_add(var0, var0, a.v);
+  }
+}
+
+/// Sign of G at the cell end m + side * h (side = +-1): from the expansion when
+/// its enclosure excludes 0, else exactly (0 when the end is a root).
+int end_sign(const Expansion& e, const Poly& G, const Cell& cell, int side, long prec) {
+  const long log2h = -(cell.k + 1);
+  ArbVar acc;
+  const slong n = arb_poly_length(e.P);
+  for (slong k = n - 1; k >= 0; --k) {  // Horner with exact multiplications by +-2^log2h
+    arb_mul_2exp_si(acc.v, acc.v, log2h);
+    if (side < 0) arb_neg(acc.v, acc.v);
+    arb_add(acc.v, acc.v, e.P->coeffs + k, prec);
+  }
+  arb_add_error_mag(acc.v, e.tail0);
+  if (arb_is_positive(acc.v)) return 1;
+  if (arb_is_negative(acc.v)) return -1;
+  const Integer c = side < 0 ? cell.c : cell.c + Integer(1);
+  return exact_sign(G, Rational(c) * pow2(-cell.k));
+}
+
+/// Direction in which the terms of the centre expansion (k >= 1) mostly
+/// keep one sign pattern on the cell: +1 when nearly all c_k h^k have the sign
+/// of c_1 (|G| grows to the right), -1 when nearly all (-1)^k c_k do (it grows
+/// to the left), 0 otherwise. A cheap filter for end_test (no claim).
+int growth_direction(const Expansion& e, long log2h, const mag_t var0) {
+  const slong n = arb_poly_length(e.P);
+  if (n < 3) return 0;
+  const int s1 = arf_sgn(arb_midref(e.P->coeffs + 1));
+  if (s1 == 0) return 0;
+  MagVar a, bad_r, bad_l;
+  for (slong k = 2; k < n; ++k) {
+    const int sk = arf_sgn(arb_midref(e.P->coeffs + k));
+    if (sk == 0) continue;
+    arb_get_mag(a.v, e.P->coeffs + k);
+    mag_mul_2exp_si(a.v, a.v, log2h * k);
+    if (sk != s1) mag_add(bad_r.v, bad_r.v, a.v);
+    if (sk * ((k & 1) ? 1 : -1) != s1) mag_add(bad_l.v, bad_l.v, a.v);
+  }
+  mag_mul_2exp_si(bad_r.v, bad_r.v, 3);
+  mag_mul_2exp_si(bad_l.v, bad_l.v, 3);
+  if (mag_cmp(bad_r.v, var0) < 0) return 1;
+  if (mag_cmp(bad_l.v, var0) < 0) return -1;
+  return 0;
+}
+
+/// Tests on the expansion at the cell end a = m - dir h (the end |G| grows
+/// away from): G(a + dir v) = sum b_k v^k + T, v in [0, 2h]. With sigma the
+/// sign of b_1 and B0, B1 the sums of |b_k| (2h)^k and k |b_k| (2h)^(k-1)
+/// over the k >= 2 whose ball is not sigma-signed: sigma (G - b_0) >= -B0 -
+/// tail0 and sigma dir G' >= sigma b_1 - B1 - tail1 on the cell. Returns 1
+/// when the cell has no root (sigma b_0 > B0 + tail0), 2 when G is monotone
+/// on it (sigma b_1 > B1 + tail1), 0 when undecided.
+int end_test(const Expansion& e, long log2h, int dir, long prec) {
+  arb_poly_t B;
+  arb_poly_init(B);
+  arb_poly_set_round(B, e.P, prec);
+  ArbVar d;
+  arb_one(d.v);
+  arb_mul_2exp_si(d.v, d.v, log2h);  // shift to the end m - dir h
+  if (dir > 0) arb_neg(d.v, d.v);
+  arb_poly_taylor_shift(B, B, d.v, prec);
+  const slong n = arb_poly_length(B);
+  int result = 0;
+  if (n >= 2) {
+    if (dir < 0)  // v = -u: b_k (-1)^k
+      for (slong k = 1; k < n; k += 2) arb_neg(B->coeffs + k, B->coeffs + k);
+    const int sigma = arb_is_positive(B->coeffs + 1) ? 1 : arb_is_negative(B->coeffs + 1) ? -1 : 0;
+    if (sigma != 0) {
+      MagVar b0, b1, a, m;
+      mag_set(b0.v, e.tail0);
+      mag_set(b1.v, e.tail1);
+      for (slong k = 2; k < n; ++k) {
+        if (sigma > 0 ? arb_is_nonnegative(B->coeffs + k) : arb_is_nonpositive(B->coeffs + k)) continue;
+        arb_get_mag(a.v, B->coeffs + k);
+        mag_mul_2exp_si(a.v, a.v, (log2h + 1) * (k - 1));  // |b_k| (2h)^(k-1)
+        mag_mul_ui(m.v, a.v, static_cast<ulong>(k));
+        mag_add(b1.v, b1.v, m.v);
+        mag_mul_2exp_si(a.v, a.v, log2h + 1);
+        mag_add(b0.v, b0.v, a.v);
+      }
+      ArbVar t;
+      arb_set(t.v, B->coeffs);
+      if (sigma < 0) arb_neg(t.v, t.v);
+      arb_add_error_mag(t.v, b0.v);
+      if (arb_is_positive(t.v)) {
+        result = 1;
+      } else {
+        arb_set(t.v, B->coeffs + 1);
+        if (sigma < 0) arb_neg(t.v, t.v);
+        arb_add_error_mag(t.v, b1.v);
+        if (arb_is_positive(t.v)) result = 2;
+      }
+    }
+  }
+  arb_poly_clear(B);
+  return result;
+}
+
+/// Tolerances of the expansions derived from one exact expansion (an anchor):
+/// truncation below eps = 2^(log_v - kExtraBits), with 2^log_v the typical
+/// size of G on the anchor's cell; rounding at the same level.
+struct Anchor {
+  long log_v = 0;
+  MagVar eps;
+};
+
+/// Accuracy of the expansions below the typical size of G (bits).
+constexpr long kExtraBits = 64;
+
+long limb_bits(long bits) { return (bits + FLINT_BITS - 1) / FLINT_BITS * FLINT_BITS; }
+
+/// The exact expansion of G at the centre m of `cell`, rounded to enough
+/// precision and truncated, and its anchor (tolerances from the median of
+/// |G| at 7 points of the cell: only costs depend on them, never results).
+std::unique_ptr<Expansion> anchor_expansion(const Poly& G, const Cell& cell, Anchor& an) {
+  const slong n = G.degree();
+  const long L = cell.k + 1;
+  // s(x) = 2^(L n) G(x / 2^L) shifted by 2c + 1: G(m + w) = 2^(-L n) s(2^L w).
+  Poly s;
+  {
+    Poly q(G);
+    fmpz* c = q.get()->coeffs;
+    for (slong i = 0; i <= n; ++i) fmpz_mul_2exp(c + i, c + i, static_cast<ulong>(L * (n - i)));
+    Integer J;
+    fmpz_mul_2exp(J.get(), cell.c.get(), 1);
+    fmpz_add_ui(J.get(), J.get(), 1);
+    fmpz_poly_taylor_shift(s.get(), q.get(), J.get());
+  }
+  // The terms on the cell (|w| <= 2^-L) are s_j 2^(-L n): at most 2^log_s in all.
+  long bits = 0;
+  for (slong j = 0; j <= n; ++j) bits = std::max<long>(bits, static_cast<long>(fmpz_bits(s.get()->coeffs + j)));
+  const long log_s = bits + static_cast<long>(FLINT_BIT_COUNT(static_cast<ulong>(n + 1))) - L * n;
+  std::vector<long> logs;
+  {
+    ArbVar x, y;
+    MagVar m;
+    for (int j = 1; j <= 7; ++j) {
+      arb_set_si(x.v, j - 4);
+      arb_mul_2exp_si(x.v, x.v, -2);  // 2^L w at the points m + (j - 4) h / 4
+      arb_fmpz_poly_evaluate_arb(y.v, s.get(), x.v, bits + 3 * n + 64);
+      arb_get_mag(m.v, y.v);
+      if (!mag_is_zero(m.v)) logs.push_back(fmpz_get_si(MAG_EXPREF(m.v)) - L * n);
+    }
+  }
+  an.log_v = log_s - kExtraBits;
+  if (!logs.empty()) {
+    std::sort(logs.begin(), logs.end());
+    an.log_v = logs[logs.size() / 2];
+  }
+  mag_set_ui_2exp_si(an.eps.v, 1, an.log_v - kExtraBits);
+  const long wp = limb_bits(std::max(64L, log_s - an.log_v + kExtraBits + 32));
+  auto e = std::make_unique<Expansion>();
+  arb_poly_fit_length(e->P, n + 1);
+  for (slong j = 0; j <= n; ++j) {
+    arb_set_round_fmpz(e->P->coeffs + j, s.get()->coeffs + j, wp);
+    arb_mul_2exp_si(e->P->coeffs + j, e->P->coeffs + j, L * (j - n));
+  }
+  _arb_poly_set_length(e->P, n + 1);
+  _arb_poly_normalise(e->P);
+  truncate_expansion(*e, -L, an.eps.v);
+  return e;
+}
+
+struct SubCell {
+  Cell cell;
+  std::unique_ptr<Expansion> e;
+  std::size_t anchor;
+  bool fresh;  ///< e is the anchor's exact expansion
+};
+
+/// Certified subdivision of [0, 1] for a squarefree G of degree >= 2 (roots
+/// at 0 and 1 are not reported: the caller tests them). Appends cells holding
+/// exactly one root with non-root ends (leaves), dyadic roots met as cell
+/// ends (exact), and cells it could not decide within its depth and cell
+/// budgets (undecided: for the exact VCA; their ends are not roots).
+/// Where the expansions lose too much accuracy (G much smaller there than
+/// the anchor's typical size) a cell gets a new exact expansion (anchor).
+void subdivide(const Poly& G, std::vector<Cell>& leaves, std::vector<Cell>& exact, std::vector<Cell>& undecided) {
+  const slong n = G.degree();
+  const long max_depth = 40;
+  const long cell_cap = 16 * n + 4096;
+  const std::size_t anchor_cap = 64;
+  std::vector<std::unique_ptr<Anchor>> anchors;
+  std::vector<SubCell> stack;
+  {
+    anchors.push_back(std::make_unique<Anchor>());
+    Cell root{Integer(0), 0};
+    auto e = anchor_expansion(G, root, *anchors.back());
+    stack.push_back({std::move(root), std::move(e), 0, true});
+  }
+  long cells = 0;
+  MagVar var0, var1, lo, err, rad;
+  ArbVar delta;
+  while (!stack.empty()) {
+    SubCell sc = std::move(stack.back());
+    stack.pop_back();
+    check_time_budget();
+    ++cells;
+    const Expansion& e = *sc.e;
+    const Anchor& an = *anchors[sc.anchor];
+    const long log2h = -(sc.cell.k + 1);
+    variations(e, log2h, var0.v, var1.v);
+    const slong len = arb_poly_length(e.P);
+    // Working precision of what is derived from this expansion (children, end
+    // values): its rounding error, relative to the terms on the cell (at most
+    // 2^log_scale), must stay below eps.
+    if (len > 0) arb_get_mag(rad.v, e.P->coeffs);
+    else mag_zero(rad.v);
+    mag_max(rad.v, rad.v, var0.v);
+    const long log_scale = mag_is_finite(rad.v) && !mag_is_zero(rad.v) ? fmpz_get_si(MAG_EXPREF(rad.v)) : an.log_v;
+    const long cwp = limb_bits(std::max(64L, log_scale - an.log_v + kExtraBits + 32));
+    // G on the cell: P_0 +- (var0 + tail0)
+    mag_add(err.v, var0.v, e.tail0);
+    if (len > 0) arb_get_mag_lower(lo.v, e.P->coeffs);
+    else mag_zero(lo.v);
+    if (mag_cmp(lo.v, err.v) > 0) continue;  // no root in the closed cell
+    // G' on the cell: P_1 +- (var1 + tail1)
+    mag_add(err.v, var1.v, e.tail1);
+    if (len > 1) arb_get_mag_lower(lo.v, e.P->coeffs + 1);
+    else mag_zero(lo.v);
+    if (mag_cmp(lo.v, err.v) > 0) {  // G monotone: at most one root
+      const int sl = end_sign(e, G, sc.cell, -1, cwp), sr = end_sign(e, G, sc.cell, 1, cwp);
+      if (sl != 0 && sr != 0 && sl != sr) leaves.push_back(std::move(sc.cell));
+      continue;  // a root at an end is reported by the bisection that made it
+    }
+    // Cells where |G| grows steeply one way (the centred form above fails):
+    // the expansion at the other end, O(K^2) like a bisection.
+    if (const int dir = growth_direction(e, log2h, var0.v)) {
+      const int t = end_test(e, log2h, dir, cwp);
+      if (t == 1) continue;
+      if (t == 2) {
+        const int sl = end_sign(e, G, sc.cell, -1, cwp), sr = end_sign(e, G, sc.cell, 1, cwp);
+        if (sl != 0 && sr != 0 && sl != sr) leaves.push_back(std::move(sc.cell));
+        continue;
+      }
+    }
+    // Bisecting helps only while the rounding error and the tail stay well
+    // below G's variation on the cell; else a new anchor, or the exact VCA.
+    mag_zero(rad.v);
+    if (len > 0) mag_set(rad.v, arb_radref(e.P->coeffs));
+    mag_add(rad.v, rad.v, e.tail0);
+    mag_mul_2exp_si(rad.v, rad.v, 16);
+    const bool inaccurate = mag_cmp(rad.v, var0.v) > 0;
+    if (sc.cell.k >= max_depth || cells > cell_cap || (inaccurate && (sc.fresh || anchors.size() >= anchor_cap))) {
+      undecided.push_back(std::move(sc.cell));
+      continue;
+    }
+    if (inaccurate) {
+      anchors.push_back(std::make_unique<Anchor>());
+      auto ne = anchor_expansion(G, sc.cell, *anchors.back());
+      stack.push_back({std::move(sc.cell), std::move(ne), anchors.size() - 1, true});
+      continue;
+    }
+    Integer c2;
+    fmpz_mul_2exp(c2.get(), sc.cell.c.get(), 1);
+    const long k2 = sc.cell.k + 1;
+    // the midpoint: a dyadic root is reported here, once (G(m) = P_0 + T(0))
+    bool mid_may_vanish = len == 0;
+    if (!mid_may_vanish) {
+      ArbVar g;
+      arb_set(g.v, e.P->coeffs);
+      arb_add_error_mag(g.v, e.tail0);
+      mid_may_vanish = arb_contains_zero(g.v);
+    }
+    if (mid_may_vanish) {
+      const Rational m = Rational(c2 + Integer(1)) * pow2(-k2);
+      if (exact_sign(G, m) == 0) exact.push_back({c2 + Integer(1), k2});
+    }
+    for (int side : {1, -1}) {  // the right child first: the left is processed first
+      auto ch = std::make_unique<Expansion>();
+      arb_one(delta.v);
+      arb_mul_2exp_si(delta.v, delta.v, log2h - 1);
+      if (side < 0) arb_neg(delta.v, delta.v);
+      arb_poly_set_round(ch->P, e.P, cwp);
+      arb_poly_taylor_shift(ch->P, ch->P, delta.v, cwp);
+      mag_set(ch->tail0, e.tail0);
+      mag_set(ch->tail1, e.tail1);
+      truncate_expansion(*ch, log2h - 1, an.eps.v);
+      stack.push_back({{side < 0 ? c2 : c2 + Integer(1), k2}, std::move(ch), sc.anchor, false});
+    }
+  }
+}
+
+/// Below this degree the exact VCA is faster than the subdivision (measured
+/// on random dense and Bernstein polynomials of degree 20..400).
+constexpr long kSubdivisionDegree = 300;
+
+bool use_subdivision(const Poly& G, RootIsolationMethod method) {
+  if (G.degree() < 2 || method == RootIsolationMethod::Exact) return false;
+  return method == RootIsolationMethod::Subdivision || G.degree() >= kSubdivisionDegree;
 }
 
 /// A root being assembled: exact (lo == hi) or isolated by `factor`.
@@ -382,7 +786,8 @@ Poly map_to_unit_interval(const Poly& f, const Rational& a, const Rational& b) {
 /// Roots of the squarefree f (degree >= 1) in [a, b], a < b: exact ones as
 /// lo == hi, others as intervals (lo, hi) in [a, b] with exactly one root
 /// and f(lo), f(hi) != 0.
-void isolate_factor(const Poly& f, int mult, const Rational& a, const Rational& b, std::vector<Found>& out) {
+void isolate_factor(const Poly& f, int mult, const Rational& a, const Rational& b, RootIsolationMethod method,
+                    std::vector<Found>& out) {
   if (f.degree() == 1) {
     const Rational r = -Rational(f.coeff(0)) / Rational(f.coeff(1));
     if (a <= r && r <= b) out.push_back({r, r, linear_poly(r), mult});
@@ -403,7 +808,18 @@ void isolate_factor(const Poly& f, int mult, const Rational& a, const Rational& 
   for (slong i = 0; i < G.get()->length; ++i) fmpz_add(g1.get(), g1.get(), G.get()->coeffs + i);
   if (g1.sign() == 0) raw.push_back({b2, b2, Poly(), mult});
   std::vector<Cell> leaves, exact;
-  vca(G, leaves, exact);
+  if (use_subdivision(G, method)) {
+    // One Descartes test first: it settles factors with no root (or one) in
+    // (0, 1) for the price of one exact shift.
+    Integer g1_shift;
+    const int v = descartes_bound(G, g1_shift);
+    std::vector<Cell> undecided;
+    if (v == 1 && !fmpz_is_zero(G.get()->coeffs) && g1_shift.sign() != 0) leaves.push_back({Integer(0), 0});
+    else if (v >= 1) subdivide(G, leaves, exact, undecided);
+    for (Cell& cl : undecided) vca_from(G, {cell_poly(G, cl), cl}, leaves, exact);
+  } else {
+    vca(G, leaves, exact);
+  }
   auto to_t = [&](const Integer& c, long e) { return a2 + w * Rational(c) * pow2(-e); };
   for (const Cell& e : exact) {
     const Rational r = to_t(e.c, e.k);
@@ -491,7 +907,7 @@ std::vector<IsolatedRoot> isolate_real_roots(const Poly& p, const Rational& a, c
     for (const auto& fm : sf.factors)
       if (fm.factor.sign_at(a) == 0) found.push_back({a, a, linear_poly(a), fm.multiplicity});
   } else {
-    for (const auto& fm : sf.factors) isolate_factor(fm.factor, fm.multiplicity, a, b, found);
+    for (const auto& fm : sf.factors) isolate_factor(fm.factor, fm.multiplicity, a, b, opt.method, found);
     make_disjoint(found, separation_bits(p) + p.degree() + 64);
   }
   std::vector<IsolatedRoot> out;

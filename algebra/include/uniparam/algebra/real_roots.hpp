@@ -24,10 +24,28 @@ struct IsolatedRoot {
   bool is_exact() const { return lo == hi; }
 };
 
+/// How the roots of each squarefree factor, mapped to [0, 1], are isolated.
+/// Every method is exact/certified and gives the same roots (the intervals
+/// may differ); they differ only in cost.
+enum class RootIsolationMethod {
+  /// Exact below a small degree, Subdivision above it.
+  Auto,
+  /// Descartes' rule of signs with bisection and exact integer Taylor shifts
+  /// (Vincent-Collins-Akritas) on the whole of [0, 1].
+  Exact,
+  /// Certified ball-arithmetic subdivision from truncated local Taylor
+  /// expansions (a cell without a root: the enclosure of the factor
+  /// excludes 0; a cell with exactly one: the derivative's excludes 0 and the
+  /// signs at its ends differ), then Exact on the cells it leaves undecided.
+  Subdivision,
+};
+
 /// Options of the isolator.
 struct RootIsolationOptions {
   /// Refuse inputs of larger degree (BudgetExceeded naming this limit).
   long max_degree = 20000;
+  /// The isolation method (for tests and benchmarks; Auto is the fastest).
+  RootIsolationMethod method = RootIsolationMethod::Auto;
 };
 
 /// All real roots of p in the closed interval [a, b].
@@ -36,8 +54,11 @@ struct RootIsolationOptions {
 ///       contained in [a, b]; every root of p in [a, b] appears exactly once,
 ///       with its multiplicity; rational roots (in particular roots at a or b)
 ///       are exact (lo == hi).
-/// Works on [a, b] only (Descartes' rule of signs with Taylor shifts on the
-/// squarefree factors), so its cost does not depend on roots elsewhere.
+/// Works on [a, b] only (each squarefree factor mapped to [0, 1]: Descartes'
+/// rule of signs with exact Taylor shifts, from degree 300 after a certified
+/// ball subdivision, see RootIsolationMethod), so its cost does not depend on
+/// roots elsewhere. BudgetExceeded when the isolation does not finish within
+/// its subdivision budget or the time budget.
 std::vector<IsolatedRoot> isolate_real_roots(const Poly& p, const Rational& a, const Rational& b,
                                              const RootIsolationOptions& opt = {});
 

@@ -1,0 +1,261 @@
+// Tests of the high-degree path of isolate_real_roots (the certified ball
+// subdivision, RootIsolationMethod::Subdivision) against exactly known roots
+// and against the exact VCA path (RootIsolationMethod::Exact) on the same
+// inputs. The hard inputs are Bernstein polynomials: huge power-basis
+// coefficients (binomials), moderate values on [0, 1], complex roots close
+// to it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "support/iterations.hpp"
+#include "uniparam/algebra/real_roots.hpp"
+#include "uniparam/core/error.hpp"
+
+namespace uniparam {
+namespace {
+
+using test_support::iterations;
+
+Poly constant(const Integer& c) { return Poly(std::vector<Integer>{c}); }
+Poly lin(const Integer& d, const Integer& n) { return Poly(std::vector<Integer>{Integer(0) - n, d}); }  // d t - n
+
+/// sum b_i C(n, i) t^i (1 - t)^(n - i) in the power basis.
+Poly bernstein(const std::vector<Integer>& b) {
+  const long n = static_cast<long>(b.size()) - 1;
+  std::vector<Integer> a(static_cast<std::size_t>(n + 1));
+  for (long i = 0; i <= n; ++i) {
+    Integer cni;
+    fmpz_bin_uiui(cni.get(), static_cast<ulong>(n), static_cast<ulong>(i));
+    const Integer bi = b[static_cast<std::size_t>(i)] * cni;
+    for (long k = i; k <= n; ++k) {  // C(n-i, k-i) (-1)^(k-i) t^k
+      Integer c;
+      fmpz_bin_uiui(c.get(), static_cast<ulong>(n - i), static_cast<ulong>(k - i));
+      const Integer term = bi * c;
+      Integer& ak = a[static_cast<std::size_t>(k)];
+      if ((k - i) % 2 == 0) ak = ak + term;
+      else ak = ak - term;
+    }
+  }
+  return Poly(a);
+}
+
+/// A known root in [0, 1]: rational q, or sqrt(q) (q > 0 not a rational square).
+struct Known {
+  bool rational;
+  Rational q;
+  int mult;
+};
+
+/// Exact sign of (root - x).
+int cmp(const Known& k, const Rational& x) {
+  if (k.rational) return k.q < x ? -1 : (x < k.q ? 1 : 0);
+  if (x.sign() <= 0) return 1;
+  return k.q < x * x ? -1 : 1;  // never equal: irrational
+}
+bool inside_closed(const Known& k, const Rational& a, const Rational& b) { return cmp(k, a) >= 0 && cmp(k, b) <= 0; }
+
+/// Every clause of the contract of isolate_real_roots(p, a, b) against the
+/// exact list of all real roots of p in [a, b].
+void check_against_known(const Poly& p, const Rational& a, const Rational& b, const std::vector<Known>& all,
+                         const std::vector<IsolatedRoot>& got) {
+  std::vector<int> used(all.size(), 0);
+  std::size_t expected = 0;
+  for (const Known& k : all) expected += inside_closed(k, a, b) ? 1 : 0;
+  ASSERT_EQ(got.size(), expected);
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    const IsolatedRoot& r = got[i];
+    SCOPED_TRACE("root " + std::to_string(i) + " [" + r.lo.str() + ", " + r.hi.str() + "]");
+    ASSERT_TRUE(a <= r.lo && r.lo <= r.hi && r.hi <= b);
+    if (i + 1 < got.size()) ASSERT_TRUE(r.hi < got[i + 1].lo) << "not sorted/disjoint";
+    ASSERT_GE(r.factor.degree(), 1);
+    ASSERT_EQ(r.factor, r.factor.primitive());
+    ASSERT_GT(r.factor.leading().sign(), 0);
+    std::vector<std::size_t> in;
+    for (std::size_t j = 0; j < all.size(); ++j)
+      if (inside_closed(all[j], r.lo, r.hi)) in.push_back(j);
+    ASSERT_EQ(in.size(), 1u) << "the interval does not hold exactly one known root";
+    const Known& k = all[in[0]];
+    ++used[in[0]];
+    EXPECT_EQ(r.multiplicity, k.mult);
+    if (k.rational) {
+      ASSERT_TRUE(r.is_exact()) << "rational root not exact";
+      EXPECT_EQ(r.lo, k.q);
+    } else {
+      ASSERT_FALSE(r.is_exact());
+      EXPECT_NE(p.sign_at(r.lo), 0);
+      EXPECT_NE(p.sign_at(r.hi), 0);
+      EXPECT_EQ(r.factor.sign_at(r.lo) * r.factor.sign_at(r.hi), -1);
+    }
+  }
+  for (std::size_t j = 0; j < all.size(); ++j)
+    if (inside_closed(all[j], a, b)) EXPECT_EQ(used[j], 1) << "known root " << j << " missed";
+}
+
+RootIsolationOptions with(RootIsolationMethod m) {
+  RootIsolationOptions o;
+  o.method = m;
+  return o;
+}
+
+/// Bernstein coefficients in [1, top]: the polynomial is positive on [0, 1]
+/// (convex hull), so its only roots there are the known factors' roots; small
+/// coefficients next to large ones put complex roots close to [0, 1].
+std::vector<Integer> positive_bernstein(std::mt19937_64& rng, long n, long top) {
+  std::vector<Integer> b;
+  for (long i = 0; i <= n; ++i) b.emplace_back(static_cast<long>(1 + rng() % static_cast<unsigned long>(top)));
+  return b;
+}
+
+/// High degree: a positive Bernstein polynomial of degree 200..500 times
+/// factors with known roots in [0, 1] (rational, irrational, double, at the
+/// ends), by both methods, against the exact roots.
+TEST(RealRootsFast, BernsteinTimesKnownFactors) {
+  std::mt19937_64 rng(2024);
+  for (long it = 0; it < iterations(3); ++it) {
+    const long n = 200 + static_cast<long>(rng() % 201);
+    const Poly B = bernstein(positive_bernstein(rng, n, it % 2 ? 1000 : 1000000));
+    std::vector<Known> all;
+    Poly p = B;
+    // rational roots c/d, one double
+    for (int j = 0; j < 3; ++j) {
+      const long d = 2 + static_cast<long>(rng() % 97);
+      const long c = 1 + static_cast<long>(rng() % static_cast<unsigned long>(d - 1));
+      const Rational q(c, d);
+      bool dup = false;
+      for (const Known& k : all) dup = dup || (k.rational && k.q == q);
+      if (dup) continue;
+      const int m = j == 0 ? 2 : 1;
+      all.push_back({true, q, m});
+      p = p * lin(q.den(), q.num()).pow(static_cast<unsigned long>(m));
+    }
+    // irrational roots sqrt(c/d) in (0, 1): d t^2 - c
+    for (long c : {2L, 3L}) {
+      const long d = c + 1 + static_cast<long>(rng() % 50);
+      const Rational q(c, d);
+      all.push_back({false, q, 1});
+      p = p * Poly(std::vector<Integer>{Integer(-c), Integer(0), Integer(d)});
+    }
+    // a root at the end 0
+    all.push_back({true, Rational(0), 1});
+    p = p * Poly::t();
+    SCOPED_TRACE("degree " + std::to_string(p.degree()) + ", iteration " + std::to_string(it));
+    for (RootIsolationMethod m : {RootIsolationMethod::Subdivision, RootIsolationMethod::Exact}) {
+      const auto got = isolate_real_roots(p, Rational(0), Rational(1), with(m));
+      check_against_known(p, Rational(0), Rational(1), all, got);
+    }
+    // a sub-interval with non-dyadic ends
+    const Rational a(1, 7), b(5, 6);
+    check_against_known(p, a, b, all, isolate_real_roots(p, a, b, with(RootIsolationMethod::Subdivision)));
+  }
+}
+
+/// Exactly one interior root next to roots at the ends of [0, 1] (Descartes'
+/// count of the open interval is then 1 while the ends are roots): every
+/// root must be found, by every method.
+TEST(RealRootsFast, OneInteriorRootAndRootsAtTheEnds) {
+  std::mt19937_64 rng(4242);
+  for (long it = 0; it < iterations(3); ++it) {
+    const long n = 300 + static_cast<long>(rng() % 100);
+    // (t + 2)^n: no root near [0, 1], so Descartes' count on (0, 1) is 1.
+    const Poly B = Poly(std::vector<long>{2, 1}).pow(static_cast<unsigned long>(n));
+    const long d = 3 + static_cast<long>(rng() % 50);
+    const Rational q(1, d);
+    std::vector<Known> all{{true, q, 1}};
+    Poly p = B * lin(q.den(), q.num());
+    if (it != 1) {
+      all.push_back({true, Rational(0), 1});
+      p = p * Poly::t();
+    }
+    if (it != 0) {
+      all.push_back({true, Rational(1), 1});
+      p = p * lin(Integer(1), Integer(1));
+    }
+    for (RootIsolationMethod m : {RootIsolationMethod::Subdivision, RootIsolationMethod::Auto, RootIsolationMethod::Exact})
+      check_against_known(p, Rational(0), Rational(1), all, isolate_real_roots(p, Rational(0), Rational(1), with(m)));
+  }
+}
+
+/// Roots 1e-30 apart (rational and irrational) inside a high-degree
+/// polynomial: the subdivision cannot separate them at its precision and
+/// must hand the cell to the exact VCA.
+TEST(RealRootsFast, ClustersInsideHighDegree) {
+  std::mt19937_64 rng(77);
+  const Poly B = bernstein(positive_bernstein(rng, 150, 1000));
+  Integer e30;
+  fmpz_set_ui(e30.get(), 10);
+  fmpz_pow_ui(e30.get(), e30.get(), 30);
+  std::vector<Known> all;
+  Poly p = B;
+  // 1/3 and 1/3 + 10^-30
+  all.push_back({true, Rational(1, 3), 1});
+  p = p * lin(Integer(3), Integer(1));
+  const Rational q2 = Rational(1, 3) + Rational(Integer(1), e30);
+  all.push_back({true, q2, 1});
+  p = p * lin(q2.den(), q2.num());
+  // sqrt(1/2) and a rational within 1e-30 of it: floor(10^31 / sqrt 2) / 10^31
+  Integer ten31 = e30 * Integer(10), s;
+  fmpz_mul(s.get(), ten31.get(), ten31.get());
+  fmpz_fdiv_q_2exp(s.get(), s.get(), 1);
+  fmpz_sqrt(s.get(), s.get());  // floor(10^31 / sqrt(2))
+  const Rational r(s, ten31);
+  all.push_back({false, Rational(1, 2), 1});
+  p = p * Poly(std::vector<long>{-1, 0, 2});
+  all.push_back({true, r, 1});
+  p = p * lin(r.den(), r.num());
+  for (RootIsolationMethod m : {RootIsolationMethod::Subdivision}) {
+    const auto got = isolate_real_roots(p, Rational(0), Rational(1), with(m));
+    check_against_known(p, Rational(0), Rational(1), all, got);
+  }
+}
+
+/// Bernstein polynomials with sign changes (unknown real roots) of degree
+/// 200..400, with binomial-size power-basis coefficients: both methods must
+/// find the same roots: same count, equal exact roots, and each pair of
+/// intervals overlapping (each holds exactly one root, and both lists are
+/// sorted, so the i-th intervals hold the same root); the signs of the
+/// factor at the ends differ.
+TEST(RealRootsFast, SubdivisionAgreesWithExactVca) {
+  std::mt19937_64 rng(31337);
+  for (long it = 0; it < iterations(4); ++it) {
+    const long n = 200 + static_cast<long>(rng() % 201);
+    std::vector<Integer> b;
+    for (long i = 0; i <= n; ++i) {
+      // a slowly varying sign pattern plus noise: a handful of real roots
+      const double phase = 6.283185307179586 * static_cast<double>(i) / static_cast<double>(n) * (2.0 + it);
+      const long base = static_cast<long>(1000.0 * std::sin(phase));
+      b.emplace_back(base + static_cast<long>(rng() % 201) - 100);
+    }
+    const Poly p = bernstein(b);
+    if (p.is_zero()) continue;
+    for (const auto& ab : {std::pair<Rational, Rational>(Rational(0), Rational(1)),
+                           std::pair<Rational, Rational>(Rational(-1, 5), Rational(9, 10))}) {
+      const Rational &lo = ab.first, &hi = ab.second;
+      SCOPED_TRACE("degree " + std::to_string(n) + " on [" + lo.str() + ", " + hi.str() + "]");
+      const auto fast = isolate_real_roots(p, lo, hi, with(RootIsolationMethod::Subdivision));
+      const auto exact = isolate_real_roots(p, lo, hi, with(RootIsolationMethod::Exact));
+      ASSERT_EQ(fast.size(), exact.size());
+      EXPECT_GE(fast.size(), 2u);  // the sign pattern changes sign at least twice in [0, 1]
+      for (std::size_t i = 0; i < fast.size(); ++i) {
+        const IsolatedRoot &f = fast[i], &e = exact[i];
+        EXPECT_EQ(f.multiplicity, e.multiplicity);
+        EXPECT_EQ(f.is_exact(), e.is_exact());
+        EXPECT_TRUE(f.lo <= e.hi && e.lo <= f.hi) << "intervals " << i << " do not overlap";
+        if (f.is_exact()) {
+          EXPECT_EQ(f.lo, e.lo);
+        } else {
+          EXPECT_EQ(f.factor, e.factor);
+          EXPECT_EQ(f.factor.sign_at(f.lo) * f.factor.sign_at(f.hi), -1);
+        }
+        if (i + 1 < fast.size()) EXPECT_TRUE(f.hi < fast[i + 1].lo);
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace uniparam
