@@ -39,34 +39,28 @@ double sigma2_double(const Speed& s, double t) {
 
 namespace {
 
-constexpr int kNodes = 20;
+constexpr int kNodes = GaussLegendre20::kNodes;
 
-struct Rule {
-  std::array<double, kNodes> x{}, w{};
-  Rule() {
-    // Gauss-Legendre nodes on [-1, 1] by Newton's method on P_n.
-    for (int i = 0; i < kNodes; ++i) {
-      double z = std::cos(M_PI * (i + 0.75) / (kNodes + 0.5)), dp = 0;
-      for (int it = 0; it < 100; ++it) {
-        double p0 = 1, p1 = z;
-        for (int k = 2; k <= kNodes; ++k) {
-          const double p2 = ((2.0 * k - 1) * z * p1 - (k - 1.0) * p0) / k;
-          p0 = p1;
-          p1 = p2;
-        }
-        dp = kNodes * (z * p1 - p0) / (z * z - 1);
-        const double dz = p1 / dp;
-        z -= dz;
-        if (std::fabs(dz) < 1e-16) break;
+GaussLegendre20 make_rule() {
+  // Gauss-Legendre nodes on [-1, 1] by Newton's method on P_n.
+  GaussLegendre20 r{};
+  for (int i = 0; i < kNodes; ++i) {
+    double z = std::cos(M_PI * (i + 0.75) / (kNodes + 0.5)), dp = 0;
+    for (int it = 0; it < 100; ++it) {
+      double p0 = 1, p1 = z;
+      for (int k = 2; k <= kNodes; ++k) {
+        const double p2 = ((2.0 * k - 1) * z * p1 - (k - 1.0) * p0) / k;
+        p0 = p1;
+        p1 = p2;
       }
-      x[i] = z;
-      w[i] = 2 / ((1 - z * z) * dp * dp);
+      dp = kNodes * (z * p1 - p0) / (z * z - 1);
+      const double dz = p1 / dp;
+      z -= dz;
+      if (std::fabs(dz) < 1e-16) break;
     }
+    r.x[i] = z;
+    r.w[i] = 2 / ((1 - z * z) * dp * dp);
   }
-};
-
-const Rule& rule() {
-  static const Rule r;
   return r;
 }
 
@@ -76,7 +70,7 @@ struct Acc {
 
 // A, B, C contributions of [l, r] inside the piece [a, a + h].
 Acc panel(const Speed& s, double a, double h, double l, double r) {
-  const Rule& g = rule();
+  const GaussLegendre20& g = gauss_legendre20();
   Acc out;
   const double m = (l + r) / 2, k = (r - l) / 2;
   for (int i = 0; i < kNodes; ++i) {
@@ -103,6 +97,11 @@ Acc adapt(const Speed& s, double a, double h, double l, double r, const Acc& who
 }
 
 }  // namespace
+
+const GaussLegendre20& gauss_legendre20() {
+  static const GaussLegendre20 r = make_rule();
+  return r;
+}
 
 double FloatABC::M(double h) const { return h * (B + 2 * std::sqrt(A * C)); }
 

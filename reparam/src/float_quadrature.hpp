@@ -3,13 +3,22 @@
 //
 // Used only to *choose* data that is certified afterwards (the optimiser of
 // the breakpoints T, the refinement of the C1 method): nothing computed here
-// is ever reported as a result. sigma^2 is evaluated from the speed's factors
-// in ball arithmetic and rounded to double.
+// is ever reported as a result. sigma^2 is evaluated in double from the speed's
+// local expansions (Speed::squared_double), in ball arithmetic where that is
+// not finite.
 #pragma once
 
 #include "uniparam/reparam/speed.hpp"
 
 namespace uniparam::detail {
+
+/// The 20-point Gauss-Legendre rule on [-1, 1] (nodes x, weights w), by
+/// Newton's method on P_20 in double: for the uncertified quadratures only.
+struct GaussLegendre20 {
+  static constexpr int kNodes = 20;
+  double x[kNodes], w[kNodes];
+};
+const GaussLegendre20& gauss_legendre20();
 
 /// sigma(t)^2 rounded to double (uncertified). t in [0, 1].
 double sigma2_double(const Speed& s, double t);

@@ -169,35 +169,7 @@ Built build(const Speed& s, const UniformityResult& base, const std::vector<Real
 // Nothing computed here is reported; reparam_c1 certifies the chosen T with
 // build() and decides target.reached from that certified map only.
 
-constexpr int kGL = 20;
-
-struct GaussLegendre {
-  std::array<double, kGL> x{}, w{};
-  GaussLegendre() {
-    for (int i = 0; i < kGL; ++i) {
-      double z = std::cos(M_PI * (i + 0.75) / (kGL + 0.5)), dp = 0;
-      for (int it = 0; it < 100; ++it) {
-        double p0 = 1, p1 = z;
-        for (int k = 2; k <= kGL; ++k) {
-          const double p2 = ((2.0 * k - 1) * z * p1 - (k - 1.0) * p0) / k;
-          p0 = p1;
-          p1 = p2;
-        }
-        dp = kGL * (z * p1 - p0) / (z * z - 1);
-        const double dz = p1 / dp;
-        z -= dz;
-        if (std::fabs(dz) < 1e-16) break;
-      }
-      x[i] = z;
-      w[i] = 2 / ((1 - z * z) * dp * dp);
-    }
-  }
-};
-
-const GaussLegendre& gauss_legendre() {
-  static const GaussLegendre g;
-  return g;
-}
+constexpr int kGL = detail::GaussLegendre20::kNodes;
 
 // Over a piece [a, a + h]: int sigma^2 (1-t~)^2, 2 t~ (1-t~), t~^2 and int sigma,
 // all over dt (uncertified).
@@ -210,7 +182,7 @@ FloatPiece operator+(const FloatPiece& x, const FloatPiece& y) {
 }
 
 FloatPiece panel(const Speed& s, double a, double h, double l, double r) {
-  const GaussLegendre& g = gauss_legendre();
+  const detail::GaussLegendre20& g = detail::gauss_legendre20();
   FloatPiece out;
   const double m = (l + r) / 2, k = (r - l) / 2;
   for (int i = 0; i < kGL; ++i) {
