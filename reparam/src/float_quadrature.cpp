@@ -82,17 +82,24 @@ Acc panel(const Speed& s, double a, double h, double l, double r) {
   return out;
 }
 
-// Refines until the estimate of [l, r] changes by at most 1e-13 of `scale`
+// Refines until the estimate of [l, r] changes by at most 1e-12 of `scale`
+// or the budget of panel pairs runs out (an integrand whose double
+// evaluation is noisier than the tolerance, e.g. rational space curves, would
+// otherwise bisect everywhere to depth 30; the result only steers the
+// optimiser, which certifies what it chooses)
 // (the size of the whole piece's first estimate), so tiny panels stop early.
-Acc adapt(const Speed& s, double a, double h, double l, double r, const Acc& whole, double scale, int depth) {
+Acc adapt(const Speed& s, double a, double h, double l, double r, const Acc& whole, double scale, int depth,
+          int& budget) {
+  --budget;
   const double m = (l + r) / 2;
   const Acc left = panel(s, a, h, l, m), right = panel(s, a, h, m, r);
   const double diff = std::fabs(left.a + right.a - whole.a) + std::fabs(left.b + right.b - whole.b) +
                       std::fabs(left.c + right.c - whole.c);
-  if (depth >= 30 || diff <= 1e-13 * scale || r - l < 1e-15) {
+  if (depth >= 30 || budget <= 0 || diff <= 1e-12 * scale || r - l < 1e-15) {
     return Acc{left.a + right.a, left.b + right.b, left.c + right.c};
   }
-  const Acc x = adapt(s, a, h, l, m, left, scale, depth + 1), y = adapt(s, a, h, m, r, right, scale, depth + 1);
+  const Acc x = adapt(s, a, h, l, m, left, scale, depth + 1, budget);
+  const Acc y = adapt(s, a, h, m, r, right, scale, depth + 1, budget);
   return Acc{x.a + y.a, x.b + y.b, x.c + y.c};
 }
 
@@ -109,7 +116,8 @@ FloatABC float_abc(const Speed& s, double a, double b) {
   const double h = b - a;
   const Acc whole = panel(s, a, h, a, b);
   const double scale = std::fabs(whole.a) + std::fabs(whole.b) + std::fabs(whole.c);
-  const Acc v = adapt(s, a, h, a, b, whole, scale, 0);
+  int budget = 256;  // panel pairs: 10240 evaluations of sigma^2 at most
+  const Acc v = adapt(s, a, h, a, b, whole, scale, 0, budget);
   return FloatABC{v.a, v.b, v.c};
 }
 

@@ -25,7 +25,8 @@ double sigma2_double(const Speed& s, double t);
 
 /// Uncertified A, B, C of a piece [a, b] (the integrals of sigma^2 (1-t~)^2,
 /// sigma^2 2 t~ (1-t~), sigma^2 t~^2 over dt), by adaptive 20-point
-/// Gauss-Legendre with the usual error estimate (relative tolerance 1e-12).
+/// Gauss-Legendre with the usual error estimate (relative tolerance 1e-12, at
+/// most 256 bisections).
 struct FloatABC {
   double A = 0, B = 0, C = 0;
   /// The contribution min_alpha (b-a)[(1-a)/a A + B + a/(1-a) C] = (b-a)(B + 2 sqrt(AC)).
