@@ -108,8 +108,12 @@ constexpr long kGuardBits = 12;
 // Bounded memory: the cache is emptied when it holds more cells.
 constexpr std::size_t kMaxCells = 20000;
 
-}  // namespace
-
+// Enclosures of p(z), and p'(z), p''(z) where d1, d2 are non-null, for a
+// polynomial with ball coefficients p and its derivatives p1 = p', p2 = p''
+// (the power-basis fallback). Narrow balls (radius < 2^-24) and lengths <= 2:
+// Horner. Wide balls: the centred form at the exact midpoint m of z,
+//     p^(j)(z) in j! c_j + sum_{k > j} k!/(k-j)! |c_k| r^(k-j) (unit disc),
+// c_k = p^(k)(m)/k! by one Taylor shift (centred_shift).
 void centred_eval(acb_t v, acb_t d1, acb_t d2, const BallPoly& p, const BallPoly& p1, const BallPoly& p2,
                   const acb_t z, long prec) {
   mag_t r;
@@ -132,9 +136,13 @@ void centred_eval(acb_t v, acb_t d1, acb_t d2, const BallPoly& p, const BallPoly
   mag_clear(r);
 }
 
+// True when z's radius (real or imaginary) is at least 2^-24: the
+// quadrature's segments and ellipses rather than its nodes.
 bool is_wide_ball(const acb_t z) {
   return mag_cmp_2exp_si(arb_radref(acb_realref(z)), -24) >= 0 || mag_cmp_2exp_si(arb_radref(acb_imagref(z)), -24) >= 0;
 }
+
+}  // namespace
 
 // ---------------------------------------------------------------------------
 

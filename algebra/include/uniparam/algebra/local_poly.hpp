@@ -16,9 +16,11 @@
 //     shift of their parent's expansion), truncated after K terms, with a
 //     rigorous bound of the dropped tail and of its first two derivatives on
 //     the disc |t - c| <= 2h;
-//   * a narrow ball (a quadrature node) is evaluated by Horner in t - c
-//     (O(K)); a wide ball (a quadrature ellipse) by the centred form at its
-//     own midpoint, from the cell's expansion shifted there (O(K^2)).
+//   * a ball is evaluated in w = t - c by the powers of w and one dot product
+//     per output (O(K)); the cell depends on the ball alone: level 6 for
+//     narrow balls (quadrature nodes), for wide ones (segments, ellipses) the
+//     deepest level whose disc holds the ball, which bounds p on a disc at
+//     most twice the ball's radius.
 // Balls that no cell's disc contains (far from [0, 1]) fall back to the
 // power basis (Horner on narrow balls, a centred form on wide ones).
 #pragma once
@@ -33,23 +35,6 @@
 #include "uniparam/core/poly.hpp"
 
 namespace uniparam {
-
-/// Enclosures of p(z), and p'(z), p''(z) where d1, d2 are non-null, for a
-/// polynomial with ball coefficients p and its derivatives p1 = p', p2 = p''
-/// (p2 may be unused when d2 is null), on a complex ball z at precision prec.
-/// Narrow balls (radius < 2^-24) and polynomials of length <= 2: Horner.
-/// Wide balls: the centred form at the exact midpoint m of z,
-///     p^(j)(z) in j! c_j + sum_{k > j} k!/(k-j)! |c_k| r^(k-j) (unit disc),
-/// c_k = p^(k)(m)/k! by one Taylor shift, redone at a higher precision while
-/// its rounding error dominates the enclosure.
-/// \post every output contains the exact value at every point of z (balls
-///       may be infinite, never wrong). v may not alias d1 or d2.
-void centred_eval(acb_t v, acb_t d1, acb_t d2, const BallPoly& p, const BallPoly& p1, const BallPoly& p2,
-                  const acb_t z, long prec);
-
-/// True when z's radius (real or imaginary) is at least 2^-24: the
-/// quadrature's ellipses rather than its nodes.
-bool is_wide_ball(const acb_t z);
 
 /// An exact integer polynomial with a cache of local expansions (see the
 /// file comment). Copying copies the polynomial, not the cache. Not
