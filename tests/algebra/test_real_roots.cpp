@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "support/iterations.hpp"
+#include "support/known_roots.hpp"
 #include "uniparam/algebra/real_roots.hpp"
 #include "uniparam/algebra/squarefree.hpp"
 #include "uniparam/core/ball.hpp"
@@ -25,7 +26,9 @@
 namespace uniparam {
 namespace {
 
+using test_support::check_isolation;
 using test_support::iterations;
+using test_support::Known;
 
 Integer pow_int(long base, unsigned long e) {
   Integer r;
@@ -37,72 +40,8 @@ Integer pow_int(long base, unsigned long e) {
 Poly lin(long d, long n) { return Poly(std::vector<long>{-n, d}); }  // d t - n
 Poly constant(const Integer& c) { return Poly(std::vector<Integer>{c}); }
 
-/// A known real root: rational value q, or s * sqrt(q) with q > 0 not a
-/// square of a rational (s = +-1).
-struct Known {
-  bool rational;
-  Rational q;
-  int s;
-  int mult;
-  long index = 0;  // position among the known roots (for coverage)
-};
-
-/// Exact sign of (root - x).
-int cmp(const Known& k, const Rational& x) {
-  if (k.rational) return k.q < x ? -1 : (x < k.q ? 1 : 0);
-  if (k.s > 0) {
-    if (x.sign() <= 0) return 1;
-    const Rational x2 = x * x;
-    return k.q < x2 ? -1 : 1;  // never equal: irrational
-  }
-  if (x.sign() >= 0) return -1;
-  const Rational x2 = x * x;
-  return k.q < x2 ? 1 : -1;
-}
-bool inside_closed(const Known& k, const Rational& a, const Rational& b) { return cmp(k, a) >= 0 && cmp(k, b) <= 0; }
-
 bool is_rational_square(const Rational& q) {
   return fmpz_is_square(fmpq_numref(q.get())) && fmpz_is_square(fmpq_denref(q.get()));
-}
-
-/// Checks every clause of the contract of isolate_real_roots(p, a, b)
-/// against the exact list of all real roots of p.
-void check_isolation(const Poly& p, const Rational& a, const Rational& b, const std::vector<Known>& all,
-                     const std::vector<IsolatedRoot>& got) {
-  std::vector<const Known*> expected;
-  for (const Known& k : all)
-    if (inside_closed(k, a, b)) expected.push_back(&k);
-  ASSERT_EQ(got.size(), expected.size()) << "p = " << p.str() << " on [" << a.str() << ", " << b.str() << "]";
-  std::vector<int> used(all.size(), 0);
-  for (std::size_t i = 0; i < got.size(); ++i) {
-    const IsolatedRoot& r = got[i];
-    SCOPED_TRACE("root " + std::to_string(i) + " [" + r.lo.str() + ", " + r.hi.str() + "] of " + p.str());
-    ASSERT_TRUE(a <= r.lo && r.lo <= r.hi && r.hi <= b);
-    if (i + 1 < got.size()) ASSERT_TRUE(r.hi < got[i + 1].lo) << "not sorted/disjoint";
-    ASSERT_GE(r.factor.degree(), 1);
-    ASSERT_TRUE(r.factor.leading().sign() > 0);
-    ASSERT_EQ(r.factor, r.factor.primitive());
-    ASSERT_TRUE(divexact(p, r.factor).degree() >= 0);  // factor divides p (throws otherwise)
-    // Which known roots lie in [lo, hi]?
-    std::vector<std::size_t> in;
-    for (std::size_t j = 0; j < all.size(); ++j)
-      if (inside_closed(all[j], r.lo, r.hi)) in.push_back(j);
-    ASSERT_EQ(in.size(), 1u) << "interval does not hold exactly one root";
-    const Known& k = all[in[0]];
-    ++used[in[0]];
-    EXPECT_EQ(r.multiplicity, k.mult);
-    if (k.rational) {
-      ASSERT_TRUE(r.is_exact()) << "rational root not exact";
-      EXPECT_EQ(r.lo, k.q);
-      EXPECT_EQ(r.factor, lin(1, 0) * constant(k.q.den()) - constant(k.q.num()));
-    } else {
-      ASSERT_FALSE(r.is_exact());
-      EXPECT_NE(p.sign_at(r.lo), 0);
-      EXPECT_NE(p.sign_at(r.hi), 0);
-      EXPECT_EQ(r.factor.sign_at(r.lo) * r.factor.sign_at(r.hi), -1);
-    }
-  }
-  for (const Known* k : expected) EXPECT_EQ(used[static_cast<std::size_t>(k - all.data())], 1);
 }
 
 /// Random products of (d t - n)^m and irreducible quadratics (d t^2 - c,

@@ -13,13 +13,16 @@
 #include <vector>
 
 #include "support/iterations.hpp"
+#include "support/known_roots.hpp"
 #include "uniparam/algebra/real_roots.hpp"
 #include "uniparam/core/error.hpp"
 
 namespace uniparam {
 namespace {
 
+using test_support::check_isolation;
 using test_support::iterations;
+using test_support::Known;
 
 Poly constant(const Integer& c) { return Poly(std::vector<Integer>{c}); }
 Poly lin(const Integer& d, const Integer& n) { return Poly(std::vector<Integer>{Integer(0) - n, d}); }  // d t - n
@@ -42,58 +45,6 @@ Poly bernstein(const std::vector<Integer>& b) {
     }
   }
   return Poly(a);
-}
-
-/// A known root in [0, 1]: rational q, or sqrt(q) (q > 0 not a rational square).
-struct Known {
-  bool rational;
-  Rational q;
-  int mult;
-};
-
-/// Exact sign of (root - x).
-int cmp(const Known& k, const Rational& x) {
-  if (k.rational) return k.q < x ? -1 : (x < k.q ? 1 : 0);
-  if (x.sign() <= 0) return 1;
-  return k.q < x * x ? -1 : 1;  // never equal: irrational
-}
-bool inside_closed(const Known& k, const Rational& a, const Rational& b) { return cmp(k, a) >= 0 && cmp(k, b) <= 0; }
-
-/// Every clause of the contract of isolate_real_roots(p, a, b) against the
-/// exact list of all real roots of p in [a, b].
-void check_against_known(const Poly& p, const Rational& a, const Rational& b, const std::vector<Known>& all,
-                         const std::vector<IsolatedRoot>& got) {
-  std::vector<int> used(all.size(), 0);
-  std::size_t expected = 0;
-  for (const Known& k : all) expected += inside_closed(k, a, b) ? 1 : 0;
-  ASSERT_EQ(got.size(), expected);
-  for (std::size_t i = 0; i < got.size(); ++i) {
-    const IsolatedRoot& r = got[i];
-    SCOPED_TRACE("root " + std::to_string(i) + " [" + r.lo.str() + ", " + r.hi.str() + "]");
-    ASSERT_TRUE(a <= r.lo && r.lo <= r.hi && r.hi <= b);
-    if (i + 1 < got.size()) ASSERT_TRUE(r.hi < got[i + 1].lo) << "not sorted/disjoint";
-    ASSERT_GE(r.factor.degree(), 1);
-    ASSERT_EQ(r.factor, r.factor.primitive());
-    ASSERT_GT(r.factor.leading().sign(), 0);
-    std::vector<std::size_t> in;
-    for (std::size_t j = 0; j < all.size(); ++j)
-      if (inside_closed(all[j], r.lo, r.hi)) in.push_back(j);
-    ASSERT_EQ(in.size(), 1u) << "the interval does not hold exactly one known root";
-    const Known& k = all[in[0]];
-    ++used[in[0]];
-    EXPECT_EQ(r.multiplicity, k.mult);
-    if (k.rational) {
-      ASSERT_TRUE(r.is_exact()) << "rational root not exact";
-      EXPECT_EQ(r.lo, k.q);
-    } else {
-      ASSERT_FALSE(r.is_exact());
-      EXPECT_NE(p.sign_at(r.lo), 0);
-      EXPECT_NE(p.sign_at(r.hi), 0);
-      EXPECT_EQ(r.factor.sign_at(r.lo) * r.factor.sign_at(r.hi), -1);
-    }
-  }
-  for (std::size_t j = 0; j < all.size(); ++j)
-    if (inside_closed(all[j], a, b)) EXPECT_EQ(used[j], 1) << "known root " << j << " missed";
 }
 
 RootIsolationOptions with(RootIsolationMethod m) {
@@ -130,27 +81,27 @@ TEST(RealRootsFast, BernsteinTimesKnownFactors) {
       for (const Known& k : all) dup = dup || (k.rational && k.q == q);
       if (dup) continue;
       const int m = j == 0 ? 2 : 1;
-      all.push_back({true, q, m});
+      all.push_back({true, q, 0, m});
       p = p * lin(q.den(), q.num()).pow(static_cast<unsigned long>(m));
     }
     // irrational roots sqrt(c/d) in (0, 1): d t^2 - c
     for (long c : {2L, 3L}) {
       const long d = c + 1 + static_cast<long>(rng() % 50);
       const Rational q(c, d);
-      all.push_back({false, q, 1});
+      all.push_back({false, q, 1, 1});
       p = p * Poly(std::vector<Integer>{Integer(-c), Integer(0), Integer(d)});
     }
     // a root at the end 0
-    all.push_back({true, Rational(0), 1});
+    all.push_back({true, Rational(0), 0, 1});
     p = p * Poly::t();
     SCOPED_TRACE("degree " + std::to_string(p.degree()) + ", iteration " + std::to_string(it));
     for (RootIsolationMethod m : {RootIsolationMethod::Subdivision, RootIsolationMethod::Exact}) {
       const auto got = isolate_real_roots(p, Rational(0), Rational(1), with(m));
-      check_against_known(p, Rational(0), Rational(1), all, got);
+      check_isolation(p, Rational(0), Rational(1), all, got);
     }
     // a sub-interval with non-dyadic ends
     const Rational a(1, 7), b(5, 6);
-    check_against_known(p, a, b, all, isolate_real_roots(p, a, b, with(RootIsolationMethod::Subdivision)));
+    check_isolation(p, a, b, all, isolate_real_roots(p, a, b, with(RootIsolationMethod::Subdivision)));
   }
 }
 
@@ -165,18 +116,18 @@ TEST(RealRootsFast, OneInteriorRootAndRootsAtTheEnds) {
     const Poly B = Poly(std::vector<long>{2, 1}).pow(static_cast<unsigned long>(n));
     const long d = 3 + static_cast<long>(rng() % 50);
     const Rational q(1, d);
-    std::vector<Known> all{{true, q, 1}};
+    std::vector<Known> all{{true, q, 0, 1}};
     Poly p = B * lin(q.den(), q.num());
     if (it != 1) {
-      all.push_back({true, Rational(0), 1});
+      all.push_back({true, Rational(0), 0, 1});
       p = p * Poly::t();
     }
     if (it != 0) {
-      all.push_back({true, Rational(1), 1});
+      all.push_back({true, Rational(1), 0, 1});
       p = p * lin(Integer(1), Integer(1));
     }
     for (RootIsolationMethod m : {RootIsolationMethod::Subdivision, RootIsolationMethod::Auto, RootIsolationMethod::Exact})
-      check_against_known(p, Rational(0), Rational(1), all, isolate_real_roots(p, Rational(0), Rational(1), with(m)));
+      check_isolation(p, Rational(0), Rational(1), all, isolate_real_roots(p, Rational(0), Rational(1), with(m)));
   }
 }
 
@@ -192,10 +143,10 @@ TEST(RealRootsFast, ClustersInsideHighDegree) {
   std::vector<Known> all;
   Poly p = B;
   // 1/3 and 1/3 + 10^-30
-  all.push_back({true, Rational(1, 3), 1});
+  all.push_back({true, Rational(1, 3), 0, 1});
   p = p * lin(Integer(3), Integer(1));
   const Rational q2 = Rational(1, 3) + Rational(Integer(1), e30);
-  all.push_back({true, q2, 1});
+  all.push_back({true, q2, 0, 1});
   p = p * lin(q2.den(), q2.num());
   // sqrt(1/2) and a rational within 1e-30 of it: floor(10^31 / sqrt 2) / 10^31
   Integer ten31 = e30 * Integer(10), s;
@@ -203,13 +154,13 @@ TEST(RealRootsFast, ClustersInsideHighDegree) {
   fmpz_fdiv_q_2exp(s.get(), s.get(), 1);
   fmpz_sqrt(s.get(), s.get());  // floor(10^31 / sqrt(2))
   const Rational r(s, ten31);
-  all.push_back({false, Rational(1, 2), 1});
+  all.push_back({false, Rational(1, 2), 1, 1});
   p = p * Poly(std::vector<long>{-1, 0, 2});
-  all.push_back({true, r, 1});
+  all.push_back({true, r, 0, 1});
   p = p * lin(r.den(), r.num());
   for (RootIsolationMethod m : {RootIsolationMethod::Subdivision}) {
     const auto got = isolate_real_roots(p, Rational(0), Rational(1), with(m));
-    check_against_known(p, Rational(0), Rational(1), all, got);
+    check_isolation(p, Rational(0), Rational(1), all, got);
   }
 }
 
