@@ -8,6 +8,7 @@
 #include "uniparam/algebra/deflation.hpp"
 #include "uniparam/core/error.hpp"
 #include <map>
+#include <mutex>
 #include <unordered_map>
 #include <vector>
 
@@ -155,7 +156,7 @@ struct Cell {
   arf_t centre;
   arb_poly_t P, P1, P2;
   mag_struct tail[3];
-  std::vector<double> mid;  // midpoints of P in double (eval_double), lazily
+  std::vector<double> mid;  // midpoints of P in double (eval_double)
   Cell() {
     arf_init(centre);
     arb_poly_init(P);
@@ -256,21 +257,18 @@ void truncate(Cell& cell, long wp) {
   for (mag_struct* m : {h, rho, scale, eps, a, t0, t1, t2, n0, n1, n2, c1, c2}) mag_clear(m);
 }
 
-}  // namespace
+using CellPtr = std::shared_ptr<const Cell>;
+using CellMap = std::unordered_map<CellKey, CellPtr, CellKeyHash>;
 
-struct LocalPoly::Cache {
-  std::unordered_map<CellKey, std::unique_ptr<Cell>, CellKeyHash> cells;
-  std::vector<RealAlgebraic> roots;  // variant i >= 0 expands p / (t - roots[i])
-  // fallback for p / (t - roots[i]): the deflated power basis, per (i, prec)
-  std::map<std::pair<int, long>, BallPoly> deflated;
-  // scratch for the powers of w (no allocation per evaluation)
+// Scratch for the powers of w, one per thread (no allocation per evaluation).
+struct Scratch {
   arb_ptr rpow = nullptr;
   acb_ptr cpow = nullptr;
   slong rcap = 0, ccap = 0;
-  Cache() = default;
-  Cache(const Cache&) = delete;
-  Cache& operator=(const Cache&) = delete;
-  ~Cache() {
+  Scratch() = default;
+  Scratch(const Scratch&) = delete;
+  Scratch& operator=(const Scratch&) = delete;
+  ~Scratch() {
     if (rpow) _arb_vec_clear(rpow, rcap);
     if (cpow) _acb_vec_clear(cpow, ccap);
   }
@@ -292,37 +290,57 @@ struct LocalPoly::Cache {
   }
 };
 
-LocalPoly::LocalPoly() = default;
-LocalPoly::LocalPoly(const Poly& p) : p_(p), b_(p), b1_(p.derivative()), b2_(p.derivative().derivative()) {}
-LocalPoly::LocalPoly(const LocalPoly& o) : p_(o.p_), b_(o.b_), b1_(o.b1_), b2_(o.b2_) {}
-LocalPoly& LocalPoly::operator=(const LocalPoly& o) {
-  if (this != &o) {
-    p_ = o.p_;
-    b_ = o.b_;
-    b1_ = o.b1_;
-    b2_ = o.b2_;
-    cache_.reset();
-  }
-  return *this;
+Scratch& scratch() {
+  thread_local Scratch s;
+  return s;
 }
+
+}  // namespace
+
+// Shared by a LocalPoly and its copies (threads included): a cell is built
+// outside the lock and is immutable once in the map; a cell's content
+// depends on its key alone, so which thread builds it does not matter.
+struct LocalPoly::Cache {
+  std::mutex mu;
+  CellMap cells;
+  std::vector<RealAlgebraic> roots;  // variant i >= 0 expands p / (t - roots[i])
+  // fallback for p / (t - roots[i]): the deflated power basis, per (i, prec)
+  std::map<std::pair<int, long>, std::shared_ptr<const BallPoly>> deflated;
+};
+
+LocalPoly::LocalPoly() : cache_(std::make_shared<Cache>()) {}
+LocalPoly::LocalPoly(const Poly& p)
+    : p_(p), b_(p), b1_(p.derivative()), b2_(p.derivative().derivative()), cache_(std::make_shared<Cache>()) {}
+LocalPoly::LocalPoly(const LocalPoly& o) = default;
+LocalPoly& LocalPoly::operator=(const LocalPoly& o) = default;
 LocalPoly::LocalPoly(LocalPoly&&) noexcept = default;
 LocalPoly& LocalPoly::operator=(LocalPoly&&) noexcept = default;
 LocalPoly::~LocalPoly() = default;
 
-std::size_t LocalPoly::cells() const { return cache_ ? cache_->cells.size() : 0; }
+std::size_t LocalPoly::cells() const {
+  if (!cache_) return 0;  // moved from
+  std::lock_guard<std::mutex> lock(cache_->mu);
+  return cache_->cells.size();
+}
 
 namespace {
 
-using CellMap = std::unordered_map<CellKey, std::unique_ptr<Cell>, CellKeyHash>;
-
 // The cell (level, j) of variant `variant` (-1: p; i >= 0: p / (t - roots[i]))
 // at working precision wp, built on demand.
-const Cell& get_cell(CellMap& cells, const Poly& p, const std::vector<RealAlgebraic>& roots, int variant, long wp,
-                     int level, unsigned long long j) {
+// Thread-safe: the map and the roots are read and written under `mu`; the
+// cell is built outside the lock (two threads may both build one; the first
+// inserted wins, and both are equal).
+CellPtr get_cell(std::mutex& mu, CellMap& cells, const std::vector<RealAlgebraic>& roots, const Poly& p, int variant,
+                 long wp, int level, unsigned long long j) {
   const CellKey key{wp, level, variant, j};
-  auto it = cells.find(key);
-  if (it != cells.end()) return *it->second;
-  auto cell = std::make_unique<Cell>();
+  std::unique_ptr<RealAlgebraic> root;
+  {
+    std::lock_guard<std::mutex> lock(mu);
+    auto it = cells.find(key);
+    if (it != cells.end()) return it->second;
+    if (variant >= 0 && level <= kExactLevel) root = std::make_unique<RealAlgebraic>(roots[static_cast<std::size_t>(variant)]);
+  }
+  auto cell = std::make_shared<Cell>();
   cell->level = level;
   // centre = (2j + 1) 2^-(level+1)
   arf_set_ui(cell->centre, 2 * j + 1);
@@ -361,7 +379,7 @@ const Cell& get_cell(CellMap& cells, const Poly& p, const std::vector<RealAlgebr
       arb_t wg, acc;
       arb_init(wg);
       arb_init(acc);
-      const Ball g = roots[static_cast<std::size_t>(variant)].to_ball(wp + 32);
+      const Ball g = root->to_ball(wp + 32);
       arb_sub_arf(wg, g.get(), cell->centre, wp + 32);
       arb_poly_t Q;
       arb_poly_init(Q);
@@ -382,7 +400,8 @@ const Cell& get_cell(CellMap& cells, const Poly& p, const std::vector<RealAlgebr
   } else {
     // From the parent: its disc |t - c_p| <= 2 h_p holds this cell's disc
     // |t - c| <= 2h = h_p (|c - c_p| = h_p / 2), so its tail bounds hold here.
-    const Cell& parent = get_cell(cells, p, roots, variant, wp, level - 1, j >> 1);
+    const CellPtr parent_ptr = get_cell(mu, cells, roots, p, variant, wp, level - 1, j >> 1);
+    const Cell& parent = *parent_ptr;
     arb_t delta;
     arb_init(delta);
     arf_sub(arb_midref(delta), cell->centre, parent.centre, ARF_PREC_EXACT, ARF_RND_DOWN);
@@ -393,9 +412,13 @@ const Cell& get_cell(CellMap& cells, const Poly& p, const std::vector<RealAlgebr
   truncate(*cell, wp);
   arb_poly_derivative(cell->P1, cell->P, wp);
   arb_poly_derivative(cell->P2, cell->P1, wp);
-  const Cell& ref = *cell;
-  cells.emplace(key, std::move(cell));
-  return ref;
+  const slong len = arb_poly_length(cell->P);
+  cell->mid.resize(static_cast<std::size_t>(len));
+  for (slong k = 0; k < len; ++k)
+    cell->mid[static_cast<std::size_t>(k)] = arf_get_d(arb_midref(cell->P->coeffs + k), ARF_RND_NEAR);
+  std::lock_guard<std::mutex> lock(mu);
+  if (cells.size() >= kMaxCells) cells.clear();  // bounded memory: start again (holders keep theirs)
+  return cells.emplace(key, std::move(cell)).first->second;
 }
 
 // True when the ball z lies in the cell's disc |t - c| <= 2h; w = z - c.
@@ -430,16 +453,14 @@ unsigned long long cell_index(const arf_t x, int level) {
 }  // namespace
 
 bool LocalPoly::eval_cells(int variant, acb_t v, acb_t d1, acb_t d2, const acb_t z, long prec) const {
-  if (!cache_) cache_ = std::make_unique<Cache>();
   Cache& cache = *cache_;
-  if (cache.cells.size() >= kMaxCells) cache.cells.clear();  // bounded memory: start again
   // Cells are shared by every caller whose precision rounds to the same
   // number of limbs (the quadrature's attempts, the optimiser, ...).
   const long wp = (prec + kGuardBits + FLINT_BITS - 1) / FLINT_BITS * FLINT_BITS;
   acb_t w;
   acb_init(w);
   const bool wide = is_wide_ball(z);
-  const Cell* cell = nullptr;
+  CellPtr cell;
   // The cell depends on z alone (never on what was evaluated before), so
   // results do not depend on the order of evaluations or on threads.
   int level = kPointLevel;
@@ -460,9 +481,9 @@ bool LocalPoly::eval_cells(int variant, acb_t v, acb_t d1, acb_t d2, const acb_t
     level = static_cast<int>(std::min<long>(std::max<long>(lv, 0), kMaxLevel));
   }
   for (; level >= 0 && !cell; --level) {
-    const Cell& c =
-        get_cell(cache.cells, p_, cache.roots, variant, wp, level, cell_index(arb_midref(acb_realref(z)), level));
-    if (in_disc(w, c, z, prec)) cell = &c;
+    CellPtr c = get_cell(cache.mu, cache.cells, cache.roots, p_, variant, wp, level,
+                         cell_index(arb_midref(acb_realref(z)), level));
+    if (in_disc(w, *c, z, prec)) cell = std::move(c);
   }
   if (!cell) {
     acb_clear(w);
@@ -477,17 +498,18 @@ bool LocalPoly::eval_cells(int variant, acb_t v, acb_t d1, acb_t d2, const acb_t
   acb_ptr outs[3] = {v, d1, d2};
   const slong K = std::max<slong>(arb_poly_length(cell->P), 1);
   if (acb_is_real(w)) {
-    arb_ptr pw = cache.real_powers(K);
+    arb_ptr pw = scratch().real_powers(K);
     arb_one(pw);
     for (slong k = 1; k < K; ++k) arb_mul(pw + k, pw + k - 1, acb_realref(w), prec);
     for (int j = 0; j <= 2; ++j) {
       if (!outs[j]) continue;
       arb_dot(acb_realref(outs[j]), nullptr, 0, polys[j]->coeffs, 1, pw, 1, arb_poly_length(polys[j]), prec);
       arb_zero(acb_imagref(outs[j]));
-      acb_add_error_mag(outs[j], cell->tail + j);
+      // p is real on real balls: the tail widens the real part only
+      arb_add_error_mag(acb_realref(outs[j]), cell->tail + j);
     }
   } else {
-    acb_ptr pw = cache.complex_powers(K);
+    acb_ptr pw = scratch().complex_powers(K);
     acb_one(pw);
     for (slong k = 1; k < K; ++k) acb_mul(pw + k, pw + k - 1, w, prec);
     // real coefficients: real and imaginary parts are two real dot products
@@ -516,21 +538,15 @@ void LocalPoly::eval_double(double t, double* v, double* d1, double* d2) const {
     }
     c[2] *= 2;
   } else {
-    if (!cache_) cache_ = std::make_unique<Cache>();
     Cache& cache = *cache_;
-    if (cache.cells.size() >= kMaxCells) cache.cells.clear();
     // 64 + guard bits: the same cells as a 64-bit certified evaluation.
     const long wp = (64 + kGuardBits + FLINT_BITS - 1) / FLINT_BITS * FLINT_BITS;
     arf_t x;
     arf_init(x);
     arf_set_d(x, t);
-    Cell& cell = const_cast<Cell&>(get_cell(cache.cells, p_, cache.roots, -1, wp, kPointLevel, cell_index(x, kPointLevel)));
+    const CellPtr cp = get_cell(cache.mu, cache.cells, cache.roots, p_, -1, wp, kPointLevel, cell_index(x, kPointLevel));
+    const Cell& cell = *cp;
     arf_clear(x);
-    if (cell.mid.empty()) {
-      const slong len = arb_poly_length(cell.P);
-      cell.mid.resize(static_cast<std::size_t>(len));
-      for (slong k = 0; k < len; ++k) cell.mid[static_cast<std::size_t>(k)] = arf_get_d(arb_midref(cell.P->coeffs + k), ARF_RND_NEAR);
-    }
     const double w = t - arf_get_d(cell.centre, ARF_RND_NEAR);
     for (std::size_t k = cell.mid.size(); k-- > 0;) {
       c[2] = c[2] * w + c[1];
@@ -550,27 +566,41 @@ void LocalPoly::eval(acb_t v, acb_t d1, acb_t d2, const acb_t z, long prec) cons
 }
 
 void LocalPoly::eval_deflated(acb_t v, const acb_t z, const RealAlgebraic& gamma, long prec) const {
-  if (!cache_) cache_ = std::make_unique<Cache>();
   Cache& cache = *cache_;
   int variant = -1;
-  for (std::size_t i = 0; i < cache.roots.size(); ++i)
-    if (cache.roots[i] == gamma) variant = static_cast<int>(i);
+  {
+    std::lock_guard<std::mutex> lock(cache.mu);
+    for (std::size_t i = 0; i < cache.roots.size(); ++i)
+      if (cache.roots[i] == gamma) variant = static_cast<int>(i);
+  }
   if (variant < 0) {
     if (p_.is_zero() || root_multiplicity(p_, gamma) < 1)
       throw DomainError("eval_deflated: " + gamma.str() + " is not a root of " + p_.str());
-    cache.roots.push_back(gamma);
-    variant = static_cast<int>(cache.roots.size()) - 1;
+    std::lock_guard<std::mutex> lock(cache.mu);
+    for (std::size_t i = 0; i < cache.roots.size() && variant < 0; ++i)  // another thread may have added it
+      if (cache.roots[i] == gamma) variant = static_cast<int>(i);
+    if (variant < 0) {
+      cache.roots.push_back(gamma);
+      variant = static_cast<int>(cache.roots.size()) - 1;
+    }
   }
   if (p_.degree() + 1 > kMinLength && acb_is_finite(z) && eval_cells(variant, v, nullptr, nullptr, z, prec)) return;
   // Low degree, or far from [0, 1]: the deflated power basis (exact
   // synthetic division in Z[gamma], see deflate), centred form.
   const auto key = std::make_pair(variant, prec);
-  auto it = cache.deflated.find(key);
-  if (it == cache.deflated.end()) {
-    if (cache.deflated.size() > 64) cache.deflated.clear();
-    it = cache.deflated.emplace(key, deflate(p_, gamma, 1, prec + 16)).first;
+  std::shared_ptr<const BallPoly> q;
+  {
+    std::lock_guard<std::mutex> lock(cache.mu);
+    auto it = cache.deflated.find(key);
+    if (it != cache.deflated.end()) q = it->second;
   }
-  centred_eval(v, nullptr, nullptr, it->second, it->second, it->second, z, prec);
+  if (!q) {
+    q = std::make_shared<const BallPoly>(deflate(p_, gamma, 1, prec + 16));
+    std::lock_guard<std::mutex> lock(cache.mu);
+    if (cache.deflated.size() > 64) cache.deflated.clear();
+    cache.deflated.emplace(key, q);
+  }
+  centred_eval(v, nullptr, nullptr, *q, *q, *q, z, prec);
 }
 
 }  // namespace uniparam

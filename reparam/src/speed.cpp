@@ -37,6 +37,10 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
     Poly n = x.num(), q = x.den();
     k.N = LocalPoly(n);
     k.Q = LocalPoly(q);
+    // Equal denominators (a rational curve's common weight) share one
+    // LocalPoly's cache: their cells are built once.
+    for (const auto& e : comp_)
+      if (e.Q.poly() == q) k.Q = e.Q;
     k.d1 = x.derivative();
     k.d2 = k.d1.derivative();
     comp_.push_back(std::move(k));
@@ -214,15 +218,24 @@ void Speed::eval_cofactor(acb_t out, const acb_t z, bool analytic, long prec) co
   acb_t s, d;
   acb_init(s);
   acb_init(d);
+  // D first: where its enclosure holds 0 the quotient is not finite anyway,
+  // and the K_k (degree ~4x the curve's) need not be expanded there.
+  eval_D(d, z, prec);
+  if (acb_contains_zero(d)) {
+    acb_indeterminate(out);
+    acb_clear(s);
+    acb_clear(d);
+    return;
+  }
   // numerator: sqrt(sum K^2); a single cofactor is a nonzero integer constant.
   if (K_b_.size() == 1) {
     poly_eval(s, K_b_[0], z, prec);
     if (arb_is_negative(acb_realref(s)) && arb_is_zero(acb_imagref(s))) acb_neg(s, s);
   } else {
     eval_sumK2(s, z, prec);
-    acb_sqrt_analytic(s, s, analytic, prec);
+    if (!analytic && acb_is_real(s)) arb_sqrtpos(acb_realref(s), acb_realref(s), prec);  // real segment: sum K^2 >= 0
+    else acb_sqrt_analytic(s, s, analytic, prec);
   }
-  eval_D(d, z, prec);
   acb_div(out, s, d, prec);
   acb_clear(s);
   acb_clear(d);
@@ -239,7 +252,25 @@ void Speed::eval(acb_t out, const acb_t z, const PieceSigns& p, bool analytic, l
   // analytic; or the branch point near a zero of sigma), the factored form
   // g sqrt(sum K^2) / D below, tight but of degree ~4x higher.
   eval_components(S, F, z, prec);
-  if (kind_ == SpeedKind::Angular) {
+  if (!analytic && acb_is_real(z) && acb_is_real(F) && acb_is_real(S)) {
+    // A real segment where holomorphy is not asked (Arb's direct bound on a
+    // subinterval): sigma is real there, F = |p' x p''|^2 and S = |p'|^2 are
+    // >= 0 at every real point, so sqrt may be taken of [max(0, lo), hi]
+    // (arb_sqrtpos) instead of failing where the enclosure reaches below 0.
+    arb_ptr r = acb_realref(out);
+    if (kind_ == SpeedKind::Angular) {
+      if (comp_.size() == 2) {
+        arb_div(r, acb_realref(F), acb_realref(S), prec);
+        if (p.component < 0) arb_neg(r, r);
+      } else {
+        arb_sqrtpos(r, acb_realref(F), prec);
+        arb_div(r, r, acb_realref(S), prec);
+      }
+    } else {
+      arb_sqrtpos(r, acb_realref(S), prec);
+    }
+    arb_zero(acb_imagref(out));
+  } else if (kind_ == SpeedKind::Angular) {
     if (comp_.size() == 2) {
       acb_div(out, F, S, prec);  // E / S: no square root in the plane
       if (p.component < 0) acb_neg(out, out);
@@ -261,6 +292,8 @@ void Speed::eval(acb_t out, const acb_t z, const PieceSigns& p, bool analytic, l
     if (p.g < 0) acb_neg(out, out);
     acb_clear(g);
   }
+  // sigma is real at real points: on a real segment Re(out) holds it
+  if (!analytic && acb_is_real(z)) arb_zero(acb_imagref(out));
   acb_clear(S);
   acb_clear(F);
 }
@@ -346,8 +379,13 @@ void Speed::eval_D(acb_t out, const acb_t z, long prec) const {
 void Speed::eval_sumK2_over_D2(acb_t out, const acb_t z, long prec) const {
   acb_t d;
   acb_init(d);
+  eval_D(d, z, prec);  // first: see eval_cofactor
+  if (acb_contains_zero(d)) {
+    acb_indeterminate(out);
+    acb_clear(d);
+    return;
+  }
   eval_sumK2(out, z, prec);
-  eval_D(d, z, prec);
   acb_div(out, out, d, prec);
   acb_div(out, out, d, prec);
   acb_clear(d);

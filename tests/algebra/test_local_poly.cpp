@@ -7,7 +7,9 @@
 #include <arb_poly.h>
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <random>
+#include <thread>
 #include <vector>
 
 #include "support/curves.hpp"
@@ -222,6 +224,80 @@ TEST(LocalPoly, NarrowBallsDoNotPayForPowerBasisCancellation) {
     acb_clear(v);
   }
   EXPECT_GT(lp.cells(), 0u);
+}
+
+}  // namespace
+}  // namespace uniparam
+
+namespace uniparam {
+namespace {
+
+// Copies share one cache, and evaluations from several threads at once give
+// exactly the enclosures a fresh LocalPoly gives on one thread (a cell
+// depends only on its key, never on who built it or when).
+TEST(LocalPoly, CopiesShareCellsAndThreadsGetTheSameEnclosures) {
+  std::mt19937_64 rng(7121);
+  for (long it = 0; it < iterations(4); ++it) {
+    const Poly p = random_test_poly(rng);
+    const LocalPoly shared(p);
+    const LocalPoly copy = shared;  // NOLINT: the copy is the point
+    constexpr int kBalls = 200;
+    std::vector<acb_struct> balls(kBalls);
+    for (auto& z : balls) {
+      acb_init(&z);
+      random_ball(&z, rng);
+    }
+    // the reference: a fresh LocalPoly, one thread, in order
+    std::vector<acb_struct> ref(3 * kBalls);
+    for (auto& v : ref) acb_init(&v);
+    {
+      const LocalPoly fresh(p);
+      for (int b = 0; b < kBalls; ++b) fresh.eval(&ref[3 * b], &ref[3 * b + 1], &ref[3 * b + 2], &balls[b], 96);
+    }
+    // two threads on the shared cache (one through the copy), in opposite orders
+    std::vector<acb_struct> got(6 * kBalls);
+    for (auto& v : got) acb_init(&v);
+    auto run = [&](const LocalPoly& lp, int t) {
+      for (int k = 0; k < kBalls; ++k) {
+        const int b = t == 0 ? k : kBalls - 1 - k;
+        acb_ptr o = &got[static_cast<std::size_t>(3 * (t * kBalls + b))];
+        lp.eval(o, o + 1, o + 2, &balls[b], 96);
+      }
+    };
+    std::thread a(run, std::cref(shared), 0), c(run, std::cref(copy), 1);
+    a.join();
+    c.join();
+    EXPECT_GT(shared.cells(), 0u);
+    EXPECT_EQ(shared.cells(), copy.cells());  // one cache
+    const LocalPoly late = shared;             // NOLINT: a copy made after the work
+    EXPECT_EQ(late.cells(), shared.cells());
+    for (int t = 0; t < 2; ++t)
+      for (int b = 0; b < 3 * kBalls; ++b)
+        ASSERT_TRUE(acb_equal(&got[static_cast<std::size_t>(3 * t * kBalls + b)], &ref[static_cast<std::size_t>(b)]))
+            << "thread " << t << ", output " << b % 3 << " of ball " << b / 3 << ", degree " << p.degree();
+    for (auto& v : got) acb_clear(&v);
+    for (auto& v : ref) acb_clear(&v);
+    for (auto& z : balls) acb_clear(&z);
+  }
+}
+
+// p has real coefficients: on a real ball its enclosures are real (an
+// imaginary radius would make a square root of a positive quantity look as
+// if it could cross its branch cut).
+TEST(LocalPoly, RealBallsGiveRealEnclosures) {
+  std::mt19937_64 rng(5);
+  for (long it = 0; it < iterations(20); ++it) {
+    const LocalPoly lp(random_test_poly(rng));
+    for (int b = 0; b < 40; ++b) {
+      acb_t z, v, d1, d2;
+      for (acb_ptr x : {z, v, d1, d2}) acb_init(x);
+      random_ball(z, rng);
+      arb_zero(acb_imagref(z));
+      lp.eval(v, d1, d2, z, 80);
+      for (acb_srcptr x : {v, d1, d2}) ASSERT_TRUE(acb_is_real(x)) << "ball " << b << " of polynomial " << it;
+      for (acb_ptr x : {z, v, d1, d2}) acb_clear(x);
+    }
+  }
 }
 
 }  // namespace

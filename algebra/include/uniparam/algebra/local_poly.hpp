@@ -37,8 +37,12 @@
 namespace uniparam {
 
 /// An exact integer polynomial with a cache of local expansions (see the
-/// file comment). Copying copies the polynomial, not the cache. Not
-/// thread-safe: evaluation fills a mutable cache (one LocalPoly per thread).
+/// file comment). Copies share the cache, and every member may be called
+/// from several threads at once on one LocalPoly or on its copies: the cache
+/// is locked, and a cell's content depends only on (level, index, working
+/// precision, variant), never on the order of the evaluations, so results do
+/// not depend on threads. A moved-from LocalPoly may only be destroyed or
+/// assigned to.
 class LocalPoly {
  public:
   LocalPoly();
@@ -92,7 +96,7 @@ class LocalPoly {
   bool eval_cells(int variant, acb_t v, acb_t d1, acb_t d2, const acb_t z, long prec) const;
   Poly p_;
   BallPoly b_, b1_, b2_;  // power basis: the fallback
-  mutable std::unique_ptr<Cache> cache_;
+  std::shared_ptr<Cache> cache_;  // shared by copies; locked inside
 };
 
 }  // namespace uniparam
