@@ -452,13 +452,24 @@ class SlidesEquation {
 // New breakpoints of the slides' refinement: on each piece of T, the roots of
 // its slides' equation (SlidesEquation, found in floating point: UNCERTIFIED
 // choices, certified later as part of the map) at least 1/1000 of the piece away from
-// its ends, rounded to short rationals (within 10^-6 of the piece's width).
-std::vector<RealAlgebraic> refine(SlidesEquation& eq, const std::vector<RealAlgebraic>& T, const Draft& d) {
+// its ends, rounded to short rationals (within 10^-6 of the piece's width). The
+// equation is that of the piece's ends rounded within 10^-12 of its width and of
+// the draft's alpha rounded within 10^-12, so each breakpoint is within about
+// 10^-6 of the width of a sign change of the piece's exact slides' equation
+// with that alpha (checked by tests/reparam/test_reparam_c1_slides.cpp).
+// Each added breakpoint is recorded in *added (if non-null; round left 0).
+std::vector<RealAlgebraic> refine(SlidesEquation& eq, const std::vector<RealAlgebraic>& T, const Draft& d,
+                                  std::vector<detail::C1Trace::SlidesBreakpoint>* added) {
   std::vector<RealAlgebraic> out;
-  const Rational tiny(1, 1000000000);
   for (std::size_t i = 0; i + 1 < T.size(); ++i) {
     out.push_back(T[i]);
     const Ball ab = T[i].to_ball(128), bb = T[i + 1].to_ball(128);
+    // The ends within 10^-12 of the piece's width: an absolute rounding (it
+    // was 10^-9) moves the roots by more than the 10^-6 width rounding below
+    // on pieces narrower than ~10^-2 (tests/reparam/test_reparam_c1_slides.cpp).
+    Ball hb;
+    arb_sub(hb.get(), bb.get(), ab.get(), 128);
+    const Rational tiny = mid_rational(hb) * Rational(1, 1000000000000L);
     const Rational a = short_rational(ab, tiny), b = short_rational(bb, tiny);
     const Rational al = rational_near(d.alpha[i], Rational(1, 1000000000000L));
     const Rational h = b - a;
@@ -473,8 +484,10 @@ std::vector<RealAlgebraic> refine(SlidesEquation& eq, const std::vector<RealAlge
       Ball x;
       arb_set_d(x.get(), r);
       const Rational q = short_rational(x, h * Rational(1, 1000000));
-      if (q > a + margin && q < b - margin && (out.empty() || compare(out.back(), RealAlgebraic(q)) < 0))
+      if (q > a + margin && q < b - margin && (out.empty() || compare(out.back(), RealAlgebraic(q)) < 0)) {
         out.emplace_back(q);
+        if (added) added->push_back(detail::C1Trace::SlidesBreakpoint{0, i, T[i], T[i + 1], al, q});
+      }
     }
   }
   out.push_back(T.back());
@@ -485,6 +498,12 @@ std::vector<RealAlgebraic> refine(SlidesEquation& eq, const std::vector<RealAlge
 
 MoebiusResult reparam_c1(const Curve& c, SpeedKind kind, const Rational& target, const Options& opt,
                          long max_pieces) {
+  return detail::reparam_c1_traced(c, kind, target, opt, max_pieces, nullptr);
+}
+
+MoebiusResult detail::reparam_c1_traced(const Curve& c, SpeedKind kind, const Rational& target,
+                                        const Options& opt, long max_pieces, C1Trace* trace) {
+  if (trace) *trace = C1Trace{};
   if (!(target.sign() > 0 && target < Rational(1)))
     throw InvalidArgument("the target uniformity must lie in (0, 1), got " + target.str());
   if (max_pieces < 1 || max_pieces > 1000)
@@ -525,6 +544,7 @@ MoebiusResult reparam_c1(const Curve& c, SpeedKind kind, const Rational& target,
   for (;; ++rounds) {
     check_time_budget();
     const Draft draft = draft_c1(fp, T, mu_d);
+    if (trace) trace->rounds.push_back(C1Trace::Round{T, draft.alpha});
     const double u = draft.u;
     if (u > best_u) {
       best_u = u;
@@ -541,7 +561,8 @@ MoebiusResult reparam_c1(const Curve& c, SpeedKind kind, const Rational& target,
       // the floating point was optimistic: refine on
     }
     if (static_cast<long>(T.size()) - 1 >= max_pieces) break;
-    std::vector<RealAlgebraic> next = refine(slides, T, draft);
+    std::vector<C1Trace::SlidesBreakpoint> added;
+    std::vector<RealAlgebraic> next = refine(slides, T, draft, trace ? &added : nullptr);
     if (next.size() == T.size()) {
       // The slides' rule added nothing: split the piece with the largest
       // excess F_i - mu^2 Delta s_i (its share of int sigma_{p o m}^2 above the
@@ -564,8 +585,14 @@ MoebiusResult reparam_c1(const Curve& c, SpeedKind kind, const Rational& target,
       const Rational q = short_rational(mid, mid_rational(w) * Rational(1, 100));
       next = T;
       next.insert(next.begin() + static_cast<long>(worst) + 1, RealAlgebraic(q));
+      if (trace) trace->bisections.push_back(q);
     }
     if (static_cast<long>(next.size()) - 1 > max_pieces) break;
+    if (trace)
+      for (auto& x : added) {
+        x.round = static_cast<std::size_t>(rounds);
+        trace->slides.push_back(x);
+      }
     T = next;
   }
   if (!reached && !(have_certified && certified_T.size() == best.size() &&

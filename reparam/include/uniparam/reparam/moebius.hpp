@@ -124,6 +124,41 @@ MoebiusResult reparam_c0(const Curve& c, SpeedKind kind, long N, const Options& 
 MoebiusResult reparam_c1(const Curve& c, SpeedKind kind, const Rational& target, const Options& opt = {},
                          long max_pieces = 64);
 
+namespace detail {
+
+/// Test hook, not part of the public API: what reparam_c1's refinement
+/// rounds chose. Everything here comes from the UNCERTIFIED floating-point
+/// draft (the choices), nothing in it is certified.
+struct C1Trace {
+  /// One round: its T and the draft's (double, uncertified) alpha per piece.
+  struct Round {
+    std::vector<RealAlgebraic> T;
+    std::vector<double> alpha;
+  };
+  /// A breakpoint added by the slides' rule (not by the bisection fallback):
+  /// in round `round`, the root `t` of the slides' equation
+  ///   sigma' (b - a) [alpha t~ + (1 - alpha)(1 - t~)] - 2 sigma (1 - 2 alpha) = 0,
+  /// t~ = (t - a) / (b - a), on the piece [a, b] = [T_piece, T_piece+1] of that
+  /// round's T, with the rational `alpha` the rule used (the draft's alpha
+  /// rounded to within 10^-12).
+  struct SlidesBreakpoint {
+    std::size_t round = 0, piece = 0;
+    RealAlgebraic a, b;
+    Rational alpha;
+    Rational t;
+  };
+  std::vector<Round> rounds;
+  std::vector<SlidesBreakpoint> slides;
+  std::vector<Rational> bisections;  ///< breakpoints added by the fallback rule
+};
+
+/// reparam_c1 recording its refinement in *trace (if non-null; cleared
+/// first). Same contract, same result as reparam_c1.
+MoebiusResult reparam_c1_traced(const Curve& c, SpeedKind kind, const Rational& target, const Options& opt,
+                                long max_pieces, C1Trace* trace);
+
+}  // namespace detail
+
 /// Exact rational output: rounds T, S and the alphas of r to the simplest
 /// rationals within 10^-rational_digits (relative to the neighbouring gaps for
 /// T and S) and certifies the u of *that* map, which has rational
