@@ -115,8 +115,11 @@ int exact_sign(const Poly& f, const Rational& x) {
   if (n == 0) return f.coeff(0).sign();
   const long xb = rational_bits(x);
   // Horner's terms are up to 2^(max_bits + n * xmag): start above that.
-  const long xmag = std::max(0L, static_cast<long>(fmpz_bits(fmpq_numref(x.get()))) -
-                                     static_cast<long>(fmpz_bits(fmpq_denref(x.get()))) + 1);
+  // (|x| <= 1: no growth; else |x| < 2^(bits(num) - bits(den) + 1).)
+  const long xmag = fmpz_cmpabs(fmpq_numref(x.get()), fmpq_denref(x.get())) <= 0
+                        ? 0
+                        : std::max(0L, static_cast<long>(fmpz_bits(fmpq_numref(x.get()))) -
+                                           static_cast<long>(fmpz_bits(fmpq_denref(x.get()))) + 1);
   const long start = 64 + xb + f.max_bits() + n * xmag;
   ArbVar xv, y;
   if (is_dyadic(x)) {
