@@ -270,9 +270,10 @@ std::vector<PieceIntegrals> all_piece_integrals(const Speed& s, const std::vecto
   // workers are made: every copy refines on its own otherwise. The enclosures
   // the integrals use depend on (t, prec) alone, not on how far t was
   // refined before (RealAlgebraic::to_ball), so nothing else changes. The
-  // integrands ask for about rel_goal_bits + 51 bits at the first attempt
-  // (working precision rel_goal_bits + 32, ends at + 16, grid + 3).
-  const long pre_bits = rel_goal_bits + 64;
+  // integrands ask for rel_goal_bits + 51 bits at the first attempt when no
+  // cancellation raises it (working precision rel_goal_bits + 32, ends at
+  // + 16, to_ball's grid + 3); more would only cost refinement steps.
+  const long pre_bits = rel_goal_bits + 51;
   for (const Breakpoint& b : T) b.t.refine(pre_bits);
   for (const SpeedZero& z : s.zeros()) z.t.refine(pre_bits);
   std::vector<Speed> speeds;
