@@ -5,6 +5,7 @@
 #include <mag.h>
 
 #include <algorithm>
+#include <deque>
 #include <exception>
 #include <string>
 #include <vector>
@@ -170,6 +171,23 @@ Ball integrate(const Integrand& f, const RealAlgebraic& a, const RealAlgebraic& 
   if (c > 0) throw InvalidArgument("integrate: lower end " + a.str() + " exceeds upper end " + b.str());
   if (c == 0) return Ball(0L);
 
+  // The end enclosures at each precision used, converted once: the probe and
+  // the first attempt share a precision, and RealAlgebraic::to_ball keeps
+  // only its last precision (which the integrand may change in between, e.g.
+  // when it evaluates the same algebraic number). to_ball depends on
+  // (x, prec) alone, so these are the balls a direct call gives.
+  struct EndBalls {
+    long prec;
+    Ball a, b;
+  };
+  std::deque<EndBalls> end_balls;  // references stay valid as it grows
+  auto ends_at = [&](long p) -> const EndBalls& {
+    for (const EndBalls& e : end_balls)
+      if (e.prec == p) return e;
+    end_balls.push_back(EndBalls{p, a.to_ball(p), b.to_ball(p)});
+    return end_balls.back();
+  };
+
   long start = opt.initial_prec > 0 ? opt.initial_prec : opt.rel_goal_bits + 32;
   start = std::min(std::max(start, 2L), opt.max_prec);
   if (opt.initial_prec == 0) {
@@ -177,7 +195,8 @@ Ball integrate(const Integrand& f, const RealAlgebraic& a, const RealAlgebraic& 
     // at the precision that is then used (a total loss doubles it first).
     const long base = start;
     for (int round = 0; round < 4 && start < opt.max_prec; ++round) {
-      const long lost = cancellation_bits(f, a.to_ball(start), b.to_ball(start), start);
+      const EndBalls& e = ends_at(start);
+      const long lost = cancellation_bits(f, e.a, e.b, start);
       const long need = lost >= start ? 2 * start : base + lost;
       if (need <= start + 16) break;
       start = std::min(need, opt.max_prec);
@@ -197,7 +216,9 @@ Ball integrate(const Integrand& f, const RealAlgebraic& a, const RealAlgebraic& 
     // eval_limit 0: Arb's default (1000 prec + prec^2), capped so that one
     // hopeless attempt at thousands of bits cannot run for hours.
     arb_opt->eval_limit = opt.eval_limit > 0 ? opt.eval_limit : std::min(1000 * prec + prec * prec, 2000000L);
-    const Ball ea = a.to_ball(prec), eb = b.to_ball(prec);
+    const EndBalls& ends = ends_at(prec);
+    const Ball& ea = ends.a;
+    const Ball& eb = ends.b;
     AcbVar ma, mb, res;
     arb_set_arf(acb_realref(ma.v), arb_midref(ea.get()));  // exact dyadic midpoints
     arb_set_arf(acb_realref(mb.v), arb_midref(eb.get()));

@@ -5,8 +5,11 @@
 
 #include <algorithm>
 #include <atomic>
+#include <condition_variable>
+#include <cstdint>
 #include <cstdlib>
 #include <exception>
+#include <memory>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -25,17 +28,22 @@ std::size_t worker_count() {
   return hw == 0 ? 1 : std::min<std::size_t>(hw, 8);
 }
 
-void parallel_for(std::size_t n, std::size_t max_workers, const std::function<void(std::size_t, std::size_t)>& task) {
-  const std::size_t workers = std::min(std::max<std::size_t>(max_workers, 1), n);
-  if (workers <= 1) {
-    for (std::size_t i = 0; i < n; ++i) task(0, i);
-    return;
-  }
+namespace {
+
+/// One parallel_for call: the items, the task and the first error.
+struct Job {
+  Job(std::size_t n_, std::size_t workers_, const std::function<void(std::size_t, std::size_t)>& task_)
+      : n(n_), workers(workers_), task(task_), deadline(current_deadline()) {}
+  const std::size_t n, workers;
+  const std::function<void(std::size_t, std::size_t)>& task;
+  const Deadline deadline;
   std::atomic<std::size_t> next{0};
   std::atomic<bool> failed{false};
   std::exception_ptr error;
   std::mutex error_mutex;
-  auto work = [&](std::size_t worker) {
+
+  /// Worker `worker` takes items until none is left or one failed.
+  void work(std::size_t worker) {
     for (;;) {
       const std::size_t i = next.fetch_add(1);
       if (i >= n || failed.load()) return;
@@ -48,21 +56,129 @@ void parallel_for(std::size_t n, std::size_t max_workers, const std::function<vo
         return;
       }
     }
-  };
-  const Deadline deadline = current_deadline();
-  std::vector<std::thread> threads;
-  threads.reserve(workers - 1);
-  for (std::size_t w = 1; w < workers; ++w)
-    threads.emplace_back([&, w] {
+  }
+};
+
+thread_local bool t_in_pool = false;  // true on the pool's threads
+
+/// Persistent worker threads, started on first use and kept until the
+/// process exits. Their FLINT/Arb thread-local caches (Gauss-Legendre nodes
+/// above all: computing them costs more than a low-degree quadrature) then
+/// live from one parallel_for to the next, as the calling thread's do,
+/// instead of being rebuilt by fresh threads at every call. Pool thread k
+/// (k >= 1) is worker k of every job that uses at least k + 1 workers.
+/// One job at a time: a call that finds the pool in use (from another
+/// thread, or from inside a task) gets threads of its own instead.
+class Pool {
+ public:
+  static Pool& instance() {
+    static Pool pool;
+    return pool;
+  }
+
+  /// Runs job on the calling thread (worker 0) and pool threads 1..workers-1;
+  /// false (nothing run) when the pool is in use.
+  bool run(Job& job) {
+    bool expected = false;
+    if (!in_use_.compare_exchange_strong(expected, true)) return false;
+    struct Release {
+      std::atomic<bool>& flag;
+      ~Release() { flag.store(false); }
+    } release{in_use_};
+    {
+      std::lock_guard<std::mutex> lock(m_);
+      while (threads_.size() + 1 < job.workers) {
+        const std::size_t k = threads_.size() + 1;
+        threads_.emplace_back([this, k] { loop(k); });
+      }
+      job_ = &job;
+      pending_ = job.workers - 1;
+      ++generation_;
+    }
+    wake_.notify_all();
+    job.work(0);
+    std::unique_lock<std::mutex> lock(m_);
+    done_.wait(lock, [this] { return pending_ == 0; });
+    job_ = nullptr;
+    return true;
+  }
+
+  ~Pool() {
+    {
+      std::lock_guard<std::mutex> lock(m_);
+      stop_ = true;
+    }
+    wake_.notify_all();
+    for (auto& t : threads_) t.join();
+  }
+
+ private:
+  Pool() = default;
+
+  void loop(std::size_t k) {
+    t_in_pool = true;
+    std::uint64_t seen = 0;
+    for (;;) {
+      Job* job = nullptr;
       {
-        const ScopedDeadline inherit(deadline);
-        work(w);
+        std::unique_lock<std::mutex> lock(m_);
+        wake_.wait(lock, [&] { return stop_ || generation_ != seen; });
+        if (stop_) break;
+        seen = generation_;
+        if (job_ && k < job_->workers) job = job_;  // null: a job this thread sat out ended
+      }
+      if (!job) continue;
+      {
+        const ScopedDeadline inherit(job->deadline);
+        job->work(k);
+      }
+      bool last;
+      {
+        std::lock_guard<std::mutex> lock(m_);
+        last = --pending_ == 0;
+      }
+      if (last) done_.notify_one();
+    }
+    flint_cleanup();  // this thread's FLINT/Arb caches
+  }
+
+  std::atomic<bool> in_use_{false};  // a parallel_for is using the pool
+  std::mutex m_;    // guards everything below
+  std::condition_variable wake_, done_;
+  std::vector<std::thread> threads_;
+  Job* job_ = nullptr;
+  std::size_t pending_ = 0;  // pool threads of the current job still working
+  std::uint64_t generation_ = 0;
+  bool stop_ = false;
+};
+
+/// The pool is busy: threads of this call's own, released when it returns.
+void run_on_fresh_threads(Job& job) {
+  std::vector<std::thread> threads;
+  threads.reserve(job.workers - 1);
+  for (std::size_t w = 1; w < job.workers; ++w)
+    threads.emplace_back([&job, w] {
+      {
+        const ScopedDeadline inherit(job.deadline);
+        job.work(w);
       }
       flint_cleanup();  // this thread's FLINT/Arb caches (Gauss-Legendre nodes, ...)
     });
-  work(0);
+  job.work(0);
   for (auto& t : threads) t.join();
-  if (error) std::rethrow_exception(error);
+}
+
+}  // namespace
+
+void parallel_for(std::size_t n, std::size_t max_workers, const std::function<void(std::size_t, std::size_t)>& task) {
+  const std::size_t workers = std::min(std::max<std::size_t>(max_workers, 1), n);
+  if (workers <= 1) {
+    for (std::size_t i = 0; i < n; ++i) task(0, i);
+    return;
+  }
+  Job job(n, workers, task);
+  if (t_in_pool || !Pool::instance().run(job)) run_on_fresh_threads(job);
+  if (job.error) std::rethrow_exception(job.error);
 }
 
 }  // namespace uniparam

@@ -4,6 +4,7 @@
 #include <deque>
 #include <functional>
 #include <unordered_map>
+#include <vector>
 
 #include "uniparam/algebra/quadrature.hpp"
 #include "uniparam/algebra/real_roots.hpp"
@@ -82,6 +83,46 @@ class EvalMemo {
   std::unordered_multimap<std::size_t, std::size_t> index_;
 };
 
+// The piece's left end a and its length b - a as balls at precision
+// prec + 16, for each working precision the integrands are called with (the
+// Gauss-Legendre nodes and the wider error-bound balls come at different
+// precisions). RealAlgebraic::to_ball remembers one precision only and its
+// enclosure depends on (x, prec) alone, so caching here gives exactly the
+// balls the integrands computed on every call before, without converting
+// (and, for an irrational end, re-refining) the ends at every evaluation.
+class PieceEnds {
+ public:
+  PieceEnds(const RealAlgebraic& a, const RealAlgebraic& b) : a_(a), b_(b) {}
+  PieceEnds(const PieceEnds&) = delete;
+  PieceEnds& operator=(const PieceEnds&) = delete;
+  /// ta = a, dt = b - a (real balls, imaginary part exactly 0).
+  void get(acb_t ta, acb_t dt, long prec) {
+    for (const Entry& e : entries_)
+      if (e.prec == prec) {
+        acb_set_arb(ta, e.a.get());
+        acb_set_arb(dt, e.d.get());
+        return;
+      }
+    Entry e;
+    e.prec = prec;
+    e.a = a_.to_ball(prec + 16);
+    const Ball bb = b_.to_ball(prec + 16);
+    arb_sub(e.d.get(), bb.get(), e.a.get(), prec + 16);
+    acb_set_arb(ta, e.a.get());
+    acb_set_arb(dt, e.d.get());
+    entries_.push_back(std::move(e));
+  }
+
+ private:
+  struct Entry {
+    long prec = 0;
+    Ball a, d;
+  };
+  const RealAlgebraic& a_;
+  const RealAlgebraic& b_;
+  std::vector<Entry> entries_;  // a handful of precisions per piece
+};
+
 }  // namespace
 
 std::vector<Breakpoint> mark_zeros(const Speed& s, const std::vector<RealAlgebraic>& ts) {
@@ -143,18 +184,18 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
 
   // f_k(t) = sigma^2 rho w_k(s~): k = 0, 1, 2 for (1-s~)^2, 2 s~(1-s~), s~^2.
   EvalMemo memo;
+  PieceEnds ends(a.t, b.t);
   auto make = [&](int k) -> Integrand {
-    return [&s, &a, &b, &memo, side, mu, zero, k](acb_t out, const acb_t z, bool, long prec) {
+    // zero by reference: the three integrands share one copy of gamma (and
+    // its refinement, see RealAlgebraic::refine)
+    return [&s, &ends, &memo, &zero, side, mu, k](acb_t out, const acb_t z, bool, long prec) {
       acb_t ta, dt, tt, st, w;
       acb_init(ta);
       acb_init(dt);
       acb_init(tt);
       acb_init(st);
       acb_init(w);
-      Ball ab = a.t.to_ball(prec + 16), bb = b.t.to_ball(prec + 16);
-      acb_set_arb(ta, ab.get());
-      arb_sub(acb_realref(dt), bb.get(), ab.get(), prec + 16);
-      arb_zero(acb_imagref(dt));
+      ends.get(ta, dt, prec);
       acb_sub(tt, z, ta, prec);
       acb_div(tt, tt, dt, prec);  // t~
       if (side == ZeroSide::None) {
@@ -224,6 +265,17 @@ std::vector<PieceIntegrals> all_piece_integrals(const Speed& s, const std::vecto
   const std::size_t n = T.size() - 1;
   std::vector<PieceIntegrals> out(n);
   const std::size_t workers = std::min(worker_count(), n);
+  // Refine the irrational breakpoints (and the speed's zeros, which the
+  // integrands next to a zero evaluate) once, before the copies for the
+  // workers are made: every copy refines on its own otherwise. The enclosures
+  // the integrals use depend on (t, prec) alone, not on how far t was
+  // refined before (RealAlgebraic::to_ball), so nothing else changes. The
+  // integrands ask for rel_goal_bits + 51 bits at the first attempt when no
+  // cancellation raises it (working precision rel_goal_bits + 32, ends at
+  // + 16, to_ball's grid + 3); more would only cost refinement steps.
+  const long pre_bits = rel_goal_bits + 51;
+  for (const Breakpoint& b : T) b.t.refine(pre_bits);
+  for (const SpeedZero& z : s.zeros()) z.t.refine(pre_bits);
   std::vector<Speed> speeds;
   std::vector<std::vector<Breakpoint>> ends;
   for (std::size_t w = 1; w < workers; ++w) {

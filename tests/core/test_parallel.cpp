@@ -75,6 +75,68 @@ TEST(Parallel, AnExpiredBudgetStopsWorkers) {
   EXPECT_THROW(parallel_for(8, 4, [](std::size_t, std::size_t) { check_time_budget(); }), BudgetExceeded);
 }
 
+// The workers are persistent pool threads: a call nested inside a task, and
+// calls made at the same time from several threads (the pool serves one),
+// must still run every item exactly once on a worker in range, with the
+// per-worker state unshared.
+TEST(Parallel, NestedCallsRunEveryItemOnce) {
+  const std::size_t outer = 6, inner = 9;
+  std::vector<std::atomic<int>> runs(outer * inner);
+  std::atomic<bool> out_of_range{false};
+  parallel_for(outer, 3, [&](std::size_t w, std::size_t i) {
+    if (w >= 3) out_of_range = true;
+    std::vector<long> per_worker(2, 0);
+    parallel_for(inner, 2, [&](std::size_t v, std::size_t j) {
+      if (v >= 2) { out_of_range = true; return; }
+      ++per_worker[v];
+      ++runs[i * inner + j];
+    });
+    if (per_worker[0] + per_worker[1] != static_cast<long>(inner)) out_of_range = true;
+  });
+  EXPECT_FALSE(out_of_range);
+  for (std::size_t k = 0; k < runs.size(); ++k) EXPECT_EQ(runs[k].load(), 1) << "item " << k;
+}
+
+TEST(Parallel, ConcurrentCallsRunEveryItemOnce) {
+  const std::size_t callers = 4, n = 200;
+  std::vector<std::vector<std::atomic<int>>> runs(callers);
+  for (auto& r : runs) r = std::vector<std::atomic<int>>(n);
+  std::atomic<bool> bad{false};
+  std::vector<std::thread> threads;
+  for (std::size_t c = 0; c < callers; ++c)
+    threads.emplace_back([&, c] {
+      for (int round = 0; round < 20; ++round) {
+        const std::size_t workers = 2 + (c + static_cast<std::size_t>(round)) % 3;
+        std::vector<long> per_worker(workers, 0);  // unlocked: each worker its own slot
+        parallel_for(n, workers, [&](std::size_t w, std::size_t i) {
+          if (w >= workers) { bad = true; return; }
+          per_worker[w] += static_cast<long>(i);
+          ++runs[c][i];
+        });
+        long sum = 0;
+        for (long v : per_worker) sum += v;
+        if (sum != static_cast<long>(n * (n - 1) / 2)) bad = true;
+      }
+    });
+  for (auto& t : threads) t.join();
+  EXPECT_FALSE(bad);
+  for (std::size_t c = 0; c < callers; ++c)
+    for (std::size_t i = 0; i < n; ++i) EXPECT_EQ(runs[c][i].load(), 20) << "caller " << c << " item " << i;
+}
+
+TEST(Parallel, AFailedCallLeavesThePoolUsable) {
+  for (int round = 0; round < 5; ++round) {
+    EXPECT_THROW(parallel_for(30, 3,
+                              [](std::size_t, std::size_t i) {
+                                if (i % 7 == 3) throw DomainError("item");
+                              }),
+                 DomainError);
+    std::vector<std::atomic<int>> runs(40);
+    parallel_for(40, 3, [&](std::size_t, std::size_t i) { ++runs[i]; });
+    for (std::size_t i = 0; i < runs.size(); ++i) EXPECT_EQ(runs[i].load(), 1) << "item " << i;
+  }
+}
+
 TEST(Parallel, WorkerCountHonoursTheEnvironment) {
   setenv("UNIPARAM_THREADS", "3", 1);
   EXPECT_EQ(worker_count(), 3u);

@@ -19,8 +19,14 @@ std::size_t worker_count();
 /// so a task may use per-worker state indexed by `worker` without locking. Items are handed out in
 /// increasing order as workers become free.
 /// Worker threads inherit the calling thread's time budget (the same
-/// deadline, see budget.hpp) and release FLINT/Arb's thread-local caches
-/// when they finish.
+/// deadline, see budget.hpp). Workers 1.. are persistent pool threads,
+/// started on first use and kept until the process exits (when they release
+/// FLINT/Arb's thread-local caches), so those caches (Gauss-Legendre nodes)
+/// serve every later call as the calling thread's do. The pool runs one call
+/// at a time: a call made while it is busy (from another thread, or nested
+/// inside a task) runs on threads of its own, started for the call and
+/// released (caches included) when it returns. Which thread runs which item
+/// is not fixed either way, so tasks must not depend on it beyond `worker`.
 /// \post all items ran, or the first exception thrown by a task is rethrown
 ///       here after every worker has stopped (items not yet started are
 ///       skipped).
