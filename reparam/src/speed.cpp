@@ -41,6 +41,7 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
     // LocalPoly's cache: their cells are built once.
     for (const auto& e : comp_)
       if (e.Q.poly() == q) k.Q = e.Q;
+    k.unit_den = q == Poly(1);
     k.d1 = x.derivative();
     k.d2 = k.d1.derivative();
     comp_.push_back(std::move(k));
@@ -133,48 +134,35 @@ Speed::PieceSigns Speed::piece_signs(const RealAlgebraic& a, const RealAlgebraic
 }
 
 void Speed::eval_derivatives(acb_ptr d1, acb_ptr d2, const acb_t z, long prec) const {
-  acb_t n, n1, q, q1, a, v;
-  acb_init(n);
-  acb_init(n1);
-  acb_init(q);
-  acb_init(q1);
-  acb_init(a);
-  acb_init(v);
+  acb_t n, n1, n2, q, q1, q2, a, v, w;
+  for (acb_ptr x : {n, n1, n2, q, q1, q2, a, v, w}) acb_init(x);
   for (std::size_t i = 0; i < comp_.size(); ++i) {
     const Component& k = comp_[i];
-    acb_t n2, q2;
-    acb_init(n2);
-    acb_init(q2);
+    if (k.unit_den) {  // a polynomial component: x' = N', x'' = N''
+      k.N.eval(n, d1 + i, d2 ? d2 + i : nullptr, z, prec);
+      continue;
+    }
     k.N.eval(n, n1, d2 ? n2 : nullptr, z, prec);
     k.Q.eval(q, q1, d2 ? q2 : nullptr, z, prec);
-    // A = N'Q - NQ', x' = A / Q^2
+    // v = 1 / Q (one division), A = N'Q - NQ', x' = A v^2
+    acb_inv(v, q, prec);
     acb_mul(a, n1, q, prec);
     acb_submul(a, n, q1, prec);
-    acb_mul(v, q, q, prec);
-    acb_div(d1 + i, a, v, prec);
+    acb_mul(w, v, v, prec);
+    acb_mul(d1 + i, a, w, prec);
     if (d2) {
-      // x'' = (N''Q - NQ'') / Q^2 - 2 Q' A / Q^3
-      acb_t w;
-      acb_init(w);
-      acb_mul(w, n2, q, prec);
-      acb_submul(w, n, q2, prec);
-      acb_div(w, w, v, prec);
-      acb_mul(n2, q1, a, prec);
-      acb_mul_2exp_si(n2, n2, 1);
-      acb_mul(v, v, q, prec);
-      acb_div(n2, n2, v, prec);
-      acb_sub(d2 + i, w, n2, prec);
-      acb_clear(w);
+      // x'' = (N''Q - NQ'') v^2 - 2 Q' A v^3
+      acb_mul(n2, n2, q, prec);
+      acb_submul(n2, n, q2, prec);
+      acb_mul(n2, n2, w, prec);
+      acb_mul(a, a, q1, prec);
+      acb_mul(a, a, w, prec);
+      acb_mul(a, a, v, prec);
+      acb_mul_2exp_si(a, a, 1);
+      acb_sub(d2 + i, n2, a, prec);
     }
-    acb_clear(n2);
-    acb_clear(q2);
   }
-  acb_clear(n);
-  acb_clear(n1);
-  acb_clear(q);
-  acb_clear(q1);
-  acb_clear(a);
-  acb_clear(v);
+  for (acb_ptr x : {n, n1, n2, q, q1, q2, a, v, w}) acb_clear(x);
 }
 
 void Speed::eval_components(acb_t S, acb_t F, const acb_t z, long prec) const {

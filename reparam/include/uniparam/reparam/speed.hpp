@@ -125,6 +125,7 @@ class Speed {
   struct Component {
     LocalPoly N, Q;                 // numerator, denominator (with p', p'')
     RatFunc d1, d2;                 // exact x', x'' (for signs)
+    bool unit_den = false;          // Q == 1: x' = N', x'' = N'' (no quotient rule)
   };
   std::vector<Component> comp_;
   // ball versions for evaluation
