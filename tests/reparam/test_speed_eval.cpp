@@ -57,6 +57,18 @@ void random_ball(acb_t z, std::mt19937_64& rng, double maxrad) {
   mag_set_d(arb_radref(acb_imagref(z)), maxrad * static_cast<double>(r(rng)) / 1024.0);
 }
 
+// True when out overlaps v or -v: sigma evaluated with default piece signs
+// is the analytic continuation from a piece where sign g (or the plane's
+// sign of E) is +-1, so only |sigma| is compared.
+bool overlaps_up_to_sign(const acb_t out, const acb_t v) {
+  acb_t nv;
+  acb_init(nv);
+  acb_neg(nv, v);
+  const bool ok = acb_overlaps(out, v) || acb_overlaps(out, nv);
+  acb_clear(nv);
+  return ok;
+}
+
 // An exact point of the ball z: mid + (a, b) * rad with a, b in [-1, 1].
 void random_point(acb_t w, const acb_t z, std::mt19937_64& rng) {
   std::uniform_int_distribution<long> f(-1024, 1024);
@@ -188,13 +200,7 @@ TEST(SpeedEval, SpaceSpeedOnWideBallsAtLowPrecision) {
       for (int p = 0; p < 6; ++p) {
         random_point(w, z, rng);
         s.eval(v, w, sign, false, 512);
-        // the analytic continuation from the real axis, where sign g is
-        // +-1: compare |sigma| up to that sign
-        acb_t nv;
-        acb_init(nv);
-        acb_neg(nv, v);
-        ASSERT_TRUE(acb_overlaps(out, v) || acb_overlaps(out, nv)) << c.str() << " ball " << b;
-        acb_clear(nv);
+        ASSERT_TRUE(overlaps_up_to_sign(out, v)) << c.str() << " ball " << b;
       }
     }
     acb_clear(z);
@@ -239,12 +245,7 @@ TEST(SpeedEval, SpeedOnRealSegmentsWithoutHolomorphyIsFiniteAndContainsPointValu
         random_point(w, z, rng);
         arb_zero(acb_imagref(w));
         s.eval(v, w, sign, false, 256);
-        // default signs: sigma up to its sign on the piece (as above)
-        acb_t nv;
-        acb_init(nv);
-        acb_neg(nv, v);
-        ASSERT_TRUE(acb_overlaps(out, v) || acb_overlaps(out, nv)) << c.str() << " segment " << b;
-        acb_clear(nv);
+        ASSERT_TRUE(overlaps_up_to_sign(out, v)) << c.str() << " segment " << b;
       }
     }
     for (acb_ptr x : {z, w, out, v}) acb_clear(x);
