@@ -5,6 +5,7 @@
 // narrow balls do not pay for the power basis' cancellation.
 #include <acb_poly.h>
 #include <arb_poly.h>
+#include <flint/flint.h>
 #include <gtest/gtest.h>
 
 #include <functional>
@@ -263,6 +264,7 @@ TEST(LocalPoly, CopiesShareCellsAndThreadsGetTheSameEnclosures) {
         acb_ptr o = &got[static_cast<std::size_t>(3 * (t * kBalls + b))];
         lp.eval(o, o + 1, o + 2, &balls[b], 96);
       }
+      flint_cleanup();  // this thread's FLINT caches (as parallel_for's workers do)
     };
     std::thread a(run, std::cref(shared), 0), c(run, std::cref(copy), 1);
     a.join();
