@@ -260,34 +260,33 @@ void truncate(Cell& cell, long wp) {
 using CellPtr = std::shared_ptr<const Cell>;
 using CellMap = std::unordered_map<CellKey, CellPtr, CellKeyHash>;
 
-// Scratch for the powers of w, one per thread (no allocation per evaluation).
+// A vector of Arb balls that only grows (no allocation per evaluation).
+template <typename Ptr, Ptr (*Init)(slong), void (*Clear)(Ptr, slong)>
+struct Growing {
+  Ptr v = nullptr;
+  slong cap = 0;
+  Growing() = default;
+  Growing(const Growing&) = delete;
+  Growing& operator=(const Growing&) = delete;
+  ~Growing() {
+    if (v) Clear(v, cap);
+  }
+  Ptr at_least(slong n) {
+    if (n > cap) {
+      if (v) Clear(v, cap);
+      cap = std::max(n, 2 * cap);
+      v = Init(cap);
+    }
+    return v;
+  }
+};
+
+// Scratch for the powers of w, one per thread.
 struct Scratch {
-  arb_ptr rpow = nullptr;
-  acb_ptr cpow = nullptr;
-  slong rcap = 0, ccap = 0;
-  Scratch() = default;
-  Scratch(const Scratch&) = delete;
-  Scratch& operator=(const Scratch&) = delete;
-  ~Scratch() {
-    if (rpow) _arb_vec_clear(rpow, rcap);
-    if (cpow) _acb_vec_clear(cpow, ccap);
-  }
-  arb_ptr real_powers(slong n) {
-    if (n > rcap) {
-      if (rpow) _arb_vec_clear(rpow, rcap);
-      rcap = std::max(n, 2 * rcap);
-      rpow = _arb_vec_init(rcap);
-    }
-    return rpow;
-  }
-  acb_ptr complex_powers(slong n) {
-    if (n > ccap) {
-      if (cpow) _acb_vec_clear(cpow, ccap);
-      ccap = std::max(n, 2 * ccap);
-      cpow = _acb_vec_init(ccap);
-    }
-    return cpow;
-  }
+  Growing<arb_ptr, _arb_vec_init, _arb_vec_clear> real;
+  Growing<acb_ptr, _acb_vec_init, _acb_vec_clear> complex;
+  arb_ptr real_powers(slong n) { return real.at_least(n); }
+  acb_ptr complex_powers(slong n) { return complex.at_least(n); }
 };
 
 Scratch& scratch() {
