@@ -97,8 +97,12 @@ void ball_radius(mag_t r, const acb_t z) { mag_hypot(r, arb_radref(acb_realref(z
 // cancellation).
 constexpr long kMinLength = 3;
 // Cells up to this level are computed by an exact integer Taylor shift;
-// deeper ones from their parent's (truncated) expansion by a ball shift.
-constexpr int kExactLevel = 6;
+// deeper ones from their parent's (truncated) expansion by a ball shift,
+// O(K^2) at the working precision instead of O(n^2) on integers of about
+// (level + 1) n bits. Up to kMaxExactLevel a ball-shifted cell that lost
+// accuracy (accurate() below) is rebuilt exactly.
+constexpr int kExactLevel = 3;
+constexpr int kMaxExactLevel = 6;
 // Finest level (cells of width 2^-40).
 constexpr int kMaxLevel = 40;
 // Level of the cells for narrow balls (quadrature nodes): 64 cells on [0, 1].
@@ -257,6 +261,36 @@ void truncate(Cell& cell, long wp) {
   for (mag_struct* m : {h, rho, scale, eps, a, t0, t1, t2, n0, n1, n2, c1, c2}) mag_clear(m);
 }
 
+// True when a ball-shifted cell kept its accuracy: the error of its
+// expansion on the disc |w| <= 2h, sum rad(c_k) (2h)^k + tail, is at most
+// 2^-(wp - kGuardBits) times its scale sum |c_k| h^k (wp - kGuardBits is at
+// least the caller's precision). It fails where p is much larger on the
+// parent's disc than on this cell (near a cluster of p's zeros).
+bool accurate(const Cell& cell, long wp) {
+  const slong n = arb_poly_length(cell.P);
+  mag_t h, rho, hk, rk, a, scale, err;
+  for (mag_struct* m : {h, rho, hk, rk, a, scale, err}) mag_init(m);
+  mag_one(h);
+  mag_mul_2exp_si(h, h, -(cell.level + 1));
+  mag_mul_2exp_si(rho, h, 1);
+  mag_one(hk);
+  mag_one(rk);
+  mag_set(err, cell.tail + 0);
+  for (slong k = 0; k < n; ++k) {
+    arf_get_mag(a, arb_midref(cell.P->coeffs + k));
+    mag_mul(a, a, hk);
+    mag_add(scale, scale, a);
+    mag_mul(a, arb_radref(cell.P->coeffs + k), rk);
+    mag_add(err, err, a);
+    mag_mul(hk, hk, h);
+    mag_mul(rk, rk, rho);
+  }
+  mag_mul_2exp_si(scale, scale, -(wp - kGuardBits));
+  const bool ok = !mag_is_zero(scale) && mag_cmp(err, scale) <= 0;
+  for (mag_struct* m : {h, rho, hk, rk, a, scale, err}) mag_clear(m);
+  return ok;
+}
+
 using CellPtr = std::shared_ptr<const Cell>;
 using CellMap = std::unordered_map<CellKey, CellPtr, CellKeyHash>;
 
@@ -337,15 +371,40 @@ CellPtr get_cell(std::mutex& mu, CellMap& cells, const std::vector<RealAlgebraic
     std::lock_guard<std::mutex> lock(mu);
     auto it = cells.find(key);
     if (it != cells.end()) return it->second;
-    if (variant >= 0 && level <= kExactLevel) root = std::make_unique<RealAlgebraic>(roots[static_cast<std::size_t>(variant)]);
   }
   auto cell = std::make_shared<Cell>();
   cell->level = level;
   // centre = (2j + 1) 2^-(level+1)
   arf_set_ui(cell->centre, 2 * j + 1);
   arf_mul_2exp_si(cell->centre, cell->centre, -(level + 1));
-  const long n = p.degree();
-  if (level <= kExactLevel) {
+  bool built = false;
+  if (level > kExactLevel) {
+    // From the parent: its disc |t - c_p| <= 2 h_p holds this cell's disc
+    // |t - c| <= 2h = h_p (|c - c_p| = h_p / 2), so its tail bounds hold here.
+    const CellPtr parent_ptr = get_cell(mu, cells, roots, p, variant, wp, level - 1, j >> 1);
+    const Cell& parent = *parent_ptr;
+    arb_t delta;
+    arb_init(delta);
+    arf_sub(arb_midref(delta), cell->centre, parent.centre, ARF_PREC_EXACT, ARF_RND_DOWN);
+    arb_poly_taylor_shift(cell->P, parent.P, delta, wp);
+    arb_clear(delta);
+    for (int t = 0; t < 3; ++t) mag_set(cell->tail + t, parent.tail + t);
+    truncate(*cell, wp);
+    // p may be far larger on the parent's disc than on this cell's: then the
+    // parent's rounding and tail swamp p here, and up to kMaxExactLevel the
+    // cell is rebuilt by an exact shift instead.
+    built = level > kMaxExactLevel || accurate(*cell, wp);
+    if (!built) {
+      arb_poly_zero(cell->P);
+      for (auto& t : cell->tail) mag_zero(&t);
+    }
+  }
+  if (!built) {
+    if (variant >= 0) {
+      std::lock_guard<std::mutex> lock(mu);
+      root = std::make_unique<RealAlgebraic>(roots[static_cast<std::size_t>(variant)]);
+    }
+    const long n = p.degree();
     // p(c + w) = 2^(-L n) q(J + 2^L w) with q(x) = 2^(L n) p(x / 2^L),
     // L = level + 1, J = 2j + 1: an exact integer Taylor shift.
     const long L = level + 1;
@@ -396,19 +455,8 @@ CellPtr get_cell(std::mutex& mu, CellMap& cells, const std::vector<RealAlgebraic
       arb_clear(wg);
       arb_clear(acc);
     }
-  } else {
-    // From the parent: its disc |t - c_p| <= 2 h_p holds this cell's disc
-    // |t - c| <= 2h = h_p (|c - c_p| = h_p / 2), so its tail bounds hold here.
-    const CellPtr parent_ptr = get_cell(mu, cells, roots, p, variant, wp, level - 1, j >> 1);
-    const Cell& parent = *parent_ptr;
-    arb_t delta;
-    arb_init(delta);
-    arf_sub(arb_midref(delta), cell->centre, parent.centre, ARF_PREC_EXACT, ARF_RND_DOWN);
-    arb_poly_taylor_shift(cell->P, parent.P, delta, wp);
-    arb_clear(delta);
-    for (int t = 0; t < 3; ++t) mag_set(cell->tail + t, parent.tail + t);
+    truncate(*cell, wp);
   }
-  truncate(*cell, wp);
   arb_poly_derivative(cell->P1, cell->P, wp);
   arb_poly_derivative(cell->P2, cell->P1, wp);
   const slong len = arb_poly_length(cell->P);

@@ -12,8 +12,9 @@
 //   * [0, 1] is covered by dyadic cells; level l has centres
 //     c = (j + 1/2) 2^-l and half-width h = 2^-(l+1), j = 0 .. 2^l - 1;
 //   * a cell holds p's Taylor coefficients at c, from an exact integer Taylor
-//     shift (FLINT) rounded to the working precision (deep cells: a ball
-//     shift of their parent's expansion), truncated after K terms, with a
+//     shift (FLINT) rounded to the working precision (levels 0-3; deeper
+//     cells: a ball shift of their parent's expansion, rebuilt exactly down
+//     to level 6 where that lost accuracy), truncated after K terms, with a
 //     rigorous bound of the dropped tail and of its first two derivatives on
 //     the disc |t - c| <= 2h;
 //   * a ball is evaluated in w = t - c by the powers of w and one dot product
