@@ -7,6 +7,7 @@
 #include <mag.h>
 
 #include <algorithm>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,12 @@ int compare_rational(const RealAlgebraic& x, const Rational& q) {
 
 }  // namespace
 
+struct RealAlgebraic::Shared {
+  std::mutex mu;
+  Rational lo, hi;      // empty (lo == hi == 0) until a copy publishes
+  long newton_log = 2;  // the refinement's Newton rate, continued by the next call
+};
+
 RealAlgebraic::RealAlgebraic(const Rational& q) : poly_(linear_poly(q)), lo_(q), hi_(q) {}
 
 RealAlgebraic::RealAlgebraic(const IsolatedRoot& r) {
@@ -73,6 +80,7 @@ RealAlgebraic::RealAlgebraic(const IsolatedRoot& r) {
   poly_ = std::move(f);
   lo_ = r.lo;
   hi_ = r.hi;
+  shared_ = std::make_shared<Shared>();
 }
 
 RealAlgebraic::RealAlgebraic(const Poly& squarefree, const Rational& lo, const Rational& hi) {
@@ -90,6 +98,7 @@ RealAlgebraic::RealAlgebraic(const Poly& squarefree, const Rational& lo, const R
   poly_ = r.is_exact() ? linear_poly(r.lo) : r.factor;  // the isolator makes rational roots exact
   lo_ = r.lo;
   hi_ = r.hi;
+  if (!r.is_exact()) shared_ = std::make_shared<Shared>();
 }
 
 const Rational& RealAlgebraic::rational() const {
@@ -99,9 +108,30 @@ const Rational& RealAlgebraic::rational() const {
 
 void RealAlgebraic::refine(long bits) const {
   if (is_rational()) return;
+  // Adopt what a copy refined (an empty shared interval: nothing published
+  // yet), refine outside the lock, publish if narrower. Two copies may
+  // refine at once; both results are isolating intervals of the same root.
+  long newton_log = 2;
+  if (shared_) {
+    std::lock_guard<std::mutex> lock(shared_->mu);
+    if (shared_->lo < shared_->hi && shared_->hi - shared_->lo <= hi_ - lo_) {
+      lo_ = shared_->lo;
+      hi_ = shared_->hi;
+      newton_log = shared_->newton_log;
+    }
+  }
+  if (hi_ - lo_ <= detail::pow2(-bits)) return;
   // An exact hit (impossible for an irrational root) would leave lo == hi,
   // still a correct value.
-  detail::refine_isolating_interval(poly_, lo_, hi_, bits);
+  detail::refine_isolating_interval(poly_, lo_, hi_, bits, &newton_log);
+  if (shared_ && lo_ < hi_) {
+    std::lock_guard<std::mutex> lock(shared_->mu);
+    if (!(shared_->lo < shared_->hi) || hi_ - lo_ < shared_->hi - shared_->lo) {
+      shared_->lo = lo_;
+      shared_->hi = hi_;
+      shared_->newton_log = newton_log;
+    }
+  }
 }
 
 Ball RealAlgebraic::to_ball(long prec) const {

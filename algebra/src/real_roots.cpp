@@ -144,7 +144,7 @@ int exact_sign(const Poly& f, const Rational& x) {
   return f.sign_at(x);  // exact rational evaluation
 }
 
-bool refine_isolating_interval(const Poly& f, Rational& lo, Rational& hi, long bits) {
+bool refine_isolating_interval(const Poly& f, Rational& lo, Rational& hi, long bits, long* newton_log) {
   if (lo == hi) return true;
   if (hi < lo) throw InvalidArgument("refine: empty interval");
   const Rational target = pow2(-bits);
@@ -158,9 +158,12 @@ bool refine_isolating_interval(const Poly& f, Rational& lo, Rational& hi, long b
   // Every accepted Newton bracket or bisection at least halves the width;
   // failed Newton tries are at most logarithmically many per success.
   const long cap = 8 * (std::max(0L, bits + start) + 64) + 1000;
-  long log_n = 2;  // a Newton proposal is a subinterval of width ~ w / 2^log_n
+  // a Newton proposal is a subinterval of width ~ w / 2^log_n; a caller's
+  // state continues the quadratic rate of its last call
+  long log_n = newton_log ? std::max(2L, *newton_log) : 2;
   long extra = 0;  // precision the Newton steps needed beyond the estimate
   for (long it = 0;; ++it) {
+    if (newton_log) *newton_log = log_n;
     if (w <= target) return false;
     check_time_budget();
     if (it > cap)

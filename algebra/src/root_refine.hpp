@@ -24,8 +24,12 @@ int exact_sign(const Poly& f, const Rational& x);
 /// Newton steps in Arb propose a subinterval (quadratic interval refinement,
 /// Abbott), every accepted bracket is certified by exact sign tests;
 /// bisection is the fallback. Throws BudgetExceeded after a generous
-/// iteration cap.
-bool refine_isolating_interval(const Poly& f, Rational& lo, Rational& hi, long bits);
+/// iteration cap. newton_log, when non-null, is the Newton rate (log2 of
+/// the width a step aims to gain) to start from, and receives the rate
+/// reached: successive calls on one root then keep the quadratic rate
+/// instead of restarting at 2. A hint only; the result's guarantees do not
+/// depend on it.
+bool refine_isolating_interval(const Poly& f, Rational& lo, Rational& hi, long bits, long* newton_log = nullptr);
 
 /// A ball containing the closed interval [lo, hi] (working precision prec).
 Ball interval_ball(const Rational& lo, const Rational& hi, long prec);

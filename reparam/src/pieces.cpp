@@ -266,14 +266,15 @@ std::vector<PieceIntegrals> all_piece_integrals(const Speed& s, const std::vecto
   std::vector<PieceIntegrals> out(n);
   const std::size_t workers = std::min(worker_count(), n);
   // Refine the irrational breakpoints (and the speed's zeros, which the
-  // integrands next to a zero evaluate) once, before the copies for the
-  // workers are made: every copy refines on its own otherwise. The enclosures
+  // integrands next to a zero evaluate) once, before the workers start:
+  // copies share their refinement (RealAlgebraic::refine), and this keeps
+  // two workers from refining one number at the same time. The enclosures
   // the integrals use depend on (t, prec) alone, not on how far t was
   // refined before (RealAlgebraic::to_ball), so nothing else changes. The
-  // integrands ask for rel_goal_bits + 51 bits at the first attempt when no
+  // integrands ask for rel_goal_bits + 83 bits at the first attempt when no
   // cancellation raises it (working precision rel_goal_bits + 32, ends at
-  // + 16, to_ball's grid + 3); more would only cost refinement steps.
-  const long pre_bits = rel_goal_bits + 51;
+  // + 16, to_ball's refinement + 35).
+  const long pre_bits = rel_goal_bits + 83;
   for (const Breakpoint& b : T) b.t.refine(pre_bits);
   for (const SpeedZero& z : s.zeros()) z.t.refine(pre_bits);
   std::vector<Speed> speeds;

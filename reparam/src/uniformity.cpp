@@ -110,11 +110,12 @@ UniformityResult uniformity(const Speed& s, const Options& opt) {
     // The pieces of mu and the integral of sigma^2 are independent: spread
     // over worker threads, each extra worker with its own copies of the
     // speed and the ends (both keep mutable caches), made before any starts.
-    // The zeros are refined once before they are copied (every copy refines
-    // on its own otherwise); value-neutral: RealAlgebraic::to_ball depends
-    // on (t, prec) alone. The first attempt asks for bits + 35 bits
-    // (integrate's working precision bits + 32, to_ball's grid + 3).
-    for (const SpeedZero& z : s.zeros()) z.t.refine(bits + 35);
+    // The zeros are refined once before the workers start (copies share
+    // their refinement; this keeps two workers from refining one number at
+    // once); value-neutral: RealAlgebraic::to_ball depends on (t, prec)
+    // alone. The first attempt asks for bits + 67 bits (integrate's working
+    // precision bits + 32, to_ball's refinement + 35).
+    for (const SpeedZero& z : s.zeros()) z.t.refine(bits + 67);
     const std::vector<RealAlgebraic> ends = speed_piece_ends(s, zero, one);
     const std::size_t pieces = ends.size() - 1, tasks = pieces + 1;
     const std::size_t workers = std::min(worker_count(), tasks);

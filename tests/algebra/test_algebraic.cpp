@@ -5,9 +5,12 @@
 #include <gtest/gtest.h>
 #include <mag.h>
 
+#include <flint/flint.h>
+
 #include <cstdlib>
 #include <random>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -333,6 +336,59 @@ TEST(Algebraic, DecimalWithinOneUnit) {
     }
   }
   EXPECT_THROW(RealAlgebraic(1).decimal(0), InvalidArgument);
+}
+
+
+// Copies share their refinement: what one copy refined, another adopts at
+// its next refine (even one asking for fewer bits), and every interval stays
+// isolating. Oracle: sqrt(r) for random non-square r, by exact squares.
+TEST(Algebraic, CopiesShareRefinement) {
+  std::mt19937_64 rng(4242);
+  std::uniform_int_distribution<long> pick(2, 10000);
+  for (int it = 0; it < iterations(20); ++it) {
+    long r = pick(rng);
+    long k = 1;
+    while ((k + 1) * (k + 1) <= r) ++k;
+    if (k * k == r) ++r;  // not a square (k^2 < r < (k+1)^2 still)
+    const RealAlgebraic x(Poly(std::vector<long>{-r, 0, 1}), Rational(k), Rational(k + 1));
+    const RealAlgebraic y = x;  // NOLINT(performance-unnecessary-copy-initialization): the copy is the point
+    const long bits = 100 + 50 * (it % 5);
+    y.refine(bits);
+    x.refine(4);  // adopts y's interval
+    SCOPED_TRACE("sqrt(" + std::to_string(r) + ")");
+    EXPECT_TRUE(x.hi() - x.lo() <= pow2(-bits));
+    EXPECT_EQ(x.lo(), y.lo());
+    EXPECT_EQ(x.hi(), y.hi());
+    EXPECT_TRUE(x.lo() * x.lo() < Rational(r) && Rational(r) < x.hi() * x.hi());
+    // an independent number (not a copy) does not see it
+    const RealAlgebraic z(Poly(std::vector<long>{-r, 0, 1}), Rational(k), Rational(k + 1));
+    z.refine(4);
+    EXPECT_TRUE(z.hi() - z.lo() > pow2(-bits));
+  }
+}
+
+// Copies refined from several threads at once: every interval isolates the
+// root, and to_ball gives the same canonical ball on every copy.
+TEST(Algebraic, CopiesRefinedFromThreadsStayIsolating) {
+  const long r = 1234567;  // not a square: 1111^2 < r < 1112^2
+  const RealAlgebraic x(Poly(std::vector<long>{-r, 0, 1}), Rational(1111), Rational(1112));
+  constexpr int kThreads = 4;
+  std::vector<RealAlgebraic> copies(kThreads, x);
+  std::vector<Ball> balls(kThreads);
+  std::vector<std::thread> pool;
+  for (int t = 0; t < kThreads; ++t)
+    pool.emplace_back([&, t] {
+      for (long b = 8; b <= 600; b += 37 + 11 * t) copies[static_cast<std::size_t>(t)].refine(b);
+      balls[static_cast<std::size_t>(t)] = copies[static_cast<std::size_t>(t)].to_ball(500);
+      flint_cleanup();
+    });
+  for (auto& th : pool) th.join();
+  for (int t = 0; t < kThreads; ++t) {
+    const RealAlgebraic& c = copies[static_cast<std::size_t>(t)];
+    EXPECT_TRUE(c.lo() * c.lo() < Rational(r) && Rational(r) < c.hi() * c.hi()) << "copy " << t;
+    EXPECT_TRUE(c.hi() - c.lo() <= pow2(-500)) << "copy " << t;
+    EXPECT_TRUE(arb_equal(balls[static_cast<std::size_t>(t)].get(), balls[0].get())) << "copy " << t;
+  }
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 // ever handed out stays valid.
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "uniparam/core/ball.hpp"
@@ -39,6 +40,13 @@ class RealAlgebraic {
   const Rational& hi() const { return hi_; }
 
   /// Shrinks the interval until hi - lo <= 2^-bits (no-op for rationals).
+  /// Copies share what any of them refined: refine() first adopts the
+  /// narrowest interval a copy published, and publishes its own result, so
+  /// an algebraic number is refined about once however many copies (worker
+  /// threads) ask. Thread-safe across copies (the shared interval is
+  /// locked); one object is not to be used from two threads at once.
+  /// Value-neutral: lo() and hi() only ever narrow, and to_ball() does not
+  /// depend on earlier refinements.
   void refine(long bits) const;
   /// Ball containing the number with radius <= 2^-prec * max(1, |x|).
   /// Canonical: a function of (x, prec) alone, whatever was refined before
@@ -57,8 +65,10 @@ class RealAlgebraic {
   std::string str() const;
 
  private:
+  struct Shared;  // the narrowest interval known to the copies (irrational only)
   Poly poly_;
   mutable Rational lo_, hi_;
+  std::shared_ptr<Shared> shared_;
   // The last enclosure handed out and its precision (integrands ask for the
   // same precision many thousand times per quadrature).
   mutable Ball ball_;
