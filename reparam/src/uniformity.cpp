@@ -47,6 +47,29 @@ std::vector<RealAlgebraic> speed_piece_ends(const Speed& s, const RealAlgebraic&
   return ends;
 }
 
+// The sorted union of `ends` and the points j / parts inside (ends.front(),
+// ends.back()) (exact rationals; points already in `ends` are not repeated).
+std::vector<RealAlgebraic> with_split_points(std::vector<RealAlgebraic> ends, long parts) {
+  std::vector<RealAlgebraic> out;
+  for (long j = 1; j < parts; ++j) {
+    const RealAlgebraic q(Rational(j, parts));
+    if (!(ends.front() < q && q < ends.back())) continue;
+    bool present = false;
+    for (const auto& e : ends) present = present || e == q;
+    if (!present) ends.push_back(q);
+  }
+  std::sort(ends.begin(), ends.end(), [](const RealAlgebraic& x, const RealAlgebraic& y) { return x < y; });
+  return ends;
+}
+
+// Equal parts of [0, 1] the integrals are split into, as independent tasks
+// for the worker threads: 8 from degree 100 of sigma^2's numerator on (a
+// long, wavy curve: each part costs far more than the split, and 8 parts
+// balance two workers), else 1.
+// A function of the curve alone, never of the thread count, so results do
+// not depend on the threads.
+long split_parts(const Speed& s) { return s.squared().num().degree() >= 100 ? 8 : 1; }
+
 }  // namespace
 
 Ball integrate_speed(const Speed& s, const RealAlgebraic& a, const RealAlgebraic& b, long rel_goal_bits,
@@ -116,21 +139,32 @@ UniformityResult uniformity(const Speed& s, const Options& opt) {
     // alone. The first attempt asks for bits + 67 bits (integrate's working
     // precision bits + 32, to_ball's refinement + 35).
     for (const SpeedZero& z : s.zeros()) z.t.refine(bits + 67);
-    const std::vector<RealAlgebraic> ends = speed_piece_ends(s, zero, one);
-    const std::size_t pieces = ends.size() - 1, tasks = pieces + 1;
+    // mu's pieces end at the zeros of sigma (where it is not analytic) and
+    // at the split points; the integral of sigma^2 (analytic) only at the
+    // split points.
+    const long parts = split_parts(s);
+    const std::vector<RealAlgebraic> ends = with_split_points(speed_piece_ends(s, zero, one), parts);
+    const std::vector<RealAlgebraic> sq_ends = with_split_points({zero, one}, parts);
+    const std::size_t pieces = ends.size() - 1, sq_pieces = sq_ends.size() - 1, tasks = pieces + sq_pieces;
     const std::size_t workers = std::min(worker_count(), tasks);
     std::vector<Speed> speeds(workers > 1 ? workers - 1 : 0, s);
-    std::vector<std::vector<RealAlgebraic>> ends_copies(speeds.size(), ends);
-    std::vector<Ball> parts(tasks);
+    std::vector<std::vector<RealAlgebraic>> ends_copies(speeds.size(), ends), sq_copies(speeds.size(), sq_ends);
+    std::vector<Ball> results(tasks);
     parallel_for(tasks, workers, [&](std::size_t w, std::size_t i) {
       const Speed& sw = w == 0 ? s : speeds[w - 1];
       const std::vector<RealAlgebraic>& ew = w == 0 ? ends : ends_copies[w - 1];
-      parts[i] = i < pieces ? integrate_speed_piece(sw, ew[i], ew[i + 1], bits, opt.max_prec)
-                            : integrate_speed_squared(sw, ew.front(), ew.back(), bits, opt.max_prec);
+      const std::vector<RealAlgebraic>& qw = w == 0 ? sq_ends : sq_copies[w - 1];
+      const std::size_t k = i - pieces;
+      results[i] = i < pieces ? integrate_speed_piece(sw, ew[i], ew[i + 1], bits, opt.max_prec)
+                              : integrate_speed_squared(sw, qw[k], qw[k + 1], bits, opt.max_prec);
     });
+    // sigma and sigma^2 are >= 0: the relative accuracy of every part holds
+    // for their sum.
     r.mu = Ball(0);
-    for (std::size_t i = 0; i < pieces; ++i) arb_add(r.mu.get(), r.mu.get(), parts[i].get(), 2 * bits + 64);
-    r.mean_square = parts[pieces];
+    r.mean_square = Ball(0);
+    for (std::size_t i = 0; i < tasks; ++i)
+      arb_add(i < pieces ? r.mu.get() : r.mean_square.get(), i < pieces ? r.mu.get() : r.mean_square.get(),
+              results[i].get(), 2 * bits + 64);
     const long prec = 2 * bits + 64;
     arb_mul(r.u.get(), r.mu.get(), r.mu.get(), prec);
     arb_div(r.u.get(), r.u.get(), r.mean_square.get(), prec);
