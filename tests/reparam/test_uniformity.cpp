@@ -188,3 +188,29 @@ TEST(UniformityProperty, MeanIsInvariantUnderMoebiusReparameterization) {
     }
   }
 }
+
+// From degree 100 of sigma^2's numerator, uniformity() splits its integrals
+// into equal parts (tasks for the worker threads): the sums of the parts
+// must agree with the whole integrals over [0, 1] (integrate_speed and
+// integrate_speed_squared split only at the zeros of sigma), and the parts
+// must not cost the requested digits.
+TEST(UniformityProperty, SplitIntegralsAgreeWithWholeOnes) {
+  std::mt19937_64 rng(5150);
+  const int iters = test_support::iterations(3);
+  Options o;
+  o.digits = 20;
+  const long bits = digits_to_bits(o.digits) + 8;
+  for (int it = 0; it < iters; ++it) {
+    const long deg = std::uniform_int_distribution<long>(30, 40)(rng);
+    const Curve c({RatFunc(test_support::random_poly(rng, deg, 20)), RatFunc(test_support::random_poly(rng, deg, 20))});
+    const Speed s(c, SpeedKind::Angular);
+    ASSERT_GE(s.squared().num().degree(), 100) << c.str();
+    const UniformityResult u = uniformity(s, o);
+    const Ball mu = integrate_speed(s, RealAlgebraic(0), RealAlgebraic(1), bits, o.max_prec);
+    const Ball sq = integrate_speed_squared(s, RealAlgebraic(0), RealAlgebraic(1), bits, o.max_prec);
+    EXPECT_TRUE(arb_overlaps(u.mu.get(), mu.get())) << c.str() << ": " << u.mu.str(25) << " vs " << mu.str(25);
+    EXPECT_TRUE(arb_overlaps(u.mean_square.get(), sq.get()))
+        << c.str() << ": " << u.mean_square.str(25) << " vs " << sq.str(25);
+    EXPECT_TRUE(u.mu.meets_digits(o.digits) && u.mean_square.meets_digits(o.digits) && u.u.meets_digits(o.digits));
+  }
+}
