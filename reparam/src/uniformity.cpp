@@ -50,7 +50,6 @@ std::vector<RealAlgebraic> speed_piece_ends(const Speed& s, const RealAlgebraic&
 // The sorted union of `ends` and the points j / parts inside (ends.front(),
 // ends.back()) (exact rationals; points already in `ends` are not repeated).
 std::vector<RealAlgebraic> with_split_points(std::vector<RealAlgebraic> ends, long parts) {
-  std::vector<RealAlgebraic> out;
   for (long j = 1; j < parts; ++j) {
     const RealAlgebraic q(Rational(j, parts));
     if (!(ends.front() < q && q < ends.back())) continue;
