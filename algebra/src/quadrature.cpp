@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <deque>
 #include <exception>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -87,6 +88,129 @@ namespace uniparam {
 // subintervals (~12 bits). More only raises the Gauss-Legendre degrees.
 constexpr long kGoalGuardBits = 12;
 namespace {
+
+/// f on the whole segment [a, b] (a ball) times b - a: Arb's direct
+/// enclosure of the integral, crude but rigorous for any f that answers
+/// finite enclosures on the segment.
+void direct_estimate(acb_t res, acb_calc_func_t f, void* param, const acb_t a, const acb_t b, long prec) {
+  AcbVar mid, delta, wide;
+  MagVar m;
+  acb_sub(delta.v, b, a, prec);
+  acb_mul_2exp_si(delta.v, delta.v, -1);  // (b - a) / 2
+  acb_add(mid.v, a, b, prec);
+  acb_mul_2exp_si(mid.v, mid.v, -1);
+  acb_set(wide.v, mid.v);
+  arb_get_mag(m.v, acb_realref(delta.v));
+  arb_add_error_mag(acb_realref(wide.v), m.v);
+  arb_get_mag(m.v, acb_imagref(delta.v));
+  arb_add_error_mag(acb_imagref(wide.v), m.v);
+  f(res, wide.v, param, 0, prec);
+  acb_mul(res, res, delta.v, prec);
+  acb_mul_2exp_si(res, res, 1);
+}
+
+/// Depth from which a subinterval where Gauss-Legendre failed is also tried
+/// with the direct enclosure (accepted when its radius is below the
+/// tolerance). Above it the interval is at least 2^-kDirectDepth of the
+/// whole, and a direct enclosure (width times |f|) cannot meet a tolerance
+/// of 2^-goal of the integral unless f is tiny there.
+constexpr long kDirectDepth = 12;
+
+/// Adaptive Gauss-Legendre quadrature: Arb's acb_calc_integrate without its
+/// direct evaluation of f on every subinterval before the Gauss-Legendre
+/// attempt. Arb uses that evaluation to skip hopeless attempts and to accept
+/// tiny subintervals; on the quadrature of a speed it is the costliest kind
+/// of call (a wide real segment: new local expansions of every factor, and
+/// often the factored form), and it is wasted on every subinterval where
+/// Gauss-Legendre succeeds. Here each subinterval goes to
+/// acb_calc_integrate_gl_auto_deg (which bounds f on ellipses, order 1, and
+/// evaluates it at its nodes, order 0) first; where that fails it is bisected,
+/// and from depth kDirectDepth on the direct enclosure is tried first.
+/// Every accepted piece is a rigorous enclosure (Arb's error bound included),
+/// so the sum is one. The tolerances follow Arb: an absolute tolerance `tol`
+/// per subinterval, raised to 2^-goal times the largest lower bound of an
+/// accepted piece (or of the direct enclosure on [a, b]).
+/// Returns ARB_CALC_SUCCESS, or ARB_CALC_NO_CONVERGENCE when eval_limit or
+/// depth_limit stopped the subdivision (the remaining subintervals then hold
+/// their direct enclosures: still rigorous, maybe wide or not finite).
+int adaptive_integrate(acb_t res, acb_calc_func_t f, void* param, const acb_t a, const acb_t b, long goal,
+                       const mag_t tol, long eval_limit, long depth_limit, long prec) {
+  goal = std::max(goal, 0L);
+  const long deg_limit = static_cast<long>(0.5 * static_cast<double>(goal) + 10);  // Arb's default
+  if (depth_limit <= 0) depth_limit = 2 * prec;
+  if (eval_limit <= 0) eval_limit = 1000 * prec + prec * prec;
+
+  struct Interval {
+    AcbVar a, b;
+    long depth = 0;
+  };
+  std::vector<std::unique_ptr<Interval>> stack;
+  auto push = [&](const acb_t x, const acb_t y, long depth) {
+    auto iv = std::make_unique<Interval>();
+    acb_set(iv->a.v, x);
+    acb_set(iv->b.v, y);
+    iv->depth = depth;
+    stack.push_back(std::move(iv));
+  };
+
+  AcbVar sum, u, diff;
+  MagVar new_tol, lower, rad;
+  acb_zero(sum.v);
+  mag_set(new_tol.v, tol);
+  // Tolerance from a lower bound of the whole integral (as Arb does).
+  direct_estimate(u.v, f, param, a, b, prec);
+  long evals = 1;
+  acb_get_mag_lower(lower.v, u.v);
+  mag_mul_2exp_si(lower.v, lower.v, -goal);
+  mag_max(new_tol.v, new_tol.v, lower.v);
+
+  int status = ARB_CALC_SUCCESS;
+  push(a, b, 0);
+  while (!stack.empty()) {
+    std::unique_ptr<Interval> iv = std::move(stack.back());
+    stack.pop_back();
+    acb_sub(diff.v, iv->b.v, iv->a.v, prec);
+    const bool stop = status != ARB_CALC_SUCCESS;
+    if (stop || acb_contains_zero(diff.v)) {
+      // Out of budget, or an interval narrower than its ends' enclosures.
+      direct_estimate(u.v, f, param, iv->a.v, iv->b.v, prec);
+      ++evals;
+      acb_add(sum.v, sum.v, u.v, prec);
+      continue;
+    }
+    slong feval = 0;
+    const int gl = acb_calc_integrate_gl_auto_deg(u.v, &feval, f, param, iv->a.v, iv->b.v, new_tol.v, deg_limit, 0, prec);
+    evals += feval;
+    if (gl == ARB_CALC_SUCCESS) {
+      acb_add(sum.v, sum.v, u.v, prec);
+      acb_get_mag_lower(lower.v, u.v);
+      mag_mul_2exp_si(lower.v, lower.v, -goal);
+      mag_max(new_tol.v, new_tol.v, lower.v);
+      continue;
+    }
+    if (iv->depth >= kDirectDepth) {
+      direct_estimate(u.v, f, param, iv->a.v, iv->b.v, prec);
+      ++evals;
+      mag_hypot(rad.v, arb_radref(acb_realref(u.v)), arb_radref(acb_imagref(u.v)));
+      if (mag_cmp(rad.v, new_tol.v) < 0) {
+        acb_add(sum.v, sum.v, u.v, prec);
+        continue;
+      }
+    }
+    if (iv->depth + 1 >= depth_limit || evals >= eval_limit) {
+      status = ARB_CALC_NO_CONVERGENCE;
+      push(iv->a.v, iv->b.v, iv->depth);  // taken again, with its direct enclosure
+      continue;
+    }
+    AcbVar m;
+    acb_add(m.v, iv->a.v, iv->b.v, prec);
+    acb_mul_2exp_si(m.v, m.v, -1);
+    push(m.v, iv->b.v, iv->depth + 1);  // right half after the left one
+    push(iv->a.v, m.v, iv->depth + 1);
+  }
+  acb_set(res, sum.v);
+  return status;
+}
 
 /// Adds rad(end) * sup |f(end)| to the error of `res`: the integral over the
 /// piece between the true end and the midpoint of its enclosure `end`.
@@ -203,11 +327,6 @@ Ball integrate(const Integrand& f, const RealAlgebraic& a, const RealAlgebraic& 
     }
   }
 
-  acb_calc_integrate_opt_t arb_opt;
-  acb_calc_integrate_opt_init(arb_opt);
-  arb_opt->depth_limit = opt.depth_limit;  // 0: Arb's default 2*prec
-  // deg_limit 0 (Arb's default, scaled with the goal), depth-first subdivision.
-
   Ball last;
   bool converged = false;
   long prec = start;
@@ -215,7 +334,7 @@ Ball integrate(const Integrand& f, const RealAlgebraic& a, const RealAlgebraic& 
     check_time_budget();
     // eval_limit 0: Arb's default (1000 prec + prec^2), capped so that one
     // hopeless attempt at thousands of bits cannot run for hours.
-    arb_opt->eval_limit = opt.eval_limit > 0 ? opt.eval_limit : std::min(1000 * prec + prec * prec, 2000000L);
+    const long eval_limit = opt.eval_limit > 0 ? opt.eval_limit : std::min(1000 * prec + prec * prec, 2000000L);
     const EndBalls& ends = ends_at(prec);
     const Ball& ea = ends.a;
     const Ball& eb = ends.b;
@@ -239,7 +358,7 @@ Ball integrate(const Integrand& f, const RealAlgebraic& a, const RealAlgebraic& 
     // prec - rel_goal_bits is what the start precision added for them.
     Context ctx{&f, nullptr, std::max(64L, prec - opt.rel_goal_bits + 32)};
     const int status =
-        acb_calc_integrate(res.v, uniparam_quadrature_trampoline, &ctx, ma.v, mb.v, goal, tol.v, arb_opt, prec);
+        adaptive_integrate(res.v, uniparam_quadrature_trampoline, &ctx, ma.v, mb.v, goal, tol.v, eval_limit, opt.depth_limit, prec);
     if (ctx.error) std::rethrow_exception(ctx.error);
     // The enclosure is valid whatever the status; NO_CONVERGENCE only means
     // it may be wide, which the goal check below sees.

@@ -197,6 +197,58 @@ TEST(Quadrature, NearbyComplexPole) {
   }
 }
 
+TEST(Quadrature, IntegrableEndSingularityConverges) {
+  // sqrt(t) is not holomorphic at 0, so no Gauss-Legendre rule is certified
+  // on a subinterval [0, h]: those are accepted with their direct enclosure
+  // h sqrt([0, h]) once it is below the tolerance (deep in the subdivision).
+  // int_0^1 sqrt(t) dt = 2/3; int_0^{1/4} = 1/12.
+  Integrand f = [](acb_t out, const acb_t z, bool analytic, long prec) {
+    acb_sqrt_analytic(out, z, analytic ? 1 : 0, prec);
+  };
+  for (long bits : {20L, 53L}) {
+    QuadratureOptions opt;
+    opt.rel_goal_bits = bits;
+    const Ball r = integrate(f, Rational(0), Rational(1), opt);
+    EXPECT_TRUE(r.contains(Rational(2, 3))) << r.str(30);
+    EXPECT_TRUE(meets_rel(r, bits)) << r.str(30);
+    const Ball q = integrate(f, Rational(0), Rational(1, 4), opt);
+    EXPECT_TRUE(q.contains(Rational(1, 12))) << q.str(30);
+    EXPECT_TRUE(meets_rel(q, bits)) << q.str(30);
+  }
+}
+
+TEST(Quadrature, SubdividesWithoutDirectEvaluationsWhereGaussLegendreSucceeds) {
+  // An analytic integrand that needs subdivision (poles at +-i/20): the
+  // segments are bounded on ellipses (analytic = true) and evaluated at the
+  // nodes (narrow balls). A wide real segment with analytic = false (the
+  // direct enclosure f([a, b]) (b - a)) is asked only once, on the whole
+  // interval, for the tolerance: never per subinterval where
+  // Gauss-Legendre succeeds.
+  long direct = 0, ellipses = 0;
+  Integrand f = [&](acb_t out, const acb_t z, bool analytic, long prec) {
+    const bool wide = mag_cmp_2exp_si(arb_radref(acb_realref(z)), -30) >= 0;
+    if (wide && !analytic && acb_is_real(z)) ++direct;
+    if (analytic) ++ellipses;
+    acb_mul(out, z, z, prec);
+    acb_mul_ui(out, out, 400, prec);
+    acb_add_ui(out, out, 1, prec);
+    acb_inv(out, out, prec);
+  };
+  QuadratureOptions opt;
+  opt.rel_goal_bits = 53;
+  const Ball r = integrate(f, Rational(0), Rational(1), opt);
+  arb_t ref;  // int_0^1 dt / (1 + 400 t^2) = atan(20) / 20
+  arb_init(ref);
+  arb_set_ui(ref, 20);
+  arb_atan(ref, ref, 256);
+  arb_div_ui(ref, ref, 20, 256);
+  EXPECT_TRUE(overlaps(r, ref)) << r.str(30);
+  EXPECT_TRUE(meets_rel(r, 53)) << r.str(30);
+  arb_clear(ref);
+  EXPECT_GT(ellipses, 2);  // it did subdivide (one ellipse per attempt at least)
+  EXPECT_LE(direct, 1) << "direct evaluations on subintervals";
+}
+
 TEST(Quadrature, AlgebraicEnds) {
   const RealAlgebraic half_sqrt2(Poly(std::vector<long>{-1, 0, 2}), Rational(0), Rational(1));  // sqrt(2)/2
   const RealAlgebraic cbrt2(Poly(std::vector<long>{-2, 0, 0, 1}), Rational(1), Rational(2));    // 2^(1/3)
