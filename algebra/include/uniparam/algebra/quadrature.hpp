@@ -1,5 +1,6 @@
 // uniparam/algebra/quadrature.hpp -- certified integration of analytic
-// functions (Arb's acb_calc_integrate) with a precision budget.
+// functions (adaptive bisection around Arb's Gauss-Legendre rule
+// acb_calc_integrate_gl_auto_deg) with a precision budget.
 #pragma once
 
 #include <acb.h>
@@ -31,9 +32,12 @@ struct QuadratureOptions {
   /// lowered to max_prec).
   long initial_prec = 0;    ///< 0: rel_goal_bits + 32
   long max_prec = 8192;
-  /// Forwarded to acb_calc_integrate. eval_limit 0 means Arb's default
-  /// 1000 prec + prec^2 evaluations per attempt, capped at 2,000,000;
-  /// depth_limit 0 means Arb's default 2 * prec.
+  /// Limits of the adaptive subdivision (the driver around Arb's
+  /// acb_calc_integrate_gl_auto_deg, with acb_calc_integrate's meaning):
+  /// eval_limit 0 means Arb's default 1000 prec + prec^2 evaluations per
+  /// attempt, capped at 2,000,000; depth_limit 0 means Arb's default
+  /// 2 * prec bisections deep. Reaching either ends the attempt with the
+  /// remaining subintervals' direct enclosures (rigorous, maybe wide).
   long eval_limit = 0;
   long depth_limit = 0;
   /// Used in the BudgetExceeded message: what was being integrated.
