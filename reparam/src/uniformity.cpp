@@ -47,20 +47,6 @@ std::vector<RealAlgebraic> speed_piece_ends(const Speed& s, const RealAlgebraic&
   return ends;
 }
 
-// The sorted union of `ends` and the points j / parts inside (ends.front(),
-// ends.back()) (exact rationals; points already in `ends` are not repeated).
-std::vector<RealAlgebraic> with_split_points(std::vector<RealAlgebraic> ends, long parts) {
-  for (long j = 1; j < parts; ++j) {
-    const RealAlgebraic q(Rational(j, parts));
-    if (!(ends.front() < q && q < ends.back())) continue;
-    bool present = false;
-    for (const auto& e : ends) present = present || e == q;
-    if (!present) ends.push_back(q);
-  }
-  std::sort(ends.begin(), ends.end(), [](const RealAlgebraic& x, const RealAlgebraic& y) { return x < y; });
-  return ends;
-}
-
 // Equal parts of [0, 1] the integrals are split into, as independent tasks
 // for the worker threads: 8 from degree 100 of sigma^2's numerator on (a
 // long, wavy curve: each part costs far more than the split, and 8 parts
@@ -70,6 +56,23 @@ std::vector<RealAlgebraic> with_split_points(std::vector<RealAlgebraic> ends, lo
 long split_parts(const Speed& s) { return s.squared().num().degree() >= 100 ? 8 : 1; }
 
 }  // namespace
+
+namespace detail {
+
+std::vector<RealAlgebraic> with_split_points(std::vector<RealAlgebraic> ends, long parts) {
+  const RealAlgebraic lo = ends.front(), hi = ends.back();  // ends grows unsorted below
+  for (long j = 1; j < parts; ++j) {
+    const RealAlgebraic q(Rational(j, parts));
+    if (!(lo < q && q < hi)) continue;
+    bool present = false;
+    for (const auto& e : ends) present = present || e == q;
+    if (!present) ends.push_back(q);
+  }
+  std::sort(ends.begin(), ends.end(), [](const RealAlgebraic& x, const RealAlgebraic& y) { return x < y; });
+  return ends;
+}
+
+}  // namespace detail
 
 Ball integrate_speed(const Speed& s, const RealAlgebraic& a, const RealAlgebraic& b, long rel_goal_bits,
                      long max_prec) {
@@ -142,8 +145,8 @@ UniformityResult uniformity(const Speed& s, const Options& opt) {
     // at the split points; the integral of sigma^2 (analytic) only at the
     // split points.
     const long parts = split_parts(s);
-    const std::vector<RealAlgebraic> ends = with_split_points(speed_piece_ends(s, zero, one), parts);
-    const std::vector<RealAlgebraic> sq_ends = with_split_points({zero, one}, parts);
+    const std::vector<RealAlgebraic> ends = detail::with_split_points(speed_piece_ends(s, zero, one), parts);
+    const std::vector<RealAlgebraic> sq_ends = detail::with_split_points({zero, one}, parts);
     const std::size_t pieces = ends.size() - 1, sq_pieces = sq_ends.size() - 1, tasks = pieces + sq_pieces;
     const std::size_t workers = std::min(worker_count(), tasks);
     std::vector<Speed> speeds(workers > 1 ? workers - 1 : 0, s);

@@ -2,6 +2,8 @@
 // 40-digit values), exact special cases, and invariance properties.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cstring>
 
 #include <random>
@@ -194,6 +196,43 @@ TEST(UniformityProperty, MeanIsInvariantUnderMoebiusReparameterization) {
 // must agree with the whole integrals over [0, 1] (integrate_speed and
 // integrate_speed_squared split only at the zeros of sigma), and the parts
 // must not cost the requested digits.
+TEST(UniformityProperty, SplitPointsAreEveryInteriorMultipleOfOneOverParts) {
+  // Random sorted ends (rationals and sqrt-type algebraic numbers) against
+  // the oracle: the output is strictly increasing, holds every input end,
+  // and besides them exactly the j / parts strictly inside (front, back).
+  std::mt19937_64 rng(808);
+  const int iters = test_support::iterations(200);
+  for (int it = 0; it < iters; ++it) {
+    const long parts = std::uniform_int_distribution<long>(1, 12)(rng);
+    std::vector<RealAlgebraic> ends;
+    const int n = std::uniform_int_distribution<int>(2, 5)(rng);
+    while (static_cast<int>(ends.size()) < n) {
+      const long m = std::uniform_int_distribution<long>(2, 30)(rng);
+      const long den = std::uniform_int_distribution<long>(1, 24)(rng);
+      const long num = std::uniform_int_distribution<long>(0, den)(rng);
+      // sqrt(m)/6 (rational when m is a square), or num/den
+      const RealAlgebraic x = rng() % 3 == 0 ? RealAlgebraic(Poly(std::vector<long>{-m, 0, 36}), Rational(0), Rational(1))
+                                             : RealAlgebraic(Rational(num, den));
+      bool dup = false;
+      for (const auto& e : ends) dup = dup || e == x;
+      if (!dup) ends.push_back(x);
+    }
+    std::sort(ends.begin(), ends.end(), [](const RealAlgebraic& a, const RealAlgebraic& b) { return a < b; });
+    const std::vector<RealAlgebraic> out = detail::with_split_points(ends, parts);
+    for (std::size_t i = 0; i + 1 < out.size(); ++i) EXPECT_TRUE(out[i] < out[i + 1]);
+    for (const auto& e : ends) EXPECT_EQ(std::count(out.begin(), out.end(), e), 1) << e.str();
+    std::size_t expected = ends.size();
+    for (long j = 1; j < parts; ++j) {
+      const RealAlgebraic q(Rational(j, parts));
+      const bool inside = ends.front() < q && q < ends.back();
+      const bool given = std::count(ends.begin(), ends.end(), q) > 0;
+      EXPECT_EQ(std::count(out.begin(), out.end(), q), inside || given ? 1 : 0) << j << "/" << parts;
+      if (inside && !given) ++expected;
+    }
+    EXPECT_EQ(out.size(), expected);
+  }
+}
+
 TEST(UniformityProperty, SplitIntegralsAgreeWithWholeOnes) {
   std::mt19937_64 rng(5150);
   const int iters = test_support::iterations(3);

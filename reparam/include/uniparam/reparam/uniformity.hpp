@@ -60,4 +60,12 @@ void check_degree(const Curve& c, const Options& opt);
 /// Bits of relative accuracy that give `digits` decimal digits with margin.
 long digits_to_bits(long digits);
 
+namespace detail {
+/// The split of uniformity()'s integrals into tasks: the sorted union of
+/// `ends` and the rationals j / parts (0 < j < parts) strictly inside
+/// (ends.front(), ends.back()), none repeated.
+/// \pre ends sorted strictly increasing, at least two of them; parts >= 1.
+std::vector<RealAlgebraic> with_split_points(std::vector<RealAlgebraic> ends, long parts);
+}  // namespace detail
+
 }  // namespace uniparam
