@@ -129,16 +129,21 @@ MoebiusResult moebius_c0(const Curve& c, SpeedKind kind, const std::vector<RealA
 
 namespace detail {
 
-MoebiusResult moebius_c0(const Speed& s, const UniformityResult& base, const std::vector<RealAlgebraic>& T,
-                         const Options& opt) {
+std::vector<Breakpoint> moebius_breakpoints(const Speed& s, const std::vector<RealAlgebraic>& T) {
   // mark_zeros validates T (0 = t_0 < ... < t_N = 1); the rational method then
   // integrates every piece with ZeroSide::None, so the multiplicities are reset.
   std::vector<Breakpoint> bp = mark_zeros(s, T);
   for (auto& b : bp) b = Breakpoint{b.t, 0, 0, 0};
+  return bp;
+}
 
+long moebius_first_bits(const Options& opt) { return digits_to_bits(opt.digits) + 8; }
+
+MoebiusResult moebius_c0(const Speed& s, const UniformityResult& base, const std::vector<RealAlgebraic>& T,
+                         const Options& opt, const std::vector<PieceIntegrals>* first) {
   MoebiusResult r;
   r.kind = s.kind();
-  r.T = bp;
+  r.T = moebius_breakpoints(s, T);
   r.mu = base.mu;
   r.u_before = base.u;
   r.identically_zero = base.identically_zero;
@@ -156,10 +161,15 @@ MoebiusResult moebius_c0(const Speed& s, const UniformityResult& base, const std
     return r;
   }
 
-  for (long bits = digits_to_bits(opt.digits) + 8;; bits += 32) {
+  for (long bits = moebius_first_bits(opt);; bits += 32) {
     check_time_budget();
     const long prec = 2 * bits + 64;
-    r.integrals = all_piece_integrals(s, r.T, bits, opt.max_prec);
+    if (first && bits == moebius_first_bits(opt)) {
+      if (first->size() != N) throw InvalidArgument("moebius_c0: precomputed integrals for another T");
+      r.integrals = *first;
+    } else {
+      r.integrals = all_piece_integrals(s, r.T, bits, opt.max_prec);
+    }
     std::vector<Ball> sqrtM(N);
     Ball sum(0);
     for (std::size_t i = 0; i < N; ++i) {
@@ -210,12 +220,12 @@ Ball phi_of(const MoebiusResult& r, long prec) {
 }
 
 Ball certified_phi(const Speed& s, const std::vector<RealAlgebraic>& T, long bits, long max_prec) {
-  // Phi of the Moebius pieces: every piece integrated as if free of zeros
-  // (sigma^2 is analytic on each; no radical substitution here).
-  std::vector<Breakpoint> bp;
-  for (const auto& b : mark_zeros(s, T)) bp.push_back(Breakpoint{b.t, 0, 0, 0});
+  return certified_phi(all_piece_integrals(s, moebius_breakpoints(s, T), bits, max_prec), bits);
+}
+
+Ball certified_phi(const std::vector<PieceIntegrals>& integrals, long bits) {
   Ball phi(0);
-  for (const PieceIntegrals& p : all_piece_integrals(s, bp, bits, max_prec)) {
+  for (const PieceIntegrals& p : integrals) {
     Ball q;
     arb_sqrtpos(q.get(), p.M.get(), 2 * bits + 64);
     arb_add(phi.get(), phi.get(), q.get(), 2 * bits + 64);

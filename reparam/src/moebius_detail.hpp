@@ -7,16 +7,30 @@
 
 namespace uniparam::detail {
 
+/// The breakpoints the Moebius methods integrate for T (validated as
+/// mark_zeros does: 0 = t_0 < ... < t_N = 1): every piece as if free of
+/// zeros (sigma^2 is analytic on each; no radical substitution here).
+std::vector<Breakpoint> moebius_breakpoints(const Speed& s, const std::vector<RealAlgebraic>& T);
+
+/// The accuracy goal (bits) of moebius_c0's first round of piece integrals.
+long moebius_first_bits(const Options& opt);
+
 /// moebius_c0 for an already built speed and its uniformity (mu, u_before),
 /// so that callers trying several T compute them once. Same contract.
+/// `first`, when given, must be all_piece_integrals(s,
+/// moebius_breakpoints(s, T), moebius_first_bits(opt), opt.max_prec) (e.g.
+/// from a batch with other lists); it replaces the first round's
+/// computation, so the result is the same.
 MoebiusResult moebius_c0(const Speed& s, const UniformityResult& base, const std::vector<RealAlgebraic>& T,
-                         const Options& opt);
+                         const Options& opt, const std::vector<PieceIntegrals>* first = nullptr);
 
 /// Phi = sum sqrt M_i of a result's pieces (certified).
 Ball phi_of(const MoebiusResult& r, long prec);
 
 /// Certified Phi(T) = sum sqrt M_i to about `bits` relative bits.
 Ball certified_phi(const Speed& s, const std::vector<RealAlgebraic>& T, long bits, long max_prec);
+/// The same from the piece integrals computed with that goal `bits`.
+Ball certified_phi(const std::vector<PieceIntegrals>& integrals, long bits);
 
 /// N1 = 2 g' S D + g S' D - 2 g S D' (S = sum K^2): sigma'/sigma = N1 / (2 g S D),
 /// so the zeros of sigma' where sigma != 0 are roots of N1.

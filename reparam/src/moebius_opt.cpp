@@ -218,13 +218,23 @@ MoebiusResult reparam_c0(const Curve& c, SpeedKind kind, long N, const Options& 
   const UniformityResult base = uniformity(s, opt);
   const OptimisedT o = optimise(s, N);
   std::vector<RealAlgebraic> T = round_breakpoints(o.t, 1e-9);
-  MoebiusResult r = detail::moebius_c0(s, base, T, opt);
+  // The pieces of the chosen T (moebius_c0's first round) and of the equally
+  // spaced T (the certified comparison below, at modest accuracy, enough to
+  // order them) in one parallel loop: 2N tasks keep the workers busier than
+  // N and N one after the other.
+  constexpr long kCompareBits = 40;
+  const auto batch = all_piece_integrals(
+      s,
+      {PieceJob{detail::moebius_breakpoints(s, T), detail::moebius_first_bits(opt)},
+       PieceJob{detail::moebius_breakpoints(s, equal), kCompareBits}},
+      opt.max_prec);
+  MoebiusResult r = detail::moebius_c0(s, base, T, opt, &batch[0]);
   const long prec = 2 * digits_to_bits(opt.digits) + 64;
   Ball phi = detail::phi_of(r, prec);
   // Never worse than the equally spaced T: the optimiser only accepts
   // decreasing steps, but its values are floating point; a certified
-  // comparison (at modest accuracy, enough to order them) decides.
-  const Ball phi_eq = detail::certified_phi(s, equal, 40, opt.max_prec);
+  // comparison decides.
+  const Ball phi_eq = detail::certified_phi(batch[1], kCompareBits);
   if (arb_gt(phi.get(), phi_eq.get())) {
     r = detail::moebius_c0(s, base, equal, opt);
     phi = detail::phi_of(r, prec);

@@ -4,6 +4,7 @@
 #include <deque>
 #include <functional>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "uniparam/algebra/quadrature.hpp"
@@ -262,9 +263,21 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
 std::vector<PieceIntegrals> all_piece_integrals(const Speed& s, const std::vector<Breakpoint>& T,
                                                 long rel_goal_bits, long max_prec) {
   if (T.size() < 2) throw InvalidArgument("all_piece_integrals: needs at least two breakpoints");
-  const std::size_t n = T.size() - 1;
-  std::vector<PieceIntegrals> out(n);
-  const std::size_t workers = std::min(worker_count(), n);
+  return std::move(all_piece_integrals(s, {PieceJob{T, rel_goal_bits}}, max_prec).front());
+}
+
+std::vector<std::vector<PieceIntegrals>> all_piece_integrals(const Speed& s, const std::vector<PieceJob>& jobs,
+                                                             long max_prec) {
+  std::vector<std::vector<PieceIntegrals>> out(jobs.size());
+  // (job, piece) of every task, in job order
+  std::vector<std::pair<std::size_t, std::size_t>> tasks;
+  for (std::size_t k = 0; k < jobs.size(); ++k) {
+    if (jobs[k].T.size() < 2) throw InvalidArgument("all_piece_integrals: needs at least two breakpoints");
+    out[k].resize(jobs[k].T.size() - 1);
+    for (std::size_t i = 0; i + 1 < jobs[k].T.size(); ++i) tasks.emplace_back(k, i);
+  }
+  if (tasks.empty()) return out;
+  const std::size_t workers = std::min(worker_count(), tasks.size());
   // Refine the irrational breakpoints (and the speed's zeros, which the
   // integrands next to a zero evaluate) once, before the workers start:
   // copies share their refinement (RealAlgebraic::refine), and this keeps
@@ -274,19 +287,23 @@ std::vector<PieceIntegrals> all_piece_integrals(const Speed& s, const std::vecto
   // integrands ask for rel_goal_bits + 83 bits at the first attempt when no
   // cancellation raises it (working precision rel_goal_bits + 32, ends at
   // + 16, to_ball's refinement + 35).
-  const long pre_bits = rel_goal_bits + 83;
-  for (const Breakpoint& b : T) b.t.refine(pre_bits);
-  for (const SpeedZero& z : s.zeros()) z.t.refine(pre_bits);
+  long most_bits = 0;
+  for (const PieceJob& j : jobs) {
+    for (const Breakpoint& b : j.T) b.t.refine(j.rel_goal_bits + 83);
+    most_bits = std::max(most_bits, j.rel_goal_bits);
+  }
+  for (const SpeedZero& z : s.zeros()) z.t.refine(most_bits + 83);
   std::vector<Speed> speeds;
-  std::vector<std::vector<Breakpoint>> ends;
+  std::vector<std::vector<PieceJob>> job_copies;
   for (std::size_t w = 1; w < workers; ++w) {
     speeds.push_back(s);
-    ends.push_back(T);
+    job_copies.push_back(jobs);
   }
-  parallel_for(n, workers, [&](std::size_t w, std::size_t i) {
+  parallel_for(tasks.size(), workers, [&](std::size_t w, std::size_t t) {
     const Speed& sw = w == 0 ? s : speeds[w - 1];
-    const std::vector<Breakpoint>& tw = w == 0 ? T : ends[w - 1];
-    out[i] = piece_integrals(sw, tw[i], tw[i + 1], rel_goal_bits, max_prec);
+    const std::size_t k = tasks[t].first, i = tasks[t].second;
+    const PieceJob& job = w == 0 ? jobs[k] : job_copies[w - 1][k];
+    out[k][i] = piece_integrals(sw, job.T[i], job.T[i + 1], job.rel_goal_bits, max_prec);
   });
   return out;
 }

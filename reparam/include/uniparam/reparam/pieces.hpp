@@ -65,4 +65,21 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
 std::vector<PieceIntegrals> all_piece_integrals(const Speed& s, const std::vector<Breakpoint>& T,
                                                 long rel_goal_bits, long max_prec);
 
+/// One list of breakpoints and its accuracy goal, for the batched form below.
+struct PieceJob {
+  std::vector<Breakpoint> T;  ///< size >= 2
+  long rel_goal_bits;
+};
+
+/// all_piece_integrals of several lists at once: every piece of every job in
+/// one parallel loop, so that e.g. two lists of 3 pieces keep two workers
+/// busy (3 pieces alone leave one idle half the time). Same copies-per-worker
+/// rule as above.
+/// \post out[k][i] is exactly what piece_integrals(s, jobs[k].T[i],
+///       jobs[k].T[i+1], jobs[k].rel_goal_bits, max_prec) gives; the first
+///       exception of any piece is rethrown; InvalidArgument when a job has
+///       fewer than two breakpoints.
+std::vector<std::vector<PieceIntegrals>> all_piece_integrals(const Speed& s, const std::vector<PieceJob>& jobs,
+                                                             long max_prec);
+
 }  // namespace uniparam
