@@ -62,5 +62,51 @@ TEST(Threads, ResultsAgreeForAnyNumberOfThreads) {
   }
 }
 
+TEST(Threads, BatchedPieceIntegralsAreThoseOfEachListAlone) {
+  // all_piece_integrals over two lists at once (one parallel loop over every
+  // piece, 2 workers) against each piece computed alone on one thread: a
+  // task mapped to the wrong list or piece, or a race, gives balls that do
+  // not overlap (the lists differ, so do their pieces).
+  std::mt19937_64 rng(2718);
+  for (long it = 0; it < iterations(3); ++it) {
+    const long d = std::uniform_int_distribution<long>(6, 14)(rng);
+    const Curve c({RatFunc(random_poly(rng, d, 30)), RatFunc(random_poly(rng, d, 30))});
+    const Speed s(c, SpeedKind::Parametric);
+    auto random_list = [&](int n) {
+      std::vector<Breakpoint> T{Breakpoint{RealAlgebraic(0)}};
+      long num = 0;
+      const long den = 97;
+      for (int i = 1; i < n; ++i) {
+        num = std::uniform_int_distribution<long>(num + 1, den - (n - i))(rng);
+        T.push_back(Breakpoint{RealAlgebraic(Rational(num, den))});
+      }
+      T.push_back(Breakpoint{RealAlgebraic(1)});
+      return T;
+    };
+    const std::vector<PieceJob> jobs{PieceJob{random_list(3), 70}, PieceJob{random_list(4), 40}};
+    std::vector<std::vector<PieceIntegrals>> batch;
+    {
+      ThreadsEnv env("2");
+      batch = all_piece_integrals(s, jobs, 4096);
+    }
+    ThreadsEnv env("1");
+    ASSERT_EQ(batch.size(), 2u);
+    for (std::size_t k = 0; k < jobs.size(); ++k) {
+      ASSERT_EQ(batch[k].size(), jobs[k].T.size() - 1);
+      const long digits = jobs[k].rel_goal_bits * 3 / 10 - 2;  // what the goal in bits gives, in digits
+      for (std::size_t i = 0; i + 1 < jobs[k].T.size(); ++i) {
+        const PieceIntegrals alone = piece_integrals(s, jobs[k].T[i], jobs[k].T[i + 1], jobs[k].rel_goal_bits, 4096);
+        const PieceIntegrals& b = batch[k][i];
+        for (const auto& [x, y] : {std::pair<const Ball*, const Ball*>{&b.A, &alone.A}, {&b.B, &alone.B},
+                                   {&b.C, &alone.C}, {&b.M, &alone.M}}) {
+          EXPECT_TRUE(arb_overlaps(x->get(), y->get())) << "list " << k << " piece " << i << ": " << x->str(20)
+                                                         << " vs " << y->str(20) << " on " << c.str();
+          EXPECT_TRUE(x->meets_digits(digits)) << x->str(30);
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace uniparam
