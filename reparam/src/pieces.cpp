@@ -287,12 +287,20 @@ std::vector<std::vector<PieceIntegrals>> all_piece_integrals(const Speed& s, con
   // integrands ask for rel_goal_bits + 83 bits at the first attempt when no
   // cancellation raises it (working precision rel_goal_bits + 32, ends at
   // + 16, to_ball's refinement + 35).
+  // The numbers are independent (each refinement is an exact root
+  // refinement of its own), so they are refined on the workers too; a
+  // number's copies share one locked state, so each is refined once.
   long most_bits = 0;
+  std::vector<std::pair<const RealAlgebraic*, long>> to_refine;
   for (const PieceJob& j : jobs) {
-    for (const Breakpoint& b : j.T) b.t.refine(j.rel_goal_bits + 83);
+    for (const Breakpoint& b : j.T)
+      if (!b.t.is_rational()) to_refine.emplace_back(&b.t, j.rel_goal_bits + 83);
     most_bits = std::max(most_bits, j.rel_goal_bits);
   }
-  for (const SpeedZero& z : s.zeros()) z.t.refine(most_bits + 83);
+  if (!to_refine.empty())
+    parallel_for(to_refine.size(), std::min(worker_count(), to_refine.size()),
+                 [&](std::size_t, std::size_t i) { to_refine[i].first->refine(to_refine[i].second); });
+  for (const SpeedZero& z : s.zeros()) z.t.refine(most_bits + 83);  // mostly breakpoints already
   std::vector<Speed> speeds;
   std::vector<std::vector<PieceJob>> job_copies;
   for (std::size_t w = 1; w < workers; ++w) {

@@ -1,8 +1,11 @@
 #include "uniparam/reparam/radical.hpp"
 
+#include <algorithm>
+
 #include "uniparam/algebra/quadrature.hpp"
 #include "uniparam/core/budget.hpp"
 #include "uniparam/core/error.hpp"
+#include "uniparam/core/parallel.hpp"
 
 namespace uniparam {
 
@@ -46,13 +49,25 @@ RadicalResult radical(const Curve& c, SpeedKind kind, const Options& opt) {
   validate(opt);
   check_degree(c, opt);
   const Speed s(c, kind);
-  const UniformityResult base = uniformity(s, opt);
   RadicalResult r;
+  // The uniformity (its own parallel loop) and the critical points (one
+  // serial root isolation of a polynomial of degree ~12d for a space curve)
+  // do not depend on each other: side by side, the isolation fills the
+  // cores the uniformity's tasks leave idle. The second task works on its
+  // own copy of the speed (caches are shared and locked, see LocalPoly and
+  // RealAlgebraic). The results do not depend on the threads.
+  UniformityResult base;
+  {
+    const Speed s_copy = s;
+    parallel_for(2, std::min<std::size_t>(worker_count(), 2), [&](std::size_t, std::size_t i) {
+      if (i == 0) base = uniformity(s, opt);
+      else r.T = critical_breakpoints(s_copy);
+    });
+  }
   r.kind = kind;
   r.mu = base.mu;
   r.u_before = base.u;
   r.identically_zero = base.identically_zero;
-  r.T = critical_breakpoints(s);
   const std::size_t N = r.T.size() - 1;
   if (r.identically_zero) {
     r.S = r.Z = {Ball(0), Ball(1)};
