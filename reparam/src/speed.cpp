@@ -104,10 +104,13 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
 
 Speed::PieceSigns Speed::piece_signs(const RealAlgebraic& a, const RealAlgebraic& b) const {
   if (!(a < b)) throw DomainError("piece_signs needs a < b");
-  // A rational strictly between a and b.
-  Rational q;
+  // A rational strictly between a and b: the simplest one in the middle half
+  // of a rational interval between them (small numerator and denominator:
+  // the exact signs below are cheap at it).
+  Rational lo, hi;
   if (a.is_rational() && b.is_rational()) {
-    q = (a.rational() + b.rational()) * Rational(1, 2);
+    lo = a.rational();
+    hi = b.rational();
   } else {
     long bits = 8;
     a.refine(bits);
@@ -118,8 +121,11 @@ Speed::PieceSigns Speed::piece_signs(const RealAlgebraic& a, const RealAlgebraic
       a.refine(bits);
       b.refine(bits);
     }
-    q = (a.hi() + b.lo()) * Rational(1, 2);
+    lo = a.hi();
+    hi = b.lo();
   }
+  const Rational quarter = (hi - lo) * Rational(1, 4);
+  const Rational q = Rational::simplest_between(lo + quarter, hi - quarter);
   PieceSigns p;
   if (zero_) return p;
   const int sg = g_.sign_at(q), sd = D_.sign_at(q);

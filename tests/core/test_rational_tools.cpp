@@ -4,12 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <vector>
 
 #include "support/curves.hpp"
 #include "support/iterations.hpp"
 #include "uniparam/core/ball.hpp"
 #include "uniparam/core/error.hpp"
 #include "uniparam/core/number.hpp"
+#include "uniparam/core/poly.hpp"
 #include "uniparam/core/ratfunc.hpp"
 
 namespace uniparam {
@@ -46,6 +48,36 @@ TEST(SimplestBetween, PointIntervalAndErrors) {
   EXPECT_EQ(Rational::simplest_between(Rational(3, 7), Rational(3, 7)), Rational(3, 7));
   EXPECT_EQ(Rational::simplest_between(Rational(-1, 3), Rational(1, 3)), Rational(0));
   EXPECT_THROW(Rational::simplest_between(Rational(1), Rational(0)), InvalidArgument);
+}
+
+TEST(PolySignAt, AgreesWithTheExactValue) {
+  // Oracle: the sign of the exact rational value. Random polynomials at
+  // random rationals, at their rational roots (sign 0: p = (q t - r) f),
+  // and where the value is 1 against coefficients of 2^200 and 2^1000 (a
+  // ball at 128 or 512 bits cannot decide; the exact value must).
+  std::mt19937_64 rng(4242);
+  std::uniform_int_distribution<long> c(-1000, 1000), den(1, 1L << 40), deg(0, 40);
+  for (long it = 0; it < test_support::iterations(300); ++it) {
+    std::vector<long> cs(static_cast<std::size_t>(deg(rng)) + 1);
+    for (long& x : cs) x = c(rng);
+    const Poly f(cs);
+    const long d = den(rng);
+    const Rational x(c(rng) * (d / 1000 + 1) + c(rng), d);
+    EXPECT_EQ(f.sign_at(x), f(x).sign()) << f.str() << " at " << x.str();
+    const long q = std::uniform_int_distribution<long>(1, 50)(rng), r = c(rng);
+    const Poly g = Poly(std::vector<long>{-r, q}) * f;
+    EXPECT_EQ(g.sign_at(Rational(r, q)), 0) << g.str();
+  }
+  for (long e : {200L, 1000L}) {
+    Integer big;
+    fmpz_one(big.get());
+    fmpz_mul_2exp(big.get(), big.get(), static_cast<ulong>(e));
+    // p = 3 2^e t - (2^e - 1) - s: p(1/3) = 1 - s, for s = 0, 1, 2
+    for (long s : {0L, 1L, 2L}) {
+      const Poly p(std::vector<Integer>{Integer(1) - big - Integer(s), Integer(3) * big});
+      EXPECT_EQ(p.sign_at(Rational(1, 3)), s == 0 ? 1 : s == 1 ? 0 : -1) << "e = " << e << ", s = " << s;
+    }
+  }
 }
 
 TEST(MidRational, IsTheExactMidpoint) {

@@ -42,7 +42,8 @@ class Poly {
   Poly derivative() const;
   /// Exact value at a rational point.
   Rational operator()(const Rational& x) const;
-  /// Sign of the value at x (-1, 0, 1), exact.
+  /// Sign of the value at x (-1, 0, 1), exact: from a ball evaluation where
+  /// that excludes 0 (128 then 512 bits), else from the exact value.
   int sign_at(const Rational& x) const;
   /// Divides by the content and makes the leading coefficient positive
   /// (the zero polynomial stays zero).
