@@ -262,7 +262,6 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
 
 std::vector<PieceIntegrals> all_piece_integrals(const Speed& s, const std::vector<Breakpoint>& T,
                                                 long rel_goal_bits, long max_prec) {
-  if (T.size() < 2) throw InvalidArgument("all_piece_integrals: needs at least two breakpoints");
   return std::move(all_piece_integrals(s, {PieceJob{T, rel_goal_bits}}, max_prec).front());
 }
 

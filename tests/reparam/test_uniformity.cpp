@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-
 #include <cstring>
 
 #include <random>
@@ -191,11 +190,6 @@ TEST(UniformityProperty, MeanIsInvariantUnderMoebiusReparameterization) {
   }
 }
 
-// From degree 100 of sigma^2's numerator, uniformity() splits its integrals
-// into equal parts (tasks for the worker threads): the sums of the parts
-// must agree with the whole integrals over [0, 1] (integrate_speed and
-// integrate_speed_squared split only at the zeros of sigma), and the parts
-// must not cost the requested digits.
 TEST(UniformityProperty, SplitPointsAreEveryInteriorMultipleOfOneOverParts) {
   // Random sorted ends (rationals and sqrt-type algebraic numbers) against
   // the oracle: the output is strictly increasing, holds every input end,
@@ -233,6 +227,11 @@ TEST(UniformityProperty, SplitPointsAreEveryInteriorMultipleOfOneOverParts) {
   }
 }
 
+// From degree 100 of sigma^2's numerator, uniformity() splits its integrals
+// into equal parts (tasks for the worker threads): the sums of the parts
+// must agree with the whole integrals over [0, 1] (integrate_speed and
+// integrate_speed_squared split only at the zeros of sigma), and the parts
+// must not cost the requested digits.
 TEST(UniformityProperty, SplitIntegralsAgreeWithWholeOnes) {
   std::mt19937_64 rng(5150);
   const int iters = test_support::iterations(3);
