@@ -1,6 +1,7 @@
 #include "uniparam/algebra/quadrature.hpp"
 
 #include <acb_calc.h>
+#include <arb_hypgeom.h>
 #include <arf.h>
 #include <mag.h>
 
@@ -109,6 +110,189 @@ void direct_estimate(acb_t res, acb_calc_func_t f, void* param, const acb_t a, c
   acb_mul_2exp_si(res, res, 1);
 }
 
+/// Gauss-Legendre degrees tried (Arb's steps of about 2^(k/2)).
+constexpr long kGlSteps[] = {1, 2, 4, 6, 8, 12, 16, 22, 32, 46, 64, 90, 128, 182, 256, 362, 512, 724, 1024};
+constexpr int kGlStepCount = static_cast<int>(sizeof(kGlSteps) / sizeof(kGlSteps[0]));
+
+/// The nodes x_k > 0 (k < (n + 1) / 2; the others are -x_k) and weights of
+/// the n-point Gauss-Legendre rule on [-1, 1], one cache per thread (the
+/// pool's threads are persistent), computed at the largest precision asked
+/// so far (Arb's arb_hypgeom_legendre_p_ui_root: rigorous balls).
+struct GlRule {
+  long prec = 0;
+  arb_ptr x = nullptr, w = nullptr;
+  slong len = 0;
+  GlRule() = default;
+  GlRule(const GlRule&) = delete;
+  GlRule& operator=(const GlRule&) = delete;
+  ~GlRule() {
+    if (x) _arb_vec_clear(x, len);
+    if (w) _arb_vec_clear(w, len);
+  }
+};
+
+const GlRule& gl_rule(int step, long prec) {
+  thread_local GlRule rules[kGlStepCount];
+  GlRule& r = rules[step];
+  if (r.prec < prec) {
+    const long n = kGlSteps[step];
+    if (!r.x) {
+      r.len = (n + 1) / 2;
+      r.x = _arb_vec_init(r.len);
+      r.w = _arb_vec_init(r.len);
+    }
+    const long wp = std::max(prec, 2 * r.prec + 30);  // few recomputations as prec grows
+    for (slong k = 0; k < r.len; ++k)
+      arb_hypgeom_legendre_p_ui_root(r.x + k, r.w + k, static_cast<ulong>(n), static_cast<ulong>(k), wp);
+    r.prec = wp;
+  }
+  return r;
+}
+
+/// Node evaluations that one more (larger) ellipse must be expected to save
+/// before it is tried: bounding f on an ellipse (a wide complex ball: local
+/// expansions at a coarse level, often the factored form) costs several node
+/// evaluations.
+constexpr long kEllipseCost = 4;
+
+/// Largest Gauss-Legendre degree on the small ellipse X = 5/4 (rho = 2),
+/// tried where X = 2 fails: 46 nodes reach 2^-88 there, so one such step
+/// replaces a bisection (two ellipses and two rules) near a singularity.
+constexpr long kSmallEllipseDegLimit = 46;
+
+/// Smallest Gauss-Legendre step index whose error bound
+/// (64/15) M / ((rho - 1) rho^(2n - 1)) is below tol (its bound in err), or
+/// -1 when no n <= deg_limit does.
+int gl_degree(const mag_t M, const mag_t rho, const mag_t tol, long deg_limit, mag_t err) {
+  MagVar t, u;
+  for (int i = 0; i < kGlStepCount && kGlSteps[i] <= deg_limit; ++i) {
+    const long n = kGlSteps[i];
+    mag_pow_ui_lower(t.v, rho, static_cast<ulong>(2 * n - 1));
+    mag_one(u.v);
+    mag_sub_lower(u.v, rho, u.v);
+    mag_mul_lower(t.v, t.v, u.v);
+    mag_mul_ui_lower(t.v, t.v, 15);
+    mag_div(t.v, M, t.v);
+    mag_mul_2exp_si(t.v, t.v, 6);
+    if (mag_cmp(t.v, tol) < 0) {
+      mag_set(err, t.v);
+      return i;
+    }
+  }
+  return -1;
+}
+
+/// One Gauss-Legendre step on [a, b], the method of Arb's
+/// acb_calc_integrate_gl_auto_deg: |f| <= M/|delta| on a Bernstein ellipse
+/// with semi-axes X, sqrt(X^2 - 1) (times delta = (b - a)/2; f is bounded on
+/// the ellipse's bounding box, order 1) gives the error bound
+/// (64/15) M / ((rho - 1) rho^(2n - 1)), rho = X + sqrt(X^2 - 1), of the
+/// n-point rule; the smallest n below tol is evaluated at its nodes (order 0).
+/// Arb tries X = 2, 4, 8, 32, ... until f is not finite, and fails the step
+/// when X = 2 does. Here:
+///   * the search stops once a larger ellipse could not save kEllipseCost
+///     nodes even if |f| did not grow on it (so most steps no longer end on a
+///     failing ellipse, the costliest kind of call);
+///   * where X = 2 fails, X = 5/4 (rho = 2) is tried with up to
+///     kSmallEllipseDegLimit nodes before the step fails (which bisects).
+/// Every ellipse gives a rigorous bound, so the choice only moves the cost.
+/// Returns ARB_CALC_SUCCESS with an enclosure of the integral in res, or
+/// ARB_CALC_NO_CONVERGENCE (res indeterminate). *evals counts the calls of f.
+int gl_step(acb_t res, long* evals, acb_calc_func_t f, void* param, const acb_t a, const acb_t b, const mag_t tol,
+            long deg_limit, long prec) {
+  AcbVar mid, delta, wide, v, s;
+  MagVar M, X, Y, rho, t, err, best_err, dm, next_err;
+  *evals = 0;
+  acb_sub(delta.v, b, a, prec);
+  acb_mul_2exp_si(delta.v, delta.v, -1);
+  acb_add(mid.v, a, b, prec);
+  acb_mul_2exp_si(mid.v, mid.v, -1);
+  acb_get_mag(dm.v, delta.v);
+  // rho = X + sqrt(X^2 - 1), a lower bound
+  auto rho_of = [&t](mag_t r, const mag_t x) {
+    mag_mul_lower(r, x, x);
+    mag_one(t.v);
+    mag_sub_lower(r, r, t.v);
+    mag_sqrt_lower(r, r);
+    mag_add_lower(r, r, x);
+  };
+  // M = |delta| sup |f| on the ellipse X; false when f is not finite there
+  auto bound_on = [&](const mag_t x) {
+    mag_mul(Y.v, x, x);  // Y = sqrt(X^2 - 1), an upper bound
+    mag_one(t.v);
+    mag_sub(Y.v, Y.v, t.v);
+    mag_sqrt(Y.v, Y.v);
+    acb_zero(wide.v);
+    mag_set(arb_radref(acb_realref(wide.v)), x);
+    mag_set(arb_radref(acb_imagref(wide.v)), Y.v);
+    acb_mul(wide.v, wide.v, delta.v, prec);
+    acb_add(wide.v, wide.v, mid.v, prec);
+    f(v.v, wide.v, param, 1, prec);
+    ++*evals;
+    if (!acb_is_finite(v.v)) return false;
+    acb_get_mag(M.v, v.v);
+    mag_mul(M.v, M.v, dm.v);
+    return true;
+  };
+  int best = -1;
+  for (long Xexp = 0; Xexp < prec; Xexp += std::max(1L, Xexp)) {
+    mag_one(X.v);
+    mag_mul_2exp_si(X.v, X.v, Xexp + 1);
+    if (!bound_on(X.v)) {
+      if (Xexp == 0) {  // X = 2 failed: the small ellipse X = 5/4
+        mag_set_ui_2exp_si(X.v, 5, -2);
+        if (bound_on(X.v)) {
+          rho_of(rho.v, X.v);
+          best = gl_degree(M.v, rho.v, tol, std::max(deg_limit, kSmallEllipseDegLimit), best_err.v);
+        }
+      }
+      break;
+    }
+    rho_of(rho.v, X.v);
+    const int i = gl_degree(M.v, rho.v, tol, deg_limit, err.v);
+    if (i >= 0 && (best < 0 || i < best)) {
+      best = i;
+      mag_set(best_err.v, err.v);
+    }
+    if (best == 0) break;
+    if (best > 0) {
+      // The next ellipse, optimistically with the same M: is it worth it?
+      const long next = Xexp + std::max(1L, Xexp);
+      if (next >= prec) break;
+      mag_one(X.v);
+      mag_mul_2exp_si(X.v, X.v, next + 1);
+      rho_of(rho.v, X.v);
+      const int j = gl_degree(M.v, rho.v, tol, deg_limit, next_err.v);
+      if (j < 0 || kGlSteps[best] - kGlSteps[j] < kEllipseCost) break;
+    }
+  }
+  if (best < 0) {
+    acb_indeterminate(res);
+    return ARB_CALC_NO_CONVERGENCE;
+  }
+  const long n = kGlSteps[best];
+  const GlRule& rule = gl_rule(best, prec);
+  arb_t x;
+  arb_init(x);
+  acb_zero(s.v);
+  for (long k = 0; k < n; ++k) {
+    // nodes x_0 > x_1 > ... > 0 > ... > -x_0: the rule holds the positive half
+    const slong kk = 2 * k < n ? k : n - 1 - k;
+    if (2 * k < n) arb_set_round(x, rule.x + kk, prec);
+    else arb_neg_round(x, rule.x + kk, prec);
+    acb_mul_arb(wide.v, delta.v, x, prec);
+    acb_add(wide.v, wide.v, mid.v, prec);
+    f(v.v, wide.v, param, 0, prec);
+    arb_set_round(x, rule.w + kk, prec);
+    acb_addmul_arb(s.v, v.v, x, prec);
+  }
+  arb_clear(x);
+  *evals += n;
+  acb_mul(res, s.v, delta.v, prec);
+  acb_add_error_mag(res, best_err.v);
+  return ARB_CALC_SUCCESS;
+}
+
 /// Depth from which a subinterval where Gauss-Legendre failed is also tried
 /// with the direct enclosure (accepted when its radius is below the
 /// tolerance). Above it the interval is at least 2^-kDirectDepth of the
@@ -122,9 +306,9 @@ constexpr long kDirectDepth = 12;
 /// tiny subintervals; on the quadrature of a speed it is the costliest kind
 /// of call (a wide real segment: new local expansions of every factor, and
 /// often the factored form), and it is wasted on every subinterval where
-/// Gauss-Legendre succeeds. Here each subinterval goes to
-/// acb_calc_integrate_gl_auto_deg (which bounds f on ellipses, order 1, and
-/// evaluates it at its nodes, order 0) first; where that fails it is bisected,
+/// Gauss-Legendre succeeds. Here each subinterval goes to gl_step (which
+/// bounds f on ellipses, order 1, and evaluates it at its nodes, order 0)
+/// first; where that fails it is bisected,
 /// and from depth kDirectDepth on the direct enclosure is tried first.
 /// Every accepted piece is a rigorous enclosure (Arb's error bound included),
 /// so the sum is one. The tolerances follow Arb: an absolute tolerance `tol`
@@ -178,8 +362,8 @@ int adaptive_integrate(acb_t res, acb_calc_func_t f, void* param, const acb_t a,
       acb_add(sum.v, sum.v, u.v, prec);
       continue;
     }
-    slong feval = 0;
-    const int gl = acb_calc_integrate_gl_auto_deg(u.v, &feval, f, param, iv->a.v, iv->b.v, new_tol.v, deg_limit, 0, prec);
+    long feval = 0;
+    const int gl = gl_step(u.v, &feval, f, param, iv->a.v, iv->b.v, new_tol.v, deg_limit, prec);
     evals += feval;
     if (gl == ARB_CALC_SUCCESS) {
       acb_add(sum.v, sum.v, u.v, prec);

@@ -249,6 +249,51 @@ TEST(Quadrature, SubdividesWithoutDirectEvaluationsWhereGaussLegendreSucceeds) {
   EXPECT_LE(direct, 1) << "direct evaluations on subintervals";
 }
 
+TEST(Quadrature, SmallEllipseSavesTheBisectionOfAPoleJustOutsideIt) {
+  // f = 1 / ((t - 1/2)^2 + a^2) on [0, 1], poles at 1/2 +- a i. On the
+  // bounding box of the ellipse X (half-widths X/2 and sqrt(X^2 - 1)/2 here),
+  // ball arithmetic gives Re (z - 1/2)^2 in +-(r_x^2 + r_y^2): +-1.75 for
+  // X = 2, +-0.53 for X = 5/4. For a^2 between the two, f's enclosure is
+  // infinite on the first box and finite on the second: the step on [0, 1]
+  // must succeed on the small ellipse after exactly two ellipses (Arb's rule
+  // fails at X = 2 and bisects: two more ellipses at least).
+  for (long a_num : {16L, 20L, 24L}) {  // a = 4/5, 1, 6/5
+    long ellipses = 0;
+    Integrand f = [&](acb_t out, const acb_t z, bool analytic, long prec) {
+      if (analytic) ++ellipses;
+      acb_t h;
+      acb_init(h);
+      acb_set_ui(h, 1);
+      acb_mul_2exp_si(h, h, -1);
+      acb_sub(out, z, h, prec);  // t - 1/2
+      acb_mul(out, out, out, prec);
+      acb_set_ui(h, static_cast<ulong>(a_num * a_num));
+      acb_div_ui(h, h, 400, prec);  // a^2
+      acb_add(out, out, h, prec);
+      acb_inv(out, out, prec);
+      acb_clear(h);
+    };
+    QuadratureOptions opt;
+    opt.rel_goal_bits = 53;
+    const Ball r = integrate(f, Rational(0), Rational(1), opt);
+    arb_t ref, a;  // (2 / a) atan(1 / (2 a))
+    arb_init(ref);
+    arb_init(a);
+    arb_set_ui(a, static_cast<ulong>(a_num));
+    arb_div_ui(a, a, 20, 256);
+    arb_mul_2exp_si(ref, a, 1);
+    arb_inv(ref, ref, 256);
+    arb_atan(ref, ref, 256);
+    arb_mul_2exp_si(ref, ref, 1);
+    arb_div(ref, ref, a, 256);
+    EXPECT_TRUE(overlaps(r, ref)) << "a = " << a_num << "/20: " << r.str(30);
+    EXPECT_TRUE(meets_rel(r, 53)) << r.str(30);
+    EXPECT_EQ(ellipses, 2) << "a = " << a_num << "/20";
+    arb_clear(ref);
+    arb_clear(a);
+  }
+}
+
 TEST(Quadrature, AlgebraicEnds) {
   const RealAlgebraic half_sqrt2(Poly(std::vector<long>{-1, 0, 2}), Rational(0), Rational(1));  // sqrt(2)/2
   const RealAlgebraic cbrt2(Poly(std::vector<long>{-2, 0, 0, 1}), Rational(1), Rational(2));    // 2^(1/3)

@@ -1,6 +1,6 @@
 // uniparam/algebra/quadrature.hpp -- certified integration of analytic
-// functions (adaptive bisection around Arb's Gauss-Legendre rule
-// acb_calc_integrate_gl_auto_deg) with a precision budget.
+// functions (adaptive bisection around a Gauss-Legendre step with Arb's
+// ellipse error bound and rigorous nodes) with a precision budget.
 #pragma once
 
 #include <acb.h>
@@ -32,8 +32,7 @@ struct QuadratureOptions {
   /// lowered to max_prec).
   long initial_prec = 0;    ///< 0: rel_goal_bits + 32
   long max_prec = 8192;
-  /// Limits of the adaptive subdivision (the driver around Arb's
-  /// acb_calc_integrate_gl_auto_deg, with acb_calc_integrate's meaning):
+  /// Limits of the adaptive subdivision (with acb_calc_integrate's meaning):
   /// eval_limit 0 means Arb's default 1000 prec + prec^2 evaluations per
   /// attempt, capped at 2,000,000; depth_limit 0 means Arb's default
   /// 2 * prec bisections deep. Reaching either ends the attempt with the
