@@ -32,18 +32,29 @@ void poly_eval(acb_t out, const LocalPoly& p, const acb_t z, long prec) { p.eval
 }  // namespace
 
 Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
+  // The exact x', x'' fix the sign of a plane curve's angular speed
+  // (piece_signs); elsewhere they are not needed (and cost two exact
+  // quotient rules on high-degree rational functions).
+  const bool exact_derivatives = kind == SpeedKind::Angular && c.components().size() == 2;
   for (const auto& x : c.components()) {
     Component k;
     Poly n = x.num(), q = x.den();
     k.N = LocalPoly(n);
     k.Q = LocalPoly(q);
+    k.q_index = comp_.size();
     // Equal denominators (a rational curve's common weight) share one
-    // LocalPoly's cache: their cells are built once.
-    for (const auto& e : comp_)
-      if (e.Q.poly() == q) k.Q = e.Q;
+    // LocalPoly's cache, and are evaluated once per ball (eval_derivatives).
+    for (std::size_t e = 0; e < comp_.size(); ++e)
+      if (comp_[e].Q.poly() == q) {
+        k.Q = comp_[e].Q;
+        k.q_index = comp_[e].q_index;
+        break;
+      }
     k.unit_den = q == Poly(1);
-    k.d1 = x.derivative();
-    k.d2 = k.d1.derivative();
+    if (exact_derivatives) {
+      k.d1 = x.derivative();
+      k.d2 = k.d1.derivative();
+    }
     comp_.push_back(std::move(k));
   }
   const auto& X = c.derivative_numerators();
@@ -142,6 +153,7 @@ Speed::PieceSigns Speed::piece_signs(const RealAlgebraic& a, const RealAlgebraic
 void Speed::eval_derivatives(acb_ptr d1, acb_ptr d2, const acb_t z, long prec) const {
   acb_t n, n1, n2, q, q1, q2, a, v, w;
   for (acb_ptr x : {n, n1, n2, q, q1, q2, a, v, w}) acb_init(x);
+  std::size_t q_done = comp_.size();  // index of the Q held in q, q1, q2, v, w
   for (std::size_t i = 0; i < comp_.size(); ++i) {
     const Component& k = comp_[i];
     if (k.unit_den) {  // a polynomial component: x' = N', x'' = N''
@@ -149,12 +161,15 @@ void Speed::eval_derivatives(acb_ptr d1, acb_ptr d2, const acb_t z, long prec) c
       continue;
     }
     k.N.eval(n, n1, d2 ? n2 : nullptr, z, prec);
-    k.Q.eval(q, q1, d2 ? q2 : nullptr, z, prec);
-    // v = 1 / Q (one division), A = N'Q - NQ', x' = A v^2
-    acb_inv(v, q, prec);
+    if (k.q_index != q_done) {  // a rational curve's common weight: once
+      k.Q.eval(q, q1, d2 ? q2 : nullptr, z, prec);
+      acb_inv(v, q, prec);  // v = 1 / Q (one division)
+      acb_mul(w, v, v, prec);
+      q_done = k.q_index;
+    }
+    // A = N'Q - NQ', x' = A v^2
     acb_mul(a, n1, q, prec);
     acb_submul(a, n, q1, prec);
-    acb_mul(w, v, v, prec);
     acb_mul(d1 + i, a, w, prec);
     if (d2) {
       // x'' = (N''Q - NQ'') v^2 - 2 Q' A v^3

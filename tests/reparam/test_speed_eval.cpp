@@ -6,6 +6,7 @@
 // polynomial and rational.
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <random>
 
 #include "support/iterations.hpp"
@@ -255,3 +256,56 @@ TEST(SpeedEval, SpeedOnRealSegmentsWithoutHolomorphyIsFiniteAndContainsPointValu
 
 }  // namespace
 }  // namespace uniparam
+
+TEST(SpeedEval, ComponentsWithMixedDenominatorsAgreeWithTheExactSquaredSpeed) {
+  // Components sharing a denominator evaluate it once per ball; others their
+  // own. A curve whose components alternate between two weights (and one
+  // with a common weight, and a polynomial component) must give sigma^2 at
+  // rational points whose enclosure holds the exact value of squared().
+  std::mt19937_64 rng(11);
+  std::uniform_int_distribution<long> coef(-9, 9), pos(1, 9), den(1, 64);
+  long checked = 0;
+  for (long it = 0; it < test_support::iterations(8); ++it) {
+    auto random_poly = [&](long d, bool positive) {
+      std::vector<long> c;
+      for (long k = 0; k <= d; ++k) c.push_back(positive ? pos(rng) : coef(rng));
+      return Poly(c);
+    };
+    const long d = 2 + static_cast<long>(rng() % 5);
+    const Poly W1 = random_poly(d, true), W2 = random_poly(d, true);  // no zeros on [0, 1]
+    std::vector<RatFunc> comps;
+    const int pattern = static_cast<int>(it % 3);  // 0: W1 W2 W1; 1: W1 W1 W1; 2: W1 1 W2
+    comps.emplace_back(random_poly(d, false), W1);
+    comps.emplace_back(random_poly(d, false), pattern == 0 ? W2 : pattern == 1 ? W1 : Poly(1));
+    comps.emplace_back(random_poly(d, false), pattern == 1 ? W1 : pattern == 0 ? W1 : W2);
+    Curve c(comps);
+    for (SpeedKind kind : {SpeedKind::Angular, SpeedKind::Parametric}) {
+      std::unique_ptr<Speed> s;
+      try {
+        s = std::make_unique<Speed>(c, kind);
+      } catch (const DomainError&) {
+        continue;  // a random curve that is not regular on [0, 1]
+      }
+      if (s->squared().num().is_zero()) continue;
+      acb_t z, out;
+      acb_init(z);
+      acb_init(out);
+      for (int p = 0; p < 6; ++p) {
+        const long q = den(rng);
+        const Rational t(static_cast<long>(rng() % static_cast<unsigned long>(q + 1)), q);
+        acb_zero(z);
+        arb_set_fmpq(acb_realref(z), t.get(), 256);
+        s->eval_squared(out, z, 128);
+        ASSERT_TRUE(acb_is_finite(out));
+        ASSERT_TRUE(arb_contains_zero(acb_imagref(out)));
+        const Ball re(acb_realref(out));
+        ASSERT_TRUE(re.contains(s->squared()(t)))
+            << c.str() << " " << to_string(kind) << " at t = " << t.str() << ": " << re.str(20);
+        ++checked;
+      }
+      acb_clear(z);
+      acb_clear(out);
+    }
+  }
+  EXPECT_GT(checked, 20);
+}

@@ -124,8 +124,9 @@ class Speed {
   void eval_components(acb_t S, acb_t F, const acb_t z, long prec) const;
   struct Component {
     LocalPoly N, Q;                 // numerator, denominator (with p', p'')
-    RatFunc d1, d2;                 // exact x', x'' (for signs)
+    RatFunc d1, d2;                 // exact x', x'' (plane angular only: for signs)
     bool unit_den = false;          // Q == 1: x' = N', x'' = N'' (no quotient rule)
+    std::size_t q_index = 0;        // first component with this Q (evaluated once per ball)
   };
   std::vector<Component> comp_;
   // ball versions for evaluation
