@@ -231,6 +231,85 @@ TEST(LocalPoly, NarrowBallsDoNotPayForPowerBasisCancellation) {
   }
 }
 
+// Wide balls (the quadrature's ellipses and segments) use coarse cells, which
+// keep p's expansion only to about 2^-24 of its size. Their enclosures must
+// stay about as tight as p's variation on the ball: with c_j the exact Taylor
+// coefficients of p at the ball's midpoint (4000 bits) and r the ball's
+// radius, the enclosure's radius is at most twice the majorant
+// sum_{j >= 1} |c_j| (8r)^j of p - p(mid) on a disc holding every cell disc
+// that may be used (the cell's centre is within 3r of the midpoint, its disc
+// of radius <= 6r), plus 2^-20 of the majorant of p there. Cells truncated
+// far below 24 bits break it (at 8 bits, 19 of the 180 balls fail).
+TEST(LocalPoly, WideBallsAreAboutAsTightAsTheVariationOfP) {
+  std::mt19937_64 rng(4242);
+  std::uniform_int_distribution<long> c(-1000, 1000);
+  std::uniform_int_distribution<long> num(0, 1L << 20);
+  std::uniform_int_distribution<long> ex(3, 20);
+  std::uniform_int_distribution<ulong> frac(0, 8);
+  for (long n : {40L, 150L, 300L}) {
+    std::vector<long> b(static_cast<std::size_t>(n + 1));
+    for (auto& x : b) x = c(rng);
+    const Poly p = bernstein(b);
+    const LocalPoly lp(p);
+    arb_poly_t exact, shifted;
+    arb_poly_init(exact);
+    arb_poly_init(shifted);
+    arb_poly_set_fmpz_poly(exact, p.get(), kRefPrec);
+    for (long i = 0; i < iterations(60); ++i) {
+      acb_t z, v;
+      acb_init(z);
+      acb_init(v);
+      // an ellipse-like box: real radius r = 2^-e, imaginary radius <= r
+      const long e = ex(rng);
+      arb_set_si(acb_realref(z), num(rng));
+      arb_mul_2exp_si(acb_realref(z), acb_realref(z), -20);
+      mag_set_ui_2exp_si(arb_radref(acb_realref(z)), 1, -e);
+      mag_set_ui_2exp_si(arb_radref(acb_imagref(z)), frac(rng), -e - 3);
+      lp.eval(v, z, 80);
+      // majorants at radius 8r from the exact expansion at the midpoint
+      arb_t m;
+      arb_init(m);
+      arb_set_arf(m, arb_midref(acb_realref(z)));
+      arb_poly_taylor_shift(shifted, exact, m, kRefPrec);
+      mag_t rho, term, var, all;
+      mag_init(rho);
+      mag_init(term);
+      mag_init(var);
+      mag_init(all);
+      mag_set_ui_2exp_si(rho, 1, 3 - e);
+      // all = sum_{j >= 0} |c_j| rho^j, var = sum_{j >= 1} |c_j| rho^j
+      mag_one(term);
+      for (slong j = 0; j < arb_poly_length(shifted); ++j) {
+        mag_t cj;
+        mag_init(cj);
+        arb_get_mag(cj, shifted->coeffs + j);
+        mag_mul(cj, cj, term);
+        mag_add(all, all, cj);
+        if (j >= 1) mag_add(var, var, cj);
+        mag_clear(cj);
+        mag_mul(term, term, rho);
+      }
+      mag_mul_2exp_si(var, var, 1);
+      mag_mul_2exp_si(all, all, -20);
+      mag_add(var, var, all);
+      mag_t rad;
+      mag_init(rad);
+      mag_hypot(rad, arb_radref(acb_realref(v)), arb_radref(acb_imagref(v)));
+      EXPECT_LE(mag_cmp(rad, var), 0) << "degree " << n << ", radius 2^-" << e << ", ball " << i;
+      mag_clear(rad);
+      mag_clear(rho);
+      mag_clear(term);
+      mag_clear(var);
+      mag_clear(all);
+      arb_clear(m);
+      acb_clear(z);
+      acb_clear(v);
+    }
+    arb_poly_clear(exact);
+    arb_poly_clear(shifted);
+  }
+}
+
 }  // namespace
 }  // namespace uniparam
 

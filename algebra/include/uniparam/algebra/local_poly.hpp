@@ -19,9 +19,13 @@
 //     the disc |t - c| <= 2h;
 //   * a ball is evaluated in w = t - c by the powers of w and one dot product
 //     per output (O(K)); the cell depends on the ball alone: level 6 for
-//     narrow balls (quadrature nodes), for wide ones (segments, ellipses) the
-//     deepest level whose disc holds the ball, which bounds p on a disc at
-//     most twice the ball's radius.
+//     narrow balls (quadrature nodes), for wide ones (radius >= 2^-24:
+//     segments, ellipses) the deepest level whose disc holds the ball, which
+//     bounds p on a disc at most about twice the ball's radius;
+//   * wide balls only bound p (their enclosures are as wide as p's variation
+//     on them), so they use coarse cells: truncated at 2^-24 of p's scale on
+//     the cell instead of 2^-wp, a few terms instead of hundreds at high
+//     degree (cheap shifts from the coarse parent, cheap evaluations).
 // Balls that no cell's disc contains (far from [0, 1]) fall back to the
 // power basis (Horner on narrow balls, a centred form on wide ones).
 #pragma once
@@ -58,7 +62,10 @@ class LocalPoly {
   /// Enclosures of p(z), and of p'(z), p''(z) where d1, d2 are non-null, on a
   /// complex ball z, computed at working precision prec (>= 2).
   /// \post every output contains the exact value at every point of z; an
-  ///       output may be infinite (e.g. a non-finite z), never wrong.
+  ///       output may be infinite (e.g. a non-finite z), never wrong. A
+  ///       narrow ball's enclosure is accurate to about prec bits of p's
+  ///       size near z; a wide one (radius >= 2^-24) may be wider than p's
+  ///       variation on z by about 2^-24 of p's size there (coarse cells).
   ///       v may not alias d1 or d2 (z may alias none of them).
   void eval(acb_t v, acb_t d1, acb_t d2, const acb_t z, long prec) const;
   /// Same as eval(v, nullptr, nullptr, z, prec).
