@@ -111,14 +111,14 @@ constexpr int kPointLevel = 6;
 // enclosures are as wide as p's variation on them) use coarse cells,
 // truncated at 2^-kCoarseBits of the cell's scale instead of 2^-wp: far fewer
 // terms, so far cheaper shifts and evaluations (rational space curves of
-// degree 150: 25% fewer instructions for the uniformity). Coarse cells of the
+// degree 150: a quarter fewer instructions for the uniformity). Coarse cells of the
 // exact levels are the fine ones truncated; deeper ones are ball shifts of
 // their coarse parent, checked by accurate() as fine cells are.
 constexpr long kCoarseBits = 24;
 // The level that surely holds a wide ball assumes its midpoint anywhere in
 // the cell; one level deeper is tried first (it holds a ball centred near
 // its cell's centre, e.g. an ellipse around a dyadic subinterval): a disc
-// about 0.7 times as large, so tighter bounds and fewer failed ellipses
+// about two thirds as large, so tighter bounds and fewer failed ellipses
 // (bez-rat-space 150 uniformity: 328 -> 266 quadrature steps).
 constexpr int kWideDeeper = 1;
 // Extra bits of the cells' working precision over the caller's: deep cells

@@ -236,10 +236,12 @@ TEST(LocalPoly, NarrowBallsDoNotPayForPowerBasisCancellation) {
 // stay about as tight as p's variation on the ball: with c_j the exact Taylor
 // coefficients of p at the ball's midpoint (4000 bits) and r the ball's
 // radius, the enclosure's radius is at most twice the majorant
-// sum_{j >= 1} |c_j| (8r)^j of p - p(mid) on a disc holding every cell disc
-// that may be used (the cell's centre is within 3r of the midpoint, its disc
-// of radius <= 6r), plus 2^-20 of the majorant of p there. Cells truncated
-// far below 24 bits break it (at 8 bits, 19 of the 180 balls fail).
+// sum_{j >= 1} |c_j| (8r)^j of p - p(mid), plus 2^-20 of the majorant of p
+// there (the cell's centre c is within 2.9r of the midpoint m, and the
+// enclosure sums the expansion at c on |t - c| <= |m - c| + 1.5r, which the
+// expansion at m majorises on the radius 2|m - c| + 1.5r < 8r; the coarse
+// tails are 2^-24 of p's size on the cell). Cells truncated far below 24
+// bits break it (at 8 bits, 19 of the 180 balls fail).
 TEST(LocalPoly, WideBallsAreAboutAsTightAsTheVariationOfP) {
   std::mt19937_64 rng(4242);
   std::uniform_int_distribution<long> c(-1000, 1000);

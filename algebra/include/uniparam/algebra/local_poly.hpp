@@ -65,7 +65,8 @@ class LocalPoly {
   ///       output may be infinite (e.g. a non-finite z), never wrong. A
   ///       narrow ball's enclosure is accurate to about prec bits of p's
   ///       size near z; a wide one (radius >= 2^-24) may be wider than p's
-  ///       variation on z by about 2^-24 of p's size there (coarse cells).
+  ///       variation on z by about 2^-24 of p's size on the discs of the
+  ///       (coarse) cells used.
   ///       v may not alias d1 or d2 (z may alias none of them).
   void eval(acb_t v, acb_t d1, acb_t d2, const acb_t z, long prec) const;
   /// Same as eval(v, nullptr, nullptr, z, prec).
