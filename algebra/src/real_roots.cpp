@@ -12,6 +12,7 @@
 #include <flint/ulong_extras.h>
 
 #include <algorithm>
+#include <map>
 #include <memory>
 #include <cmath>
 #include <string>
@@ -789,6 +790,26 @@ Poly map_to_unit_interval(const Poly& f, const Rational& a, const Rational& b) {
   return G.primitive();
 }
 
+/// Makes r (a root of the squarefree f isolated in (lo, hi)) exact when it is
+/// rational. Rational roots n/d have d | lc(f); once hi - lo < 1/lc^2 the
+/// simplest rational in [lo, hi] is the only candidate. It is tried first at
+/// 64 bits, so that roots with small denominators are found early. Callers
+/// skip this when a prime proves that f has no rational root at all.
+void exact_if_rational(const Poly& f, Found& r) {
+  const long final_bits = 2 * f.leading().bits() + 1;
+  for (long bits = std::min(64L, final_bits);; bits = final_bits) {
+    if (detail::refine_isolating_interval(f, r.lo, r.hi, bits)) break;  // met exactly: lo == hi
+    Rational q;
+    fmpq_simplest_between(q.get(), r.lo.get(), r.hi.get());
+    if (exact_sign(f, q) == 0) {
+      r.lo = r.hi = q;
+      break;
+    }
+    if (bits >= final_bits) return;
+  }
+  r.factor = linear_poly(r.lo);
+}
+
 /// Roots of the squarefree f (degree >= 1) in [a, b], a < b: exact ones as
 /// lo == hi, others as intervals (lo, hi) in [a, b] with exactly one root
 /// and f(lo), f(hi) != 0.
@@ -835,11 +856,6 @@ void isolate_factor(const Poly& f, int mult, const Rational& a, const Rational& 
   // Back to [a, b]: an interval holding a (or b) keeps the side of the root,
   // decided by the exact sign of f at a.
   const int s_a = a == a2 ? 0 : exact_sign(f, a), s_b = b == b2 ? 0 : exact_sign(f, b);
-  // Rational roots n/d have d | lc(f); once hi - lo < 1/lc^2 the simplest
-  // rational in [lo, hi] is the only candidate. Try it first at 64 bits, so
-  // that roots with small denominators are found early. Skipped when a
-  // prime proves that f has no rational root at all.
-  const long final_bits = 2 * f.leading().bits() + 1;
   bool rational_test = true, rational_test_decided = false;
   for (Found& r : raw) {
     if (r.lo == r.hi) {
@@ -861,15 +877,10 @@ void isolate_factor(const Poly& f, int mult, const Rational& a, const Rational& 
       rational_test = !provably_no_rational_root(f);
       rational_test_decided = true;
     }
-    bool is_exact = false;
-    for (long bits = std::min(64L, final_bits); rational_test; bits = final_bits) {
-      if (detail::refine_isolating_interval(f, r.lo, r.hi, bits)) { is_exact = true; break; }
-      Rational q;
-      fmpq_simplest_between(q.get(), r.lo.get(), r.hi.get());
-      if (exact_sign(f, q) == 0) { r.lo = r.hi = q; is_exact = true; break; }
-      if (bits >= final_bits) break;
-    }
-    out.push_back({r.lo, r.hi, is_exact ? linear_poly(r.lo) : f, mult});
+    r.factor = f;
+    r.multiplicity = mult;
+    if (rational_test) exact_if_rational(f, r);
+    out.push_back(std::move(r));
   }
 }
 
@@ -916,6 +927,116 @@ std::vector<IsolatedRoot> isolate_real_roots(const Poly& p, const Rational& a, c
     for (const auto& fm : sf.factors) isolate_factor(fm.factor, fm.multiplicity, a, b, opt.method, found);
     make_disjoint(found, separation_bits(p) + p.degree() + 64);
   }
+  std::vector<IsolatedRoot> out;
+  out.reserve(found.size());
+  for (Found& r : found) out.push_back({std::move(r.lo), std::move(r.hi), std::move(r.factor), r.multiplicity});
+  return out;
+}
+
+namespace {
+
+/// True when p (degree >= 2) is proven squarefree: gcd(p, p') = 1 modulo a
+/// prime q not dividing lc(p). (A primitive common factor h over Z has
+/// lc(h) | lc(p), so it keeps its degree modulo q and divides both there.)
+/// False means unknown.
+bool provably_squarefree(const Poly& p) {
+  ulong q = UWORD(1) << 62;
+  for (int tries = 0; tries < 3; ++tries) {
+    q = n_nextprime(q, 1);
+    if (fmpz_fdiv_ui(p.get()->coeffs + p.degree(), q) == 0) continue;
+    nmod_poly_t f, df, g;
+    nmod_poly_init(f, q);
+    nmod_poly_init(df, q);
+    nmod_poly_init(g, q);
+    fmpz_poly_get_nmod_poly(f, p.get());
+    nmod_poly_derivative(df, f);
+    nmod_poly_gcd(g, f, df);
+    const bool one = nmod_poly_degree(g) == 0;
+    nmod_poly_clear(f);
+    nmod_poly_clear(df);
+    nmod_poly_clear(g);
+    if (one) return true;
+  }
+  return false;
+}
+
+/// Depth of the evaluator's subdivision (cells of 2^-30 of [a, b]) before a
+/// cell goes to the exact isolation.
+constexpr long kEvaluatorDepth = 30;
+
+}  // namespace
+
+std::vector<IsolatedRoot> isolate_real_roots(const Poly& p, const PolyEvaluator& ev, const Rational& a,
+                                             const Rational& b, const RootIsolationOptions& opt) {
+  // Errors, a == b, the methods that do not subdivide (Exact; Auto below
+  // kSubdivisionDegree, where the exact VCA is as fast) and p not proven
+  // squarefree: the exact path.
+  const bool subdivide_here = opt.method == RootIsolationMethod::Subdivision ||
+                              (opt.method == RootIsolationMethod::Auto && p.degree() >= kSubdivisionDegree);
+  if (!ev || !subdivide_here || p.is_zero() || !(a < b) || p.degree() < 2 || p.degree() > opt.max_degree ||
+      !provably_squarefree(p))
+    return isolate_real_roots(p, a, b, opt);
+  const Poly f = p.primitive();  // the squarefree factor of every root (positive leading coefficient)
+  std::map<Rational, int> signs;  // exact signs at cell ends (shared by neighbours)
+  auto end_sign = [&](const Rational& x) {
+    auto it = signs.find(x);
+    if (it == signs.end()) it = signs.emplace(x, detail::exact_sign(p, x)).first;
+    return it->second;
+  };
+  std::vector<Found> found, settled;  // leaves here; the exact path's roots (final)
+  std::vector<Rational> exact;
+  struct Interval {
+    Rational l, r;
+    long depth;
+  };
+  std::vector<Interval> stack{{a, b, 0}};
+  const long cell_cap = 16 * p.degree() + 4096;
+  long cells = 0;
+  ArbVar v, d;
+  while (!stack.empty()) {
+    const Interval iv = stack.back();
+    stack.pop_back();
+    check_time_budget();
+    ++cells;
+    const Ball z = detail::interval_ball(iv.l, iv.r, 64);  // holds the closed [l, r]
+    ev(v.v, d.v, z.get(), 64);
+    if (arb_is_finite(v.v) && !arb_contains_zero(v.v)) continue;  // no root in [l, r]
+    if (arb_is_finite(d.v) && !arb_contains_zero(d.v)) {
+      // p strictly monotone on [l, r]: one root there exactly when the
+      // exact signs at the ends differ, or an end is a (rational) root.
+      const int sl = end_sign(iv.l), sr = end_sign(iv.r);
+      if (sl == 0) exact.push_back(iv.l);
+      if (sr == 0) exact.push_back(iv.r);
+      if (sl != 0 && sr != 0 && sl != sr) found.push_back({iv.l, iv.r, f, 1});
+      continue;
+    }
+    if (iv.depth >= kEvaluatorDepth || cells > cell_cap) {  // undecided: exactly
+      for (IsolatedRoot& r : isolate_real_roots(p, iv.l, iv.r, opt)) {
+        if (r.is_exact()) exact.push_back(r.lo);
+        else settled.push_back({std::move(r.lo), std::move(r.hi), std::move(r.factor), r.multiplicity});
+      }
+      continue;
+    }
+    const Rational m = (iv.l + iv.r) * Rational(1, 2);
+    stack.push_back({m, iv.r, iv.depth + 1});
+    stack.push_back({iv.l, m, iv.depth + 1});
+  }
+  // Rational roots are exact (isolate_real_roots' contract), as there.
+  bool rational_test = true, rational_test_decided = false;
+  for (Found& r : found) {
+    if (!rational_test_decided) {
+      rational_test = !provably_no_rational_root(f);
+      rational_test_decided = true;
+    }
+    if (rational_test) exact_if_rational(f, r);
+  }
+  for (Found& r : settled) found.push_back(std::move(r));
+  // A rational root at a shared end is met by both cells.
+  std::sort(exact.begin(), exact.end(), [](const Rational& x, const Rational& y) { return x < y; });
+  exact.erase(std::unique(exact.begin(), exact.end()), exact.end());
+  for (const Rational& q : exact) found.push_back({q, q, linear_poly(q), 1});
+  // Neighbouring cells' intervals share an end: separate them.
+  make_disjoint(found, separation_bits(p) + p.degree() + 64);
   std::vector<IsolatedRoot> out;
   out.reserve(found.size());
   for (Found& r : found) out.push_back({std::move(r.lo), std::move(r.hi), std::move(r.factor), r.multiplicity});

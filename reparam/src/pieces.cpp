@@ -145,8 +145,24 @@ std::vector<Breakpoint> critical_breakpoints(const Speed& s) {
   if (!s.identically_zero()) {
     for (const auto& z : s.zeros()) ts.push_back(z.t);
     Poly P = critical_numerator(s);
-    if (!P.is_zero())
-      for (const auto& r : isolate_real_roots(P, Rational(0), Rational(1))) ts.emplace_back(r);
+    if (!P.is_zero()) {
+      // P's values from the speed's factors (degree ~d local expansions,
+      // coarse on the subdivision's intervals), not from P's power basis.
+      const PolyEvaluator ev = [&s](arb_t v, arb_t d, const arb_t x, long prec) {
+        acb_t z, pv, pd;
+        acb_init(z);
+        acb_init(pv);
+        acb_init(pd);
+        acb_set_arb(z, x);
+        s.eval_critical(pv, d ? pd : nullptr, z, prec);
+        arb_set(v, acb_realref(pv));  // P is real at real points: Re holds it
+        if (d) arb_set(d, acb_realref(pd));
+        acb_clear(z);
+        acb_clear(pv);
+        acb_clear(pd);
+      };
+      for (const auto& r : isolate_real_roots(P, ev, Rational(0), Rational(1))) ts.emplace_back(r);
+    }
   }
   std::sort(ts.begin(), ts.end(), [](const RealAlgebraic& x, const RealAlgebraic& y) { return x < y; });
   std::vector<RealAlgebraic> uniq;

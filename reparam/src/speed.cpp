@@ -100,6 +100,7 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
   for (const auto& k : K_) sumK2 = sumK2 + k * k;
   squared_ = RatFunc(g_ * g_ * sumK2, D_ * D_);
 
+  g_b_ = LocalPoly(g_);
   g_sqf_ = squarefree_factorization(g_);
   g_content_ = g_sqf_.content;
   for (const auto& f : g_sqf_.factors) {
@@ -357,6 +358,87 @@ double Speed::squared_double(double t) const {
       F += e * e;
     }
   return F / (S * S);
+}
+
+namespace {
+
+// s = sum p_i^2, s1 = (sum p_i^2)' = 2 sum p_i p_i' and, when s2 is
+// non-null, s2 = (sum p_i^2)'' = 2 sum (p_i'^2 + p_i p_i'').
+void sum_of_squares(acb_t s, acb_t s1, acb_t s2, const std::vector<LocalPoly>& ps, const acb_t z, long prec) {
+  acb_t a, a1, a2;
+  acb_init(a);
+  acb_init(a1);
+  acb_init(a2);
+  acb_zero(s);
+  acb_zero(s1);
+  if (s2) acb_zero(s2);
+  for (const auto& p : ps) {
+    p.eval(a, a1, s2 ? a2 : nullptr, z, prec);
+    acb_addmul(s, a, a, prec);
+    acb_addmul(s1, a, a1, prec);
+    if (s2) {
+      acb_addmul(s2, a1, a1, prec);
+      acb_addmul(s2, a, a2, prec);
+    }
+  }
+  acb_mul_2exp_si(s1, s1, 1);
+  if (s2) acb_mul_2exp_si(s2, s2, 1);
+  acb_clear(a);
+  acb_clear(a1);
+  acb_clear(a2);
+}
+
+}  // namespace
+
+void Speed::eval_critical(acb_t v, acb_t d, const acb_t z, long prec) const {
+  if (zero_) {
+    acb_zero(v);
+    if (d) acb_zero(d);
+    return;
+  }
+  acb_t g[3], q[3], e[3], t;
+  for (int i = 0; i < 3; ++i) {
+    acb_init(g[i]);
+    acb_init(q[i]);
+    acb_init(e[i]);
+  }
+  acb_init(t);
+  g_b_.eval(g[0], g[1], d ? g[2] : nullptr, z, prec);
+  sum_of_squares(q[0], q[1], d ? q[2] : nullptr, K_b_, z, prec);  // Q = sum K^2
+  if (kind_ == SpeedKind::Parametric) W_b_.eval(e[0], e[1], d ? e[2] : nullptr, z, prec);  // D = W
+  else sum_of_squares(e[0], e[1], d ? e[2] : nullptr, Y_b_, z, prec);                     // D = sum Y^2
+  // P = (2 g' Q + g Q') D - 2 g Q D'
+  acb_mul(t, g[1], q[0], prec);
+  acb_mul_2exp_si(t, t, 1);
+  acb_addmul(t, g[0], q[1], prec);
+  acb_mul(v, t, e[0], prec);  // (2 g' Q + g Q') D
+  acb_mul(t, g[0], q[0], prec);
+  acb_mul_2exp_si(t, t, 1);
+  acb_submul(v, t, e[1], prec);  // - 2 g Q D'
+  if (d) {
+    // P' = (2 g'' Q + 3 g' Q' + g Q'') D - g Q' D' - 2 g Q D''
+    acb_mul(t, g[2], q[0], prec);
+    acb_mul_2exp_si(t, t, 1);
+    acb_addmul(t, g[0], q[2], prec);
+    acb_t u;
+    acb_init(u);
+    acb_mul(u, g[1], q[1], prec);
+    acb_mul_ui(u, u, 3, prec);
+    acb_add(t, t, u, prec);
+    acb_mul(d, t, e[0], prec);  // (2 g'' Q + 3 g' Q' + g Q'') D
+    acb_mul(t, g[0], q[1], prec);
+    acb_submul(d, t, e[1], prec);  // - g Q' D'
+    acb_mul(t, g[0], q[0], prec);
+    acb_mul_2exp_si(t, t, 1);
+    acb_submul(d, t, e[2], prec);  // - 2 g Q D''
+    acb_clear(u);
+  }
+  for (int i = 0; i < 3; ++i) {
+    acb_clear(g[i]);
+    acb_clear(q[i]);
+    acb_clear(e[i]);
+  }
+  acb_clear(t);
 }
 
 void Speed::eval_sumK2(acb_t out, const acb_t z, long prec) const {

@@ -4,6 +4,7 @@
 // inputs. The hard inputs are Bernstein polynomials: huge power-basis
 // coefficients (binomials), moderate values on [0, 1], complex roots close
 // to it.
+#include <arb_fmpz_poly.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -205,6 +206,106 @@ TEST(RealRootsFast, SubdivisionAgreesWithExactVca) {
         if (i + 1 < fast.size()) EXPECT_TRUE(f.hi < fast[i + 1].lo);
       }
     }
+  }
+}
+
+}  // namespace
+}  // namespace uniparam
+
+namespace uniparam {
+namespace {
+
+using test_support::check_isolation;
+using test_support::iterations;
+using test_support::Known;
+
+/// p = prod f_i and p' from the factors' own values (product rule), each
+/// low-degree factor by Horner: an evaluator that never expands p.
+PolyEvaluator product_evaluator(const std::vector<Poly>& factors, long* calls) {
+  return [factors, calls](arb_t v, arb_t d, const arb_t x, long prec) {
+    ++*calls;
+    arb_t f, df;
+    arb_init(f);
+    arb_init(df);
+    arb_one(v);
+    if (d) arb_zero(d);
+    for (const Poly& q : factors) {
+      arb_fmpz_poly_evaluate_arb(f, q.get(), x, prec);
+      if (d) {
+        arb_fmpz_poly_evaluate_arb(df, q.derivative().get(), x, prec);
+        arb_mul(d, d, f, prec);  // (P f)' = P' f + P f'
+        arb_addmul(d, v, df, prec);
+      }
+      arb_mul(v, v, f, prec);
+    }
+    arb_clear(f);
+    arb_clear(df);
+  };
+}
+
+/// The evaluator-driven subdivision (isolate_real_roots with a
+/// PolyEvaluator) against exactly known roots: rational ones (two of them
+/// 2^-40 apart: a cell it must hand to the exact isolation), irrational
+/// ones, roots at the ends, complex pairs close to [0, 1] (the enclosures
+/// there hold 0 without a real root), on [0, 1] and on a sub-interval with
+/// non-dyadic ends. A non-squarefree p goes to the exact path without one
+/// evaluation.
+TEST(RealRootsFast, EvaluatorSubdivisionFindsTheKnownRoots) {
+  std::mt19937_64 rng(31337);
+  RootIsolationOptions sub;
+  sub.method = RootIsolationMethod::Subdivision;
+  for (long it = 0; it < iterations(4); ++it) {
+    std::vector<Poly> factors;
+    std::vector<Known> all;
+    auto add_rational = [&](const Rational& q) {
+      for (const Known& k : all)
+        if (k.rational && k.q == q) return;
+      all.push_back({true, q, 0, 1});
+      factors.push_back(Poly(std::vector<Integer>{Integer(0) - q.num(), q.den()}));
+    };
+    for (int j = 0; j < 12; ++j) {
+      const long d = 2 + static_cast<long>(rng() % 997);
+      add_rational(Rational(1 + static_cast<long>(rng() % static_cast<unsigned long>(d - 1)), d));
+    }
+    const Rational c(static_cast<long>(1 + rng() % 1000), 1001);  // a close pair: c and c + 2^-40
+    add_rational(c);
+    add_rational(c + Rational(1, 1L << 40));
+    for (long cc : {2L, 3L, 5L}) {  // sqrt(cc / dd) in (0, 1)
+      const long dd = cc + 1 + static_cast<long>(rng() % 40);
+      all.push_back({false, Rational(cc, dd), 1, 1});
+      factors.push_back(Poly(std::vector<Integer>{Integer(-cc), Integer(0), Integer(dd)}));
+    }
+    for (int j = 0; j < 6; ++j) {  // (D t - C)^2 + E^2: complex roots C/D +- i E/D
+      const long D = 1000, C = static_cast<long>(rng() % 1001), E = 1 + static_cast<long>(rng() % 5);
+      factors.push_back(Poly(std::vector<Integer>{Integer(C * C + E * E), Integer(-2 * C * D), Integer(D * D)}));
+    }
+    if (it % 2 == 0) {
+      all.push_back({true, Rational(0), 0, 1});
+      factors.push_back(Poly::t());
+    }
+    if (it % 3 == 0) {
+      all.push_back({true, Rational(1), 0, 1});
+      factors.push_back(Poly(std::vector<long>{-1, 1}));
+    }
+    Poly p(1);
+    for (const Poly& f : factors) p = p * f;
+    SCOPED_TRACE("degree " + std::to_string(p.degree()) + ", iteration " + std::to_string(it));
+    long calls = 0;
+    const PolyEvaluator ev = product_evaluator(factors, &calls);
+    check_isolation(p, Rational(0), Rational(1), all, isolate_real_roots(p, ev, Rational(0), Rational(1), sub));
+    EXPECT_GT(calls, 0);
+    const Rational a(1, 7), b(5, 6);
+    check_isolation(p, a, b, all, isolate_real_roots(p, ev, a, b, sub));
+    // A double factor: not squarefree, so the exact path and no evaluation.
+    std::vector<Known> doubled = all;
+    doubled.front().mult = 2;
+    std::vector<Poly> f2 = factors;
+    f2.push_back(factors.front());
+    long calls2 = 0;
+    const Poly p2 = p * factors.front();
+    check_isolation(p2, Rational(0), Rational(1), doubled,
+                    isolate_real_roots(p2, product_evaluator(f2, &calls2), Rational(0), Rational(1), sub));
+    EXPECT_EQ(calls2, 0);
   }
 }
 

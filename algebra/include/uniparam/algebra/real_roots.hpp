@@ -2,6 +2,9 @@
 // closed interval with rational ends.
 #pragma once
 
+#include <arb.h>
+
+#include <functional>
 #include <vector>
 
 #include "uniparam/core/number.hpp"
@@ -61,6 +64,27 @@ struct RootIsolationOptions {
 /// its subdivision budget or the time budget.
 std::vector<IsolatedRoot> isolate_real_roots(const Poly& p, const Rational& a, const Rational& b,
                                              const RootIsolationOptions& opt = {});
+
+/// A certified evaluator of a polynomial p up to a positive constant: for
+/// one constant lambda > 0, v must enclose lambda p(x), and d (when
+/// non-null) lambda p'(x), at every point of the real ball x, computed at
+/// working precision prec. Enclosures may be wide or non-finite, never
+/// wrong. Typically p's values from its factors: far cheaper than p's power
+/// basis at high degree, whose huge coefficients cancel.
+using PolyEvaluator = std::function<void(arb_t v, arb_t d, const arb_t x, long prec)>;
+
+/// The roots of p in [a, b] as isolate_real_roots gives them (same
+/// postconditions and errors), found first by a ball subdivision of [a, b]
+/// on ev's enclosures at 64 bits (an interval where p's enclosure excludes 0
+/// has no root; one where p''s excludes 0 has one exactly when the exact
+/// signs at its ends differ). Intervals it cannot decide within 2^-30 of
+/// the width, and every p not proven squarefree (by a gcd modulo a prime),
+/// go to isolate_real_roots. opt.method: Subdivision always uses ev, Auto
+/// from degree 300 (below, the exact VCA is as fast), Exact never. For
+/// high-degree p with cheap factored values (the critical points of a
+/// speed: degree ~12d) this avoids p's own expansions.
+std::vector<IsolatedRoot> isolate_real_roots(const Poly& p, const PolyEvaluator& ev, const Rational& a,
+                                             const Rational& b, const RootIsolationOptions& opt = {});
 
 /// Number of distinct real roots of p in the open interval (a, b), exact.
 /// \pre p != 0, a < b.

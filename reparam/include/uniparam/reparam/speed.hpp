@@ -100,6 +100,16 @@ class Speed {
   /// analytic on the piece; no numerical cancellation near gamma.
   void eval_squared_over_zero(acb_t out, const acb_t z, const SpeedZero& zero, int side, int power,
                               long prec) const;
+  /// v = P(z) and, when d is non-null, d = P'(z) for the critical numerator
+  ///     P = 2 g' Q D + g Q' D - 2 g Q D',  Q = sum K_k^2,
+  /// so that (sigma^2)' = g P / D^3: its roots are the critical points of
+  /// sigma that are not zeros. From the local expansions of g, K_k and Y_i
+  /// (or W), never from P's power basis (degree ~12d for a space curve's
+  /// angular speed, with huge coefficients). P is 0 for a straight line's
+  /// angular speed.
+  /// \post v (and d) contain P(t) (P'(t)) for every t in z; may be wide or
+  ///       infinite, never wrong.
+  void eval_critical(acb_t v, acb_t d, const acb_t z, long prec) const;
 
  private:
   SpeedKind kind_;
@@ -130,6 +140,7 @@ class Speed {
   };
   std::vector<Component> comp_;
   // ball versions for evaluation
+  LocalPoly g_b_;               // g itself (eval_critical: g, g', g'')
   Integer g_content_;          // g = content * prod h^m; content is 1 here but kept general
   std::vector<LocalPoly> g_h_;  // squarefree factors of g
   std::vector<int> g_m_;
