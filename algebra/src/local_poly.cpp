@@ -115,6 +115,10 @@ constexpr int kPointLevel = 6;
 // exact levels are the fine ones truncated; deeper ones are ball shifts of
 // their coarse parent, checked by accurate() as fine cells are.
 constexpr long kCoarseBits = 24;
+// Working precision of the coarse cells' shifts (one limb): their rounding
+// must stay below 2^-kCoarseBits of the cell's scale after the bits a shift
+// loses, which accurate() checks.
+constexpr long kCoarsePrec = 64;
 // The level that surely holds a wide ball assumes its midpoint anywhere in
 // the cell; one level deeper is tried first (it holds a ball centred near
 // its cell's centre, e.g. an ellipse around a dyadic subinterval): a disc
@@ -404,7 +408,7 @@ CellPtr get_cell(std::mutex& mu, CellMap& cells, const std::vector<RealAlgebraic
       arb_t delta;
       arb_init(delta);
       arf_sub(arb_midref(delta), cell->centre, parent->centre, ARF_PREC_EXACT, ARF_RND_DOWN);
-      arb_poly_taylor_shift(cell->P, parent->P, delta, wp);
+      arb_poly_taylor_shift(cell->P, parent->P, delta, kCoarsePrec);
       arb_clear(delta);
       for (int t = 0; t < 3; ++t) mag_set(cell->tail + t, parent->tail + t);
       truncate(*cell, kCoarseBits);
@@ -412,12 +416,12 @@ CellPtr get_cell(std::mutex& mu, CellMap& cells, const std::vector<RealAlgebraic
     }
     if (!built) {
       const CellPtr fine = get_cell(mu, cells, roots, p, variant, wp, level, j, false);
-      arb_poly_set(cell->P, fine->P);
+      arb_poly_set_round(cell->P, fine->P, kCoarsePrec);
       for (int t = 0; t < 3; ++t) mag_set(cell->tail + t, fine->tail + t);
       truncate(*cell, kCoarseBits);
     }
-    arb_poly_derivative(cell->P1, cell->P, wp);
-    arb_poly_derivative(cell->P2, cell->P1, wp);
+    arb_poly_derivative(cell->P1, cell->P, kCoarsePrec);
+    arb_poly_derivative(cell->P2, cell->P1, kCoarsePrec);
     std::lock_guard<std::mutex> lock(mu);
     if (cells.size() >= kMaxCells) cells.clear();
     return cells.emplace(key, std::move(cell)).first->second;
