@@ -309,3 +309,71 @@ TEST(SpeedEval, ComponentsWithMixedDenominatorsAgreeWithTheExactSquaredSpeed) {
   }
   EXPECT_GT(checked, 20);
 }
+
+TEST(SpeedEval, CriticalNumeratorFromFactorsContainsTheExactOne) {
+  // eval_critical gives P = 2 g' Q D + g Q' D - 2 g Q D' (Q = sum K^2) and P'
+  // from the factors' local expansions; the root isolation of the critical
+  // points trusts both (P' decides monotonicity). Oracle: P formed exactly
+  // from the public factors g, K, D, evaluated at rational points, inside
+  // point balls and wide balls around them.
+  std::mt19937_64 rng(2026);
+  std::uniform_int_distribution<long> coef(-9, 9), pos(1, 9), den(1, 64);
+  long checked = 0;
+  for (long it = 0; it < test_support::iterations(8); ++it) {
+    auto random_poly = [&](long d, bool positive) {
+      std::vector<long> c;
+      for (long k = 0; k <= d; ++k) c.push_back(positive ? pos(rng) : coef(rng));
+      return Poly(c);
+    };
+    const long d = 2 + static_cast<long>(rng() % 6);
+    const Poly W = random_poly(d, true);  // no zeros on [0, 1]
+    const bool rational = it % 2 == 1;
+    const std::size_t dim = it % 4 < 2 ? 2 : 3;
+    std::vector<RatFunc> comps;
+    for (std::size_t i = 0; i < dim; ++i) comps.emplace_back(random_poly(d, false), rational ? W : Poly(1));
+    Curve c(comps);
+    for (SpeedKind kind : {SpeedKind::Angular, SpeedKind::Parametric}) {
+      std::unique_ptr<Speed> s;
+      try {
+        s = std::make_unique<Speed>(c, kind);
+      } catch (const DomainError&) {
+        continue;  // not regular on [0, 1]
+      }
+      if (s->identically_zero()) continue;
+      Poly Q(0);
+      for (const Poly& k : s->cofactors()) Q = Q + k * k;
+      const Poly& g = s->g();
+      const Poly& D = s->denominator();
+      const Poly P = Poly(2) * g.derivative() * Q * D + g * Q.derivative() * D - Poly(2) * g * Q * D.derivative();
+      const Poly dP = P.derivative();
+      acb_t z, v, dv;
+      acb_init(z);
+      acb_init(v);
+      acb_init(dv);
+      for (int p = 0; p < 6; ++p) {
+        const long q = den(rng);
+        const Rational t(static_cast<long>(rng() % static_cast<unsigned long>(q + 1)), q);
+        for (bool wide : {false, true}) {
+          acb_zero(z);
+          arb_set_fmpq(acb_realref(z), t.get(), 256);
+          if (wide) {
+            mag_set_ui_2exp_si(arb_radref(acb_realref(z)), 1, -10);
+            mag_set_ui_2exp_si(arb_radref(acb_imagref(z)), 1, -11);
+          }
+          s->eval_critical(v, dv, z, 128);
+          ASSERT_TRUE(acb_is_finite(v) && acb_is_finite(dv));
+          const Ball re(acb_realref(v)), dre(acb_realref(dv));
+          ASSERT_TRUE(re.contains(P(t)) && arb_contains_zero(acb_imagref(v)))
+              << c.str() << " " << to_string(kind) << " at t = " << t.str() << (wide ? " (wide)" : "");
+          ASSERT_TRUE(dre.contains(dP(t)) && arb_contains_zero(acb_imagref(dv)))
+              << c.str() << " " << to_string(kind) << " P' at t = " << t.str() << (wide ? " (wide)" : "");
+          ++checked;
+        }
+      }
+      acb_clear(z);
+      acb_clear(v);
+      acb_clear(dv);
+    }
+  }
+  EXPECT_GT(checked, 40);
+}
