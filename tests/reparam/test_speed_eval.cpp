@@ -257,20 +257,29 @@ TEST(SpeedEval, SpeedOnRealSegmentsWithoutHolomorphyIsFiniteAndContainsPointValu
 }  // namespace
 }  // namespace uniparam
 
+namespace {
+
+/// A polynomial of degree d with coefficients in [-9, 9], or in [1, 9]
+/// (positive: no zeros on [0, 1]) -- the components and weights below.
+Poly small_poly(std::mt19937_64& rng, long d, bool positive) {
+  std::uniform_int_distribution<long> coef(-9, 9), pos(1, 9);
+  std::vector<long> c;
+  for (long k = 0; k <= d; ++k) c.push_back(positive ? pos(rng) : coef(rng));
+  return Poly(c);
+}
+
+}  // namespace
+
 TEST(SpeedEval, ComponentsWithMixedDenominatorsAgreeWithTheExactSquaredSpeed) {
   // Components sharing a denominator evaluate it once per ball; others their
   // own. A curve whose components alternate between two weights (and one
   // with a common weight, and a polynomial component) must give sigma^2 at
   // rational points whose enclosure holds the exact value of squared().
   std::mt19937_64 rng(11);
-  std::uniform_int_distribution<long> coef(-9, 9), pos(1, 9), den(1, 64);
+  std::uniform_int_distribution<long> den(1, 64);
   long checked = 0;
   for (long it = 0; it < test_support::iterations(8); ++it) {
-    auto random_poly = [&](long d, bool positive) {
-      std::vector<long> c;
-      for (long k = 0; k <= d; ++k) c.push_back(positive ? pos(rng) : coef(rng));
-      return Poly(c);
-    };
+    auto random_poly = [&](long d, bool positive) { return small_poly(rng, d, positive); };
     const long d = 2 + static_cast<long>(rng() % 5);
     const Poly W1 = random_poly(d, true), W2 = random_poly(d, true);  // no zeros on [0, 1]
     std::vector<RatFunc> comps;
@@ -317,14 +326,10 @@ TEST(SpeedEval, CriticalNumeratorFromFactorsContainsTheExactOne) {
   // from the public factors g, K, D, evaluated at rational points, inside
   // point balls and wide balls around them.
   std::mt19937_64 rng(2026);
-  std::uniform_int_distribution<long> coef(-9, 9), pos(1, 9), den(1, 64);
+  std::uniform_int_distribution<long> den(1, 64);
   long checked = 0;
   for (long it = 0; it < test_support::iterations(8); ++it) {
-    auto random_poly = [&](long d, bool positive) {
-      std::vector<long> c;
-      for (long k = 0; k <= d; ++k) c.push_back(positive ? pos(rng) : coef(rng));
-      return Poly(c);
-    };
+    auto random_poly = [&](long d, bool positive) { return small_poly(rng, d, positive); };
     const long d = 2 + static_cast<long>(rng() % 6);
     const Poly W = random_poly(d, true);  // no zeros on [0, 1]
     const bool rational = it % 2 == 1;
