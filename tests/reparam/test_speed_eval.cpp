@@ -268,6 +268,16 @@ Poly small_poly(std::mt19937_64& rng, long d, bool positive) {
   return Poly(c);
 }
 
+/// The speed of a random curve, or null when the curve is not regular on
+/// [0, 1] (Speed's DomainError): such curves are skipped.
+std::unique_ptr<Speed> regular_speed(const Curve& c, SpeedKind kind) {
+  try {
+    return std::make_unique<Speed>(c, kind);
+  } catch (const DomainError&) {
+    return nullptr;
+  }
+}
+
 }  // namespace
 
 TEST(SpeedEval, ComponentsWithMixedDenominatorsAgreeWithTheExactSquaredSpeed) {
@@ -289,13 +299,8 @@ TEST(SpeedEval, ComponentsWithMixedDenominatorsAgreeWithTheExactSquaredSpeed) {
     comps.emplace_back(random_poly(d, false), pattern == 1 ? W1 : pattern == 0 ? W1 : W2);
     Curve c(comps);
     for (SpeedKind kind : {SpeedKind::Angular, SpeedKind::Parametric}) {
-      std::unique_ptr<Speed> s;
-      try {
-        s = std::make_unique<Speed>(c, kind);
-      } catch (const DomainError&) {
-        continue;  // a random curve that is not regular on [0, 1]
-      }
-      if (s->squared().num().is_zero()) continue;
+      const std::unique_ptr<Speed> s = regular_speed(c, kind);
+      if (!s || s->squared().num().is_zero()) continue;
       acb_t z, out;
       acb_init(z);
       acb_init(out);
@@ -338,13 +343,8 @@ TEST(SpeedEval, CriticalNumeratorFromFactorsContainsTheExactOne) {
     for (std::size_t i = 0; i < dim; ++i) comps.emplace_back(random_poly(d, false), rational ? W : Poly(1));
     Curve c(comps);
     for (SpeedKind kind : {SpeedKind::Angular, SpeedKind::Parametric}) {
-      std::unique_ptr<Speed> s;
-      try {
-        s = std::make_unique<Speed>(c, kind);
-      } catch (const DomainError&) {
-        continue;  // not regular on [0, 1]
-      }
-      if (s->identically_zero()) continue;
+      const std::unique_ptr<Speed> s = regular_speed(c, kind);
+      if (!s || s->identically_zero()) continue;
       Poly Q(0);
       for (const Poly& k : s->cofactors()) Q = Q + k * k;
       const Poly& g = s->g();
