@@ -55,6 +55,7 @@ struct RealAlgebraic::Shared {
   std::mutex mu;
   Rational lo, hi;      // empty (lo == hi == 0) until a copy publishes
   long newton_log = 2;  // the refinement's Newton rate, continued by the next call
+  std::shared_ptr<const ScaledEvaluator> sev;  // set at construction, then only read
 };
 
 RealAlgebraic::RealAlgebraic(const Rational& q) : poly_(linear_poly(q)), lo_(q), hi_(q) {}
@@ -101,6 +102,10 @@ RealAlgebraic::RealAlgebraic(const Poly& squarefree, const Rational& lo, const R
   if (!r.is_exact()) shared_ = std::make_shared<Shared>();
 }
 
+RealAlgebraic::RealAlgebraic(const IsolatedRoot& r, std::shared_ptr<const ScaledEvaluator> sev) : RealAlgebraic(r) {
+  if (shared_ && sev && sev->ev) shared_->sev = std::move(sev);
+}
+
 const Rational& RealAlgebraic::rational() const {
   if (!is_rational()) throw InvalidArgument("RealAlgebraic::rational() on the irrational " + str());
   return lo_;
@@ -123,7 +128,7 @@ void RealAlgebraic::refine(long bits) const {
   if (hi_ - lo_ <= detail::pow2(-bits)) return;
   // An exact hit (impossible for an irrational root) would leave lo == hi,
   // still a correct value.
-  detail::refine_isolating_interval(poly_, lo_, hi_, bits, &newton_log);
+  detail::refine_isolating_interval(poly_, lo_, hi_, bits, &newton_log, shared_ ? shared_->sev.get() : nullptr);
   if (shared_ && lo_ < hi_) {
     std::lock_guard<std::mutex> lock(shared_->mu);
     if (!(shared_->lo < shared_->hi) || hi_ - lo_ < shared_->hi - shared_->lo) {

@@ -94,6 +94,70 @@ bool newton_guess(const Poly& f, const Poly& df, const Rational& lo, const Ratio
   return false;
 }
 
+/// One interval Newton step on the isolating interval (lo, hi) of a simple
+/// root r of f (see refine_isolating_interval): for a dyadic m in the middle
+/// of (lo, hi), f(m) = f'(xi) (m - r) with xi in (lo, hi), so r lies in
+/// N = m - f(m) / F, F an enclosure of f' on (lo, hi) (sev's derivative
+/// over lambda, on a ball of radius >= 2^-23 holding [lo, hi]). N is
+/// rounded outward to the grid 2^-(bits+8) and widened by one grid step
+/// (r is then strictly inside, so the new ends are not roots, and there is
+/// one root between them, on the side of each end where it was). Returns
+/// true when (lo, hi) was replaced by an interval at most half as wide;
+/// false (interval unchanged or narrowed less) when F holds 0 or the step
+/// gains less.
+bool interval_newton_step(const Poly& f, const ScaledEvaluator& sev, Rational& lo, Rational& hi, long bits,
+                          long mag) {
+  const Rational w = hi - lo;
+  const long ew = floor_log2(w);
+  const Rational m = grid_floor((lo + hi) * Rational(1, 2), ew - 4);
+  ArbVar X, M, v, F, lam, fm, N;
+  {
+    const Ball xb = interval_ball(lo, hi, 64);
+    arb_set(X.v, xb.get());
+  }
+  // Coarse bounds: a ball narrower than 2^-24 would make the evaluator build
+  // full-precision expansions, for ~24 more bits of F than this needs.
+  if (mag_cmp_2exp_si(arb_radref(X.v), -23) < 0) mag_set_ui_2exp_si(arb_radref(X.v), 1, -23);
+  sev.ev(v.v, F.v, X.v, 64);
+  arb_set_fmpq(lam.v, sev.lambda.get(), 64);
+  arb_div(F.v, F.v, lam.v, 64);  // holds f'(xi) for every xi in [lo, hi]
+  if (!arb_is_finite(F.v) || arb_contains_zero(F.v)) return false;
+  // f(m) from the power basis (m exactly: a short dyadic), to an absolute
+  // error below 2^-(bits + 10) |f'|: Horner's n + 1 terms are up to
+  // 2^(max_bits + n mag).
+  const long n = f.degree();
+  const long terms = f.max_bits() + n * mag + static_cast<long>(FLINT_BIT_COUNT(static_cast<ulong>(n + 1))) + 8;
+  mag_t lower;
+  mag_init(lower);
+  arb_get_mag_lower(lower, F.v);
+  const long e = fmpz_get_si(MAG_EXPREF(lower)) - 1;  // |f'| >= 2^e on [lo, hi]
+  mag_clear(lower);
+  const long mbits = rational_bits(m) + 8;
+  const long prec = std::max({64L, terms + bits + 10 - e, mbits});
+  arb_set_fmpq(M.v, m.get(), mbits);
+  arb_fmpz_poly_evaluate_arb(fm.v, f.get(), M.v, prec);
+  arb_div(fm.v, fm.v, F.v, prec);
+  arb_sub(N.v, M.v, fm.v, prec);
+  if (!arb_is_finite(N.v)) return false;
+  arf_t a, b;
+  arf_init(a);
+  arf_init(b);
+  arb_get_interval_arf(a, b, N.v, prec);  // outward
+  Rational ql, qh;
+  arf_get_fmpq(ql.get(), a);
+  arf_get_fmpq(qh.get(), b);
+  arf_clear(a);
+  arf_clear(b);
+  const long s = -(bits + 8);
+  ql = grid_floor(ql, s) - pow2(s);
+  qh = grid_floor(qh, s) + pow2(s + 1);  // >= the ceiling plus one step
+  Rational nl = lo < ql ? ql : lo, nh = qh < hi ? qh : hi;
+  if (!(nl < nh)) return false;  // r is in both: only an evaluator breaking its contract gets here
+  lo = std::move(nl);
+  hi = std::move(nh);
+  return (hi - lo) * Rational(2) <= w;
+}
+
 }  // namespace
 
 Rational pow2(long e) {
@@ -145,16 +209,25 @@ int exact_sign(const Poly& f, const Rational& x) {
   return f.sign_at(x);  // exact rational evaluation
 }
 
-bool refine_isolating_interval(const Poly& f, Rational& lo, Rational& hi, long bits, long* newton_log) {
+bool refine_isolating_interval(const Poly& f, Rational& lo, Rational& hi, long bits, long* newton_log,
+                               const ScaledEvaluator* sev) {
   if (lo == hi) return true;
   if (hi < lo) throw InvalidArgument("refine: empty interval");
   const Rational target = pow2(-bits);
   Rational w = hi - lo;
   if (w <= target) return false;
+  const long mag = magnitude_bits(lo, hi);
+  if (sev && sev->ev) {
+    while (w > target) {
+      check_time_budget();
+      if (!interval_newton_step(f, *sev, lo, hi, bits, mag)) break;
+      w = hi - lo;
+    }
+    if (w <= target) return false;
+  }
   const int s_lo = exact_sign(f, lo);
   if (s_lo == 0) throw InvalidArgument("refine: the lower end " + lo.str() + " is a root of " + f.str());
   const Poly df = f.derivative();
-  const long mag = magnitude_bits(lo, hi);
   const long start = floor_log2(w);
   // Every accepted Newton bracket or bisection at least halves the width;
   // failed Newton tries are at most logarithmically many per success.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <deque>
 #include <functional>
+#include <memory>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -147,21 +148,33 @@ std::vector<Breakpoint> critical_breakpoints(const Speed& s) {
     Poly P = critical_numerator(s);
     if (!P.is_zero()) {
       // P's values from the speed's factors (degree ~d local expansions,
-      // coarse on the subdivision's intervals), not from P's power basis.
-      const PolyEvaluator ev = [&s](arb_t v, arb_t d, const arb_t x, long prec) {
+      // coarse on the subdivision's intervals), not from P's power basis:
+      // for the isolation, and kept by the roots for their refinement (the
+      // integrals' ends), so the evaluator owns a copy of the speed (which
+      // shares the caches of s).
+      auto speed = std::make_shared<const Speed>(s);
+      const PolyEvaluator ev = [speed](arb_t v, arb_t d, const arb_t x, long prec) {
         acb_t z, pv, pd;
         acb_init(z);
         acb_init(pv);
         acb_init(pd);
         acb_set_arb(z, x);
-        s.eval_critical(pv, d ? pd : nullptr, z, prec);
+        speed->eval_critical(pv, d ? pd : nullptr, z, prec);
         arb_set(v, acb_realref(pv));  // P is real at real points: Re holds it
         if (d) arb_set(d, acb_realref(pd));
         acb_clear(z);
         acb_clear(pv);
         acb_clear(pd);
       };
-      for (const auto& r : isolate_real_roots(P, ev, Rational(0), Rational(1))) ts.emplace_back(r);
+      // ev evaluates P = lambda r.factor exactly when r.factor is P's
+      // primitive part (not a proper factor of P)
+      const Poly Pp = P.primitive();
+      const auto sev = std::make_shared<const ScaledEvaluator>(
+          ScaledEvaluator{ev, Rational(P.coeff(P.degree())) / Rational(Pp.coeff(Pp.degree()))});
+      for (const auto& r : isolate_real_roots(P, ev, Rational(0), Rational(1))) {
+        if (!r.is_exact() && r.factor == Pp) ts.emplace_back(r, sev);
+        else ts.emplace_back(r);
+      }
     }
   }
   std::sort(ts.begin(), ts.end(), [](const RealAlgebraic& x, const RealAlgebraic& y) { return x < y; });

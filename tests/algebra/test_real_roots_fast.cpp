@@ -5,9 +5,11 @@
 // coefficients (binomials), moderate values on [0, 1], complex roots close
 // to it.
 #include <arb_fmpz_poly.h>
+#include <arb_poly.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <random>
 #include <string>
 #include <utility>
@@ -15,6 +17,7 @@
 
 #include "support/iterations.hpp"
 #include "support/known_roots.hpp"
+#include "uniparam/algebra/algebraic.hpp"
 #include "uniparam/algebra/real_roots.hpp"
 #include "uniparam/core/error.hpp"
 
@@ -306,6 +309,120 @@ TEST(RealRootsFast, EvaluatorSubdivisionFindsTheKnownRoots) {
     check_isolation(p2, Rational(0), Rational(1), doubled,
                     isolate_real_roots(p2, product_evaluator(f2, &calls2), Rational(0), Rational(1), sub));
     EXPECT_EQ(calls2, 0);
+  }
+}
+
+/// c p and c p' for p = prod f_i from the factors' Taylor expansions at the
+/// midpoint of x (a centred form: as tight on a wide ball as p's variation
+/// there, like the speeds' local expansions), never expanding p.
+PolyEvaluator centred_product_evaluator(const std::vector<Poly>& factors, const Rational& c, long* calls) {
+  return [factors, c, calls](arb_t v, arb_t d, const arb_t x, long prec) {
+    ++*calls;
+    arb_t f, df, r, cb;
+    arb_init(f);
+    arb_init(df);
+    arb_init(r);
+    arb_init(cb);
+    arb_zero(r);
+    mag_set(arb_radref(r), arb_radref(x));  // [-rad x, rad x]
+    arb_set_fmpq(cb, c.get(), prec);
+    arb_set(v, cb);
+    if (d) arb_zero(d);
+    for (const Poly& q : factors) {
+      const long wp = prec + q.max_bits() + 2 * q.degree() + 64;  // the shift loses ~max_bits + degree bits
+      arb_poly_t a, a1;
+      arb_poly_init(a);
+      arb_poly_init(a1);
+      arb_poly_set_fmpz_poly(a, q.get(), wp);
+      arb_t m;
+      arb_init(m);
+      arb_set_arf(m, arb_midref(x));
+      arb_poly_taylor_shift(a, a, m, wp);  // q(mid + w)
+      arb_clear(m);
+      arb_poly_evaluate(f, a, r, prec);
+      if (d) {
+        arb_poly_derivative(a1, a, wp);
+        arb_poly_evaluate(df, a1, r, prec);
+        arb_mul(d, d, f, prec);  // (P q)' = P' q + P q'
+        arb_addmul(d, v, df, prec);
+      }
+      arb_mul(v, v, f, prec);
+      arb_poly_clear(a);
+      arb_poly_clear(a1);
+    }
+    arb_clear(f);
+    arb_clear(df);
+    arb_clear(r);
+    arb_clear(cb);
+  };
+}
+
+/// Refinement with a ScaledEvaluator (interval Newton steps, derivative from
+/// the factors, no exact sign) against the exact refinement of the same
+/// root: at every precision the interval is narrow enough, still brackets
+/// the root (exact signs of p at its ends differ), and to_ball, canonical,
+/// gives the same ball as the exact path. p has degree ~100 with Bernstein
+/// factors (large power-basis coefficients), irrational roots, complex
+/// pairs near [0, 1], and the evaluator a random rational factor c (of
+/// either sign) that lambda must carry. Fails when lambda is ignored or its
+/// sign is dropped.
+TEST(RealRootsFast, ScaledEvaluatorRefinesLikeTheExactPath) {
+  std::mt19937_64 rng(4242);
+  for (long it = 0; it < iterations(3); ++it) {
+    std::vector<Poly> factors;
+    for (long cc : {2L, 3L, 5L, 7L}) {  // sqrt(cc / dd) in (0, 1)
+      const long dd = cc + 1 + static_cast<long>(rng() % 60);
+      factors.push_back(Poly(std::vector<Integer>{Integer(-cc), Integer(0), Integer(dd)}));
+    }
+    factors.push_back(Poly(std::vector<long>{-1, 0, 0, 3}));  // 3 t^3 - 1
+    for (int j = 0; j < 5; ++j) {  // (D t - C)^2 + E^2: complex roots C/D +- i E/D
+      const long D = 1000, C = static_cast<long>(rng() % 1001), E = 1 + static_cast<long>(rng() % 5);
+      factors.push_back(Poly(std::vector<Integer>{Integer(C * C + E * E), Integer(-2 * C * D), Integer(D * D)}));
+    }
+    // a positive Bernstein polynomial of degree 80: no root in [0, 1]
+    factors.push_back(bernstein(positive_bernstein(rng, 80, 1000)));
+    Poly p(1);
+    for (const Poly& f : factors) p = p * f;
+    const Rational c(static_cast<long>(rng() % 2 ? 1 : -1) * static_cast<long>(1 + rng() % 97),
+                     static_cast<long>(1 + rng() % 89));
+    long calls = 0;
+    ScaledEvaluator sev;
+    sev.ev = centred_product_evaluator(factors, c, &calls);
+    const Poly f = p.primitive();
+    sev.lambda = c * Rational(p.leading()) / Rational(f.leading());
+    const auto shared = std::make_shared<const ScaledEvaluator>(sev);
+    const std::vector<IsolatedRoot> roots = isolate_real_roots(p, Rational(0), Rational(1));
+    ASSERT_EQ(roots.size(), 5u);
+    int checked = 0;
+    for (const IsolatedRoot& r0 : roots) {
+      ASSERT_FALSE(r0.is_exact());
+      // start from the grid interval of width 2^-12 around the root (the
+      // isolator's intervals may already be far narrower)
+      const RealAlgebraic x0(r0);
+      x0.refine(20);
+      const double mid = std::ldexp(fmpq_get_d(x0.lo().get()) + fmpq_get_d(x0.hi().get()), 11);  // 2^12 x
+      const Rational lo(static_cast<long>(std::floor(mid)), 4096), hi = lo + Rational(1, 4096);
+      if (!(p.sign_at(lo) * p.sign_at(hi) < 0 && count_real_roots(p, lo, hi) == 1)) continue;
+      const IsolatedRoot r{lo, hi, f, 1};
+      const RealAlgebraic fast(r, shared), exact(r);
+      ++checked;
+      for (long bits : {40L, 130L, 400L}) {
+        SCOPED_TRACE("iteration " + std::to_string(it) + ", root in " + r.lo.str() + ".., bits " +
+                     std::to_string(bits));
+        const long before = calls;
+        fast.refine(bits);
+        EXPECT_GE(calls - before, 2);  // interval Newton steps succeeded (a failing one stops the loop)
+        ASSERT_TRUE(fast.lo() < fast.hi());
+        Rational width(1);
+        fmpq_div_2exp(width.get(), width.get(), static_cast<flint_bitcnt_t>(bits));  // 2^-bits
+        EXPECT_TRUE(fast.hi() - fast.lo() <= width);
+        EXPECT_EQ(p.sign_at(fast.lo()) * p.sign_at(fast.hi()), -1);
+        EXPECT_TRUE(r.lo <= fast.lo() && fast.hi() <= r.hi);
+        const Ball bf = fast.to_ball(bits), be = exact.to_ball(bits);
+        EXPECT_TRUE(arb_equal(bf.get(), be.get())) << bf.str(20) << " vs " << be.str(20);
+      }
+    }
+    EXPECT_GE(checked, 3);  // at most two roots share a 2^-12 cell
   }
 }
 

@@ -23,6 +23,16 @@ class RealAlgebraic {
   RealAlgebraic(long q) : RealAlgebraic(Rational(q)) {}  // NOLINT: exact conversion
   /// From an isolated root (see real_roots.hpp).
   explicit RealAlgebraic(const IsolatedRoot& r);
+  /// From an isolated root, refined with the help of `sev` (may be null):
+  /// an evaluator (real_roots.hpp) of lambda * r.factor, typically the
+  /// factor's values from the factors of a product, far cheaper than its
+  /// power basis at high degree. refine() then takes interval Newton steps
+  /// with the derivative from sev at 64 bits, and needs no exact sign
+  /// (root_refine.hpp). The number keeps (shares) sev for as long as any
+  /// copy lives: whatever sev refers to must live as long (capture it by
+  /// value).
+  /// \pre as for RealAlgebraic(r); sev's contract is trusted, not checked.
+  RealAlgebraic(const IsolatedRoot& r, std::shared_ptr<const ScaledEvaluator> sev);
   /// The root of `squarefree` in (lo, hi).
   /// \pre squarefree is squarefree, lo < hi, neither end is a root and there
   ///      is exactly one root in (lo, hi) -- all checked exactly

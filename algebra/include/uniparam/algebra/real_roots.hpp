@@ -73,6 +73,15 @@ std::vector<IsolatedRoot> isolate_real_roots(const Poly& p, const Rational& a, c
 /// basis at high degree, whose huge coefficients cancel.
 using PolyEvaluator = std::function<void(arb_t v, arb_t d, const arb_t x, long prec)>;
 
+/// An evaluator of lambda * f for a known rational lambda != 0: ev's
+/// enclosures (as for PolyEvaluator) contain lambda f(x) and lambda f'(x)
+/// exactly. Lets a root of f be refined without f's power basis for the
+/// derivative (RealAlgebraic).
+struct ScaledEvaluator {
+  PolyEvaluator ev;
+  Rational lambda;
+};
+
 /// The roots of p in [a, b] as isolate_real_roots gives them (same
 /// postconditions and errors), found first by a ball subdivision of [a, b]
 /// on ev's enclosures at 64 bits (an interval where p's enclosure excludes 0
