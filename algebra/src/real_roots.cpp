@@ -94,19 +94,27 @@ bool newton_guess(const Poly& f, const Poly& df, const Rational& lo, const Ratio
   return false;
 }
 
+/// Width (log2) below which an interval Newton step first takes a Newton
+/// guess from f'(m) in the power basis (one more evaluation, and a second
+/// f at the guess): the guess is off by ~(f''/f') w^2, so the step gains
+/// about twice the bits, which pays for the two evaluations once w is small.
+constexpr long kQuadraticNewtonBits = 24;
+
 /// One interval Newton step on the isolating interval (lo, hi) of a simple
-/// root r of f (see refine_isolating_interval): for a dyadic m in the middle
-/// of (lo, hi), f(m) = f'(xi) (m - r) with xi in (lo, hi), so r lies in
-/// N = m - f(m) / F, F an enclosure of f' on (lo, hi) (sev's derivative
-/// over lambda, on a ball of radius >= 2^-23 holding [lo, hi]). N is
-/// rounded outward to the grid 2^-(bits+8) and widened by one grid step
-/// (r is then strictly inside, so the new ends are not roots, and there is
-/// one root between them, on the side of each end where it was). Returns
+/// root r of f (see refine_isolating_interval): for a dyadic c in (lo, hi),
+/// f(c) = f'(xi) (c - r) with xi in (lo, hi), so r lies in N = c - f(c) / F,
+/// F an enclosure of f' on (lo, hi) (sev's derivative over lambda, on a
+/// ball of radius >= 2^-23 holding [lo, hi]). c is the dyadic middle m, or,
+/// once w < 2^-kQuadraticNewtonBits, the Newton guess m - f(m) / f'(m) from
+/// the power basis (only a choice of c: nothing relies on its accuracy).
+/// N is rounded outward to the grid 2^-(bits+8) and widened by one grid
+/// step (r is then strictly inside, so the new ends are not roots, and there
+/// is one root between them, on the side of each end where it was). Returns
 /// true when (lo, hi) was replaced by an interval at most half as wide;
 /// false (interval unchanged or narrowed less) when F holds 0 or the step
 /// gains less.
-bool interval_newton_step(const Poly& f, const ScaledEvaluator& sev, Rational& lo, Rational& hi, long bits,
-                          long mag) {
+bool interval_newton_step(const Poly& f, const Poly& df, const ScaledEvaluator& sev, Rational& lo, Rational& hi,
+                          long bits, long mag) {
   const Rational w = hi - lo;
   const long ew = floor_log2(w);
   const Rational m = grid_floor((lo + hi) * Rational(1, 2), ew - 4);
@@ -132,10 +140,25 @@ bool interval_newton_step(const Poly& f, const ScaledEvaluator& sev, Rational& l
   arb_get_mag_lower(lower, F.v);
   const long e = fmpz_get_si(MAG_EXPREF(lower)) - 1;  // |f'| >= 2^e on [lo, hi]
   mag_clear(lower);
-  const long mbits = rational_bits(m) + 8;
-  const long prec = std::max({64L, terms + bits + 10 - e, mbits});
-  arb_set_fmpq(M.v, m.get(), mbits);
+  const long s = -(bits + 8);  // the grid of the new ends (and of c)
+  const long prec = std::max({64L, terms + bits + 10 - e, rational_bits(m) + 8, bits + 16 + mag});
+  arb_set_fmpq(M.v, m.get(), prec);  // exact: a short dyadic
   arb_fmpz_poly_evaluate_arb(fm.v, f.get(), M.v, prec);
+  if (ew < -kQuadraticNewtonBits) {
+    ArbVar fpm, g;
+    arb_fmpz_poly_evaluate_arb(fpm.v, df.get(), M.v, terms + 2 * static_cast<long>(FLINT_BIT_COUNT(static_cast<ulong>(n))) + 64);
+    if (arb_is_finite(fpm.v) && !arb_contains_zero(fpm.v)) {
+      arb_div(g.v, fm.v, fpm.v, prec);
+      arb_sub(g.v, M.v, g.v, prec);
+      Rational c;
+      arf_get_fmpq(c.get(), arb_midref(g.v));
+      c = grid_floor(c, s);
+      if (lo < c && c < hi) {
+        arb_set_fmpq(M.v, c.get(), prec);  // exact: bits + 8 bits below the point
+        arb_fmpz_poly_evaluate_arb(fm.v, f.get(), M.v, prec);
+      }
+    }
+  }
   arb_div(fm.v, fm.v, F.v, prec);
   arb_sub(N.v, M.v, fm.v, prec);
   if (!arb_is_finite(N.v)) return false;
@@ -148,7 +171,6 @@ bool interval_newton_step(const Poly& f, const ScaledEvaluator& sev, Rational& l
   arf_get_fmpq(qh.get(), b);
   arf_clear(a);
   arf_clear(b);
-  const long s = -(bits + 8);
   ql = grid_floor(ql, s) - pow2(s);
   qh = grid_floor(qh, s) + pow2(s + 1);  // >= the ceiling plus one step
   Rational nl = lo < ql ? ql : lo, nh = qh < hi ? qh : hi;
@@ -217,17 +239,17 @@ bool refine_isolating_interval(const Poly& f, Rational& lo, Rational& hi, long b
   Rational w = hi - lo;
   if (w <= target) return false;
   const long mag = magnitude_bits(lo, hi);
+  const Poly df = f.derivative();
   if (sev && sev->ev) {
     while (w > target) {
       check_time_budget();
-      if (!interval_newton_step(f, *sev, lo, hi, bits, mag)) break;
+      if (!interval_newton_step(f, df, *sev, lo, hi, bits, mag)) break;
       w = hi - lo;
     }
     if (w <= target) return false;
   }
   const int s_lo = exact_sign(f, lo);
   if (s_lo == 0) throw InvalidArgument("refine: the lower end " + lo.str() + " is a root of " + f.str());
-  const Poly df = f.derivative();
   const long start = floor_log2(w);
   // Every accepted Newton bracket or bisection at least halves the width;
   // failed Newton tries are at most logarithmically many per success.

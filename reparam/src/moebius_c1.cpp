@@ -12,6 +12,7 @@
 #include "moebius_detail.hpp"
 #include "uniparam/algebra/local_poly.hpp"
 #include "uniparam/algebra/real_roots.hpp"
+#include "uniparam/reparam/pieces.hpp"
 #include "uniparam/core/budget.hpp"
 #include "uniparam/core/error.hpp"
 #include "uniparam/core/parallel.hpp"
@@ -20,16 +21,6 @@
 namespace uniparam {
 
 namespace detail {
-
-Poly log_derivative_numerator(const Speed& s) {
-  // sigma^2 = g^2 S / D^2 with S = sum K^2, so (sigma^2)' / sigma^2 =
-  // 2 g'/g + S'/S - 2 D'/D = N1 / (g S D).
-  Poly S(0);
-  for (const auto& k : s.cofactors()) S = S + k * k;
-  const Poly& g = s.g();
-  const Poly& D = s.denominator();
-  return Poly(2) * g.derivative() * S * D + g * S.derivative() * D - Poly(2) * g * S * D.derivative();
-}
 
 C1Data c1_from_pieces(const std::vector<RealAlgebraic>& T, const std::vector<Ball>& S,
                       const std::vector<PieceIntegrals>& I, const Ball& mu, long prec) {
@@ -519,13 +510,9 @@ MoebiusResult detail::reparam_c1_traced(const Curve& c, SpeedKind kind, const Ra
     return r;
   }
   // T: 0, the zeros of sigma' in (0, 1), 1.
-  const Poly N1 = detail::log_derivative_numerator(s);
   std::vector<RealAlgebraic> T{RealAlgebraic(0)};
-  if (!N1.is_zero())
-    for (const auto& rt : isolate_real_roots(N1, Rational(0), Rational(1))) {
-      if (rt.is_exact() && (rt.lo.is_zero() || rt.lo == Rational(1))) continue;
-      T.emplace_back(rt);
-    }
+  for (auto& t : critical_points(s))
+    if (!(t.is_rational() && (t.rational().is_zero() || t.rational() == Rational(1)))) T.push_back(std::move(t));
   T.emplace_back(RealAlgebraic(1));
   SlidesEquation slides(c, s);
 

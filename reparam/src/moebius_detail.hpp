@@ -32,10 +32,6 @@ Ball certified_phi(const Speed& s, const std::vector<RealAlgebraic>& T, long bit
 /// The same from the piece integrals computed with that goal `bits`.
 Ball certified_phi(const std::vector<PieceIntegrals>& integrals, long bits);
 
-/// N1 = 2 g' S D + g S' D - 2 g S D' (S = sum K^2): sigma'/sigma = N1 / (2 g S D),
-/// so the zeros of sigma' where sigma != 0 are roots of N1.
-Poly log_derivative_numerator(const Speed& s);
-
 /// The C1 data of a piecewise Moebius map with breakpoints T and S: rho_i =
 /// dt_i / ds_i, k_i = (1 - alpha_i) / alpha_i from the C1 condition
 /// rho_i / k_i = rho_{i+1} k_{i+1} with the free parameter chosen optimally

@@ -141,42 +141,46 @@ std::vector<Breakpoint> mark_zeros(const Speed& s, const std::vector<RealAlgebra
   return out;
 }
 
+std::vector<RealAlgebraic> critical_points(const Speed& s) {
+  std::vector<RealAlgebraic> out;
+  if (s.identically_zero()) return out;
+  Poly P = critical_numerator(s);
+  if (P.is_zero()) return out;
+  // P's values from the speed's factors (degree ~d local expansions,
+  // coarse on the subdivision's intervals), not from P's power basis:
+  // for the isolation, and kept by the roots for their refinement (the
+  // integrals' ends), so the evaluator owns a copy of the speed (which
+  // shares the caches of s).
+  auto speed = std::make_shared<const Speed>(s);
+  const PolyEvaluator ev = [speed](arb_t v, arb_t d, const arb_t x, long prec) {
+    acb_t z, pv, pd;
+    acb_init(z);
+    acb_init(pv);
+    acb_init(pd);
+    acb_set_arb(z, x);
+    speed->eval_critical(pv, d ? pd : nullptr, z, prec);
+    arb_set(v, acb_realref(pv));  // P is real at real points: Re holds it
+    if (d) arb_set(d, acb_realref(pd));
+    acb_clear(z);
+    acb_clear(pv);
+    acb_clear(pd);
+  };
+  // ev evaluates P = lambda r.factor exactly when r.factor is P's
+  // primitive part (not a proper factor of P)
+  const Poly Pp = P.primitive();
+  const auto sev = std::make_shared<const ScaledEvaluator>(
+      ScaledEvaluator{ev, Rational(P.leading()) / Rational(Pp.leading())});
+  for (const auto& r : isolate_real_roots(P, ev, Rational(0), Rational(1))) {
+    if (!r.is_exact() && r.factor == Pp) out.emplace_back(r, sev);
+    else out.emplace_back(r);
+  }
+  return out;
+}
+
 std::vector<Breakpoint> critical_breakpoints(const Speed& s) {
   std::vector<RealAlgebraic> ts{RealAlgebraic(0), RealAlgebraic(1)};
-  if (!s.identically_zero()) {
-    for (const auto& z : s.zeros()) ts.push_back(z.t);
-    Poly P = critical_numerator(s);
-    if (!P.is_zero()) {
-      // P's values from the speed's factors (degree ~d local expansions,
-      // coarse on the subdivision's intervals), not from P's power basis:
-      // for the isolation, and kept by the roots for their refinement (the
-      // integrals' ends), so the evaluator owns a copy of the speed (which
-      // shares the caches of s).
-      auto speed = std::make_shared<const Speed>(s);
-      const PolyEvaluator ev = [speed](arb_t v, arb_t d, const arb_t x, long prec) {
-        acb_t z, pv, pd;
-        acb_init(z);
-        acb_init(pv);
-        acb_init(pd);
-        acb_set_arb(z, x);
-        speed->eval_critical(pv, d ? pd : nullptr, z, prec);
-        arb_set(v, acb_realref(pv));  // P is real at real points: Re holds it
-        if (d) arb_set(d, acb_realref(pd));
-        acb_clear(z);
-        acb_clear(pv);
-        acb_clear(pd);
-      };
-      // ev evaluates P = lambda r.factor exactly when r.factor is P's
-      // primitive part (not a proper factor of P)
-      const Poly Pp = P.primitive();
-      const auto sev = std::make_shared<const ScaledEvaluator>(
-          ScaledEvaluator{ev, Rational(P.coeff(P.degree())) / Rational(Pp.coeff(Pp.degree()))});
-      for (const auto& r : isolate_real_roots(P, ev, Rational(0), Rational(1))) {
-        if (!r.is_exact() && r.factor == Pp) ts.emplace_back(r, sev);
-        else ts.emplace_back(r);
-      }
-    }
-  }
+  for (const auto& z : s.zeros()) ts.push_back(z.t);
+  for (auto& t : critical_points(s)) ts.push_back(std::move(t));
   std::sort(ts.begin(), ts.end(), [](const RealAlgebraic& x, const RealAlgebraic& y) { return x < y; });
   std::vector<RealAlgebraic> uniq;
   for (auto& t : ts)

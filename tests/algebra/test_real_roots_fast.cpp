@@ -411,7 +411,9 @@ TEST(RealRootsFast, ScaledEvaluatorRefinesLikeTheExactPath) {
                      std::to_string(bits));
         const long before = calls;
         fast.refine(bits);
-        EXPECT_GE(calls - before, 2);  // interval Newton steps succeeded (a failing one stops the loop)
+        // Interval Newton steps succeeded: a failing one stops the loop, so
+        // the first refinement (from 2^-12, several steps) makes >= 2 calls.
+        EXPECT_GE(calls - before, bits == 40 ? 2 : 1);
         ASSERT_TRUE(fast.lo() < fast.hi());
         Rational width(1);
         fmpq_div_2exp(width.get(), width.get(), static_cast<flint_bitcnt_t>(bits));  // 2^-bits

@@ -25,6 +25,17 @@ struct Breakpoint {
 /// Which end of a piece is a zero of sigma (never both).
 enum class ZeroSide { None, Left, Right };
 
+/// The roots in [0, 1] of the critical numerator P = 2 g' Q D + g Q' D -
+/// 2 g Q D' (Q = sum K^2; (sigma^2)' = g P / D^3): the zeros of sigma' that
+/// are not zeros of g, increasing, rational ones exact (0 and 1 included
+/// when they are roots). P has degree ~11d; it is isolated and its
+/// irrational roots are refined from its values on the speed's factors
+/// (Speed::eval_critical: each root carries that evaluator and a copy of the
+/// speed, RealAlgebraic(IsolatedRoot, ScaledEvaluator)), never from P's
+/// power basis but for one evaluation per interval Newton step. Empty for
+/// an identically zero speed or P = 0.
+std::vector<RealAlgebraic> critical_points(const Speed& s);
+
 /// T = (0, every zero of sigma * sigma' in (0, 1), 1) in increasing order,
 /// zeros of sigma marked with their multiplicities (MATH.md section 4). Two
 /// consecutive zeros of sigma get their rational midpoint inserted between
