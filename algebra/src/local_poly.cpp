@@ -662,6 +662,37 @@ void LocalPoly::eval_double(double t, double* v, double* d1, double* d2) const {
   if (d2) *d2 = c[2];
 }
 
+void LocalPoly::eval_double_taylor(double t, int order, double* b) const {
+  if (order < 0 || order > 15) throw InvalidArgument("eval_double_taylor: order must be in [0, 15]");
+  std::vector<double> a;  // coefficients in w around a centre, then shifted by w
+  double w = t;
+  const long n = p_.degree();
+  if (n + 1 <= kMinLength || !(t >= 0 && t <= 1)) {
+    for (long k = 0; k <= n; ++k) a.push_back(fmpz_get_d(p_.get()->coeffs + k));
+  } else {
+    Cache& cache = *cache_;
+    const long wp = (64 + kGuardBits + FLINT_BITS - 1) / FLINT_BITS * FLINT_BITS;  // eval_double's cells
+    arf_t x;
+    arf_init(x);
+    arf_set_d(x, t);
+    const CellPtr cp = get_cell(cache.mu, cache.cells, cache.roots, p_, -1, wp, kPointLevel, cell_index(x, kPointLevel), false);
+    arf_clear(x);
+    a = cp->mid;
+    w = t - arf_get_d(cp->centre, ARF_RND_NEAR);
+  }
+  // Taylor shift by w (repeated synthetic division): after pass j, a[j] is
+  // the j-th coefficient at t; only the first order + 1 passes are needed.
+  const long len = static_cast<long>(a.size());
+  for (long j = 0; j <= order; ++j) {
+    if (j >= len) {
+      b[j] = 0;
+      continue;
+    }
+    for (long k = len - 2; k >= j; --k) a[static_cast<std::size_t>(k)] += w * a[static_cast<std::size_t>(k + 1)];
+    b[j] = a[static_cast<std::size_t>(j)];
+  }
+}
+
 void LocalPoly::eval(acb_t v, acb_t d1, acb_t d2, const acb_t z, long prec) const {
   if (p_.degree() + 1 <= kMinLength || !acb_is_finite(z) || !eval_cells(-1, v, d1, d2, z, prec))
     centred_eval(v, d1, d2, b_, b1_, b2_, z, prec);

@@ -329,12 +329,11 @@ Rational short_rational(const Ball& x, const Rational& w) {
 // roots at a zero of sigma are dropped.
 class SlidesEquation {
  public:
-  SlidesEquation(const Curve& c, const Speed& s) : angular_(s.kind() == SpeedKind::Angular) {
-    for (const auto& x : c.components()) {
-      const Poly n = x.num(), q = x.den();
-      comp_.push_back(Comp{LocalPoly(n), LocalPoly(n.derivative().derivative().derivative()), LocalPoly(q),
-                           LocalPoly(q.derivative().derivative().derivative())});
-    }
+  // The speed's own expansions of the components: their cells are mostly
+  // built by the quadratures already (same working precision).
+  explicit SlidesEquation(const Speed& s) : angular_(s.kind() == SpeedKind::Angular) {
+    for (std::size_t i = 0; i < s.component_count(); ++i)
+      comp_.push_back(Comp{s.component_numerator(i), s.component_denominator(i)});
     for (const auto& z : s.zeros()) zeros_d_.push_back(arf_get_d(arb_midref(z.t.to_ball(64).get()), ARF_RND_NEAR));
   }
 
@@ -383,17 +382,10 @@ class SlidesEquation {
   // components (LocalPoly::eval_double): UNCERTIFIED.
   double e_double(double t, double c1, double c0, double k2, double* d1) const {
     double A[4] = {0, 0, 0, 0}, B[4] = {0, 0, 0, 0}, C[4] = {0, 0, 0, 0};
-    static const double fact[6] = {1, 1, 2, 6, 24, 120};
     for (const auto& c : comp_) {
       double n[6], q[6], x[6], p1[5], p2[4];
-      c.n.eval_double(t, &n[0], &n[1], &n[2]);
-      c.n3.eval_double(t, &n[3], &n[4], &n[5]);
-      c.q.eval_double(t, &q[0], &q[1], &q[2]);
-      c.q3.eval_double(t, &q[3], &q[4], &q[5]);
-      for (int k = 0; k < 6; ++k) {
-        n[k] /= fact[k];
-        q[k] /= fact[k];
-      }
+      c.n.eval_double_taylor(t, 5, n);  // Taylor coefficients at t
+      c.q.eval_double_taylor(t, 5, q);
       for (int k = 0; k < 6; ++k) {  // x = n / q as series
         double v = n[k];
         for (int j = 1; j <= k; ++j) v -= q[j] * x[k - j];
@@ -433,7 +425,7 @@ class SlidesEquation {
   }
 
   struct Comp {
-    LocalPoly n, n3, q, q3;  // N, N''', Q, Q'''
+    LocalPoly n, q;  // numerator and denominator
   };
   bool angular_;
   std::vector<Comp> comp_;
@@ -514,7 +506,7 @@ MoebiusResult detail::reparam_c1_traced(const Curve& c, SpeedKind kind, const Ra
   for (auto& t : critical_points(s))
     if (!(t.is_rational() && (t.rational().is_zero() || t.rational() == Rational(1)))) T.push_back(std::move(t));
   T.emplace_back(RealAlgebraic(1));
-  SlidesEquation slides(c, s);
+  SlidesEquation slides(s);
 
   // The rounds choose T in floating point (draft_c1, UNCERTIFIED); a T whose
   // draft meets the target is certified (build) and accepted only if the

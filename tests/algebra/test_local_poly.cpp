@@ -8,7 +8,9 @@
 #include <flint/flint.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <functional>
+#include <string>
 #include <random>
 #include <thread>
 #include <vector>
@@ -385,6 +387,72 @@ TEST(LocalPoly, RealBallsGiveRealEnclosures) {
       for (acb_ptr x : {z, v, d1, d2}) acb_clear(x);
     }
   }
+}
+
+}  // namespace
+}  // namespace uniparam
+
+namespace uniparam {
+namespace {
+
+/// eval_double_taylor against the exact Taylor coefficients p^(j)(t) / j!
+/// (p shifted to the double t exactly, then rounded): random polynomials
+/// (Bernstein ones up to degree 160, whose power basis is useless in
+/// double), t inside [0, 1] (local expansions) and outside (power basis).
+/// The tolerance is 2^-40 of the coefficient's scale (inside: sum_k C(k, j)
+/// |e_k| 2^-(k-j), which double arithmetic on a level-6 cell meets by far;
+/// outside, that of the power basis' terms);
+/// fails with an off-by-one in the passes or the shift's sign.
+TEST(LocalPoly, DoubleTaylorCoefficientsMatchTheExactShift) {
+  std::mt19937_64 rng(777);
+  std::uniform_real_distribution<double> in(0.0, 1.0), out(1.0, 1.25);
+  for (long it = 0; it < iterations(30); ++it) {
+    const Poly p = random_test_poly(rng);
+    const LocalPoly lp(p);
+    for (int k = 0; k < 6; ++k) {
+      const double t = k < 5 ? in(rng) : out(rng);
+      const int order = 1 + static_cast<int>(rng() % 8);
+      std::vector<double> b(static_cast<std::size_t>(order + 1));
+      lp.eval_double_taylor(t, order, b.data());
+      // exact: p(t + h) = sum e_j h^j (t is a dyadic double)
+      arb_poly_t e;
+      arb_poly_init(e);
+      arb_poly_set_fmpz_poly(e, p.get(), ARF_PREC_EXACT);
+      arb_t tt;
+      arb_init(tt);
+      arb_set_d(tt, t);
+      arb_poly_taylor_shift(e, e, tt, 4 * (p.degree() + 64) + p.max_bits());
+      const long len = arb_poly_length(e);
+      auto ed = [&](long k) {
+        return k < len ? arf_get_d(arb_midref(arb_poly_get_coeff_ptr(e, k)), ARF_RND_NEAR) : 0.0;
+      };
+      for (int j = 0; j <= order; ++j) {
+        // Inside [0, 1]: the local expansion's scale near t. Outside: the
+        // power basis is used (documented), so the scale of its terms,
+        // sum_k C(k, j) |c_k| t^(k-j).
+        double scale = 0, binom = 1;
+        if (t <= 1) {
+          for (long k = j; k < len; ++k) {
+            scale += binom * std::fabs(ed(k)) * std::ldexp(1.0, -static_cast<int>(k - j));
+            binom = binom * static_cast<double>(k + 1) / static_cast<double>(k + 1 - j);
+          }
+        } else {
+          for (long k = j; k <= p.degree(); ++k) {
+            scale += binom * std::fabs(fmpz_get_d(p.get()->coeffs + k)) * std::pow(t, static_cast<double>(k - j));
+            binom = binom * static_cast<double>(k + 1) / static_cast<double>(k + 1 - j);
+          }
+        }
+        SCOPED_TRACE("degree " + std::to_string(p.degree()) + ", t = " + std::to_string(t) + ", j = " +
+                     std::to_string(j));
+        EXPECT_LE(std::fabs(b[static_cast<std::size_t>(j)] - ed(j)), std::ldexp(scale, -40) + 1e-300);
+      }
+      arb_clear(tt);
+      arb_poly_clear(e);
+    }
+  }
+  double b[17];
+  EXPECT_THROW(LocalPoly(Poly(std::vector<long>{1, 2, 3})).eval_double_taylor(0.5, 16, b), InvalidArgument);
+  EXPECT_THROW(LocalPoly(Poly(std::vector<long>{1, 2, 3})).eval_double_taylor(0.5, -1, b), InvalidArgument);
 }
 
 }  // namespace

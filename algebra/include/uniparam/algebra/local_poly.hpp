@@ -91,6 +91,10 @@ class LocalPoly {
   /// breakpoints), never for a reported number. t outside [0, 1] uses the
   /// power basis.
   void eval_double(double t, double* v, double* d1, double* d2) const;
+  /// UNCERTIFIED, as eval_double: the Taylor coefficients b[j] = p^(j)(t) / j!,
+  /// j = 0 .. order, in IEEE double, from the same local expansion (so the
+  /// same cells as eval_double). \pre 0 <= order <= 15 (InvalidArgument).
+  void eval_double_taylor(double t, int order, double* b) const;
 
   const Poly& poly() const { return p_; }
   long length() const { return p_.degree() + 1; }

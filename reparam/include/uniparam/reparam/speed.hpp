@@ -66,6 +66,12 @@ class Speed {
   /// K_1, ..., K_m and D of the factored form.
   const std::vector<Poly>& cofactors() const { return K_; }
   const Poly& denominator() const { return D_; }
+  /// The local expansions of component i's numerator and denominator (copies
+  /// share the caches this speed's evaluations fill; equal denominators are
+  /// one). \pre i < component_count() (std::out_of_range otherwise).
+  const LocalPoly& component_numerator(std::size_t i) const { return comp_.at(i).N; }
+  const LocalPoly& component_denominator(std::size_t i) const { return comp_.at(i).Q; }
+  std::size_t component_count() const { return comp_.size(); }
 
   /// Signs that fix sigma's analytic continuation on one piece (a, b) free of
   /// zeros of sigma (\pre a < b, checked: DomainError).
