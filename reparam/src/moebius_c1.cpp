@@ -494,7 +494,18 @@ MoebiusResult detail::reparam_c1_traced(const Curve& c, SpeedKind kind, const Ra
   validate(opt);
   check_degree(c, opt);
   const Speed s(c, kind);
-  const UniformityResult base = uniformity(s, opt);
+  // The uniformity (its own parallel loop) and the critical points (one
+  // root isolation of a polynomial of degree ~11d, serial) side by side, as
+  // in radical(): the second on its own copy of the speed.
+  UniformityResult base;
+  std::vector<RealAlgebraic> critical;
+  {
+    const Speed s_copy = s;
+    parallel_for(2, std::min<std::size_t>(worker_count(), 2), [&](std::size_t, std::size_t i) {
+      if (i == 0) base = uniformity(s, opt);
+      else critical = critical_points(s_copy);
+    });
+  }
   if (s.identically_zero()) {
     MoebiusResult r = detail::moebius_c0(s, base, {RealAlgebraic(0), RealAlgebraic(1)}, opt);
     r.continuity = Continuity::C1;
@@ -503,7 +514,7 @@ MoebiusResult detail::reparam_c1_traced(const Curve& c, SpeedKind kind, const Ra
   }
   // T: 0, the zeros of sigma' in (0, 1), 1.
   std::vector<RealAlgebraic> T{RealAlgebraic(0)};
-  for (auto& t : critical_points(s))
+  for (auto& t : critical)
     if (!(t.is_rational() && (t.rational().is_zero() || t.rational() == Rational(1)))) T.push_back(std::move(t));
   T.emplace_back(RealAlgebraic(1));
   SlidesEquation slides(s);

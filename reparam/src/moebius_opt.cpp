@@ -5,6 +5,7 @@
 // sqrt M_i evaluated in floating point (uncertified, float_quadrature.hpp);
 // everything reported is then certified by moebius_c0 on the chosen rational
 // T. A wrong choice can only cost optimality, never correctness.
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "float_quadrature.hpp"
 #include "moebius_detail.hpp"
 #include "uniparam/core/error.hpp"
+#include "uniparam/core/parallel.hpp"
 #include "uniparam/reparam/moebius.hpp"
 
 namespace uniparam {
@@ -215,19 +217,35 @@ MoebiusResult reparam_c0(const Curve& c, SpeedKind kind, long N, const Options& 
     r.optimiser.phi = r.optimiser.phi_equal = detail::phi_of(r, 2 * digits_to_bits(opt.digits) + 64);
     return r;
   }
-  const UniformityResult base = uniformity(s, opt);
-  const OptimisedT o = optimise(s, N);
-  std::vector<RealAlgebraic> T = round_breakpoints(o.t, 1e-9);
+  // The uniformity (its own parallel loop) and the optimised breakpoints
+  // with their piece integrals do not depend on each other: side by side,
+  // each fills the cores the other's last tasks leave idle. The second
+  // works on its own copy of the speed (caches are shared and locked, see
+  // LocalPoly and RealAlgebraic). The results do not depend on the threads.
   // The pieces of the chosen T (moebius_c0's first round) and of the equally
   // spaced T (the certified comparison below, at modest accuracy, enough to
-  // order them) in one parallel loop: 2N tasks keep the workers busier than
-  // N and N one after the other.
+  // order them) go in one parallel loop: 2N tasks keep the workers busier
+  // than N and N one after the other.
   constexpr long kCompareBits = 40;
-  const auto batch = all_piece_integrals(
-      s,
-      {PieceJob{detail::moebius_breakpoints(s, T), detail::moebius_first_bits(opt)},
-       PieceJob{detail::moebius_breakpoints(s, equal), kCompareBits}},
-      opt.max_prec);
+  UniformityResult base;
+  OptimisedT o;
+  std::vector<RealAlgebraic> T;
+  std::vector<std::vector<PieceIntegrals>> batch;
+  {
+    const Speed s_copy = s;
+    parallel_for(2, std::min<std::size_t>(worker_count(), 2), [&](std::size_t, std::size_t i) {
+      if (i == 0) {
+        base = uniformity(s, opt);
+        return;
+      }
+      o = optimise(s_copy, N);
+      T = round_breakpoints(o.t, 1e-9);
+      batch = all_piece_integrals(s_copy,
+                                  {PieceJob{detail::moebius_breakpoints(s_copy, T), detail::moebius_first_bits(opt)},
+                                   PieceJob{detail::moebius_breakpoints(s_copy, equal), kCompareBits}},
+                                  opt.max_prec);
+    });
+  }
   MoebiusResult r = detail::moebius_c0(s, base, T, opt, &batch[0]);
   const long prec = 2 * digits_to_bits(opt.digits) + 64;
   Ball phi = detail::phi_of(r, prec);
