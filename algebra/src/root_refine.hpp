@@ -4,10 +4,10 @@
 // deflation.cpp.
 #pragma once
 
+#include "uniparam/algebra/real_roots.hpp"
 #include "uniparam/core/ball.hpp"
 #include "uniparam/core/number.hpp"
 #include "uniparam/core/poly.hpp"
-#include "uniparam/algebra/real_roots.hpp"
 
 namespace uniparam::detail {
 
@@ -31,12 +31,13 @@ int exact_sign(const Poly& f, const Rational& x);
 /// instead of restarting at 2. A hint only; the result's guarantees do not
 /// depend on it.
 /// sev, when non-null, evaluates lambda f (real_roots.hpp). Interval
-/// Newton steps then come first: the root lies in m - f(m) / f'(X), with
-/// f(m) from f's power basis at a dyadic m in the middle and f'(X) an
-/// enclosure of f' on (lo, hi) from sev at 64 bits, on a ball of radius at
-/// least 2^-23 (the evaluator's cheap coarse bounds, see local_poly.hpp).
-/// One power-basis evaluation a step and no exact sign; each step gains
-/// about 20 bits (more while the width is large). Where a step does not
+/// Newton steps then come first: the root lies in c - f(c) / F, with f(c)
+/// from f's power basis at a short dyadic c and F an enclosure of f' on
+/// (lo, hi) from sev at 64 bits, on a ball of radius at least 2^-23 (the
+/// evaluator's cheap coarse bounds, see local_poly.hpp). No exact sign.
+/// c is the middle (one power-basis evaluation a step, a gain of ~10-20
+/// bits) while the width is above 2^-24, then the power-basis Newton guess
+/// (three evaluations, the width roughly squared). Where a step does not
 /// halve the width the exact steps above take over. Same postconditions.
 bool refine_isolating_interval(const Poly& f, Rational& lo, Rational& hi, long bits, long* newton_log = nullptr,
                                const ScaledEvaluator* sev = nullptr);

@@ -11,12 +11,11 @@
 #include "float_quadrature.hpp"
 #include "moebius_detail.hpp"
 #include "uniparam/algebra/local_poly.hpp"
-#include "uniparam/algebra/real_roots.hpp"
-#include "uniparam/reparam/pieces.hpp"
 #include "uniparam/core/budget.hpp"
 #include "uniparam/core/error.hpp"
 #include "uniparam/core/parallel.hpp"
 #include "uniparam/reparam/moebius.hpp"
+#include "uniparam/reparam/pieces.hpp"
 
 namespace uniparam {
 
@@ -379,7 +378,7 @@ class SlidesEquation {
  private:
   static constexpr int kScan = 64;
   // E(t) (and E'(t) into d1 if non-null) in IEEE double from the jets of the
-  // components (LocalPoly::eval_double): UNCERTIFIED.
+  // components (LocalPoly::eval_double_taylor): UNCERTIFIED.
   double e_double(double t, double c1, double c0, double k2, double* d1) const {
     double A[4] = {0, 0, 0, 0}, B[4] = {0, 0, 0, 0}, C[4] = {0, 0, 0, 0};
     for (const auto& c : comp_) {

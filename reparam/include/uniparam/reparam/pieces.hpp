@@ -32,8 +32,8 @@ enum class ZeroSide { None, Left, Right };
 /// irrational roots are refined from its values on the speed's factors
 /// (Speed::eval_critical: each root carries that evaluator and a copy of the
 /// speed, RealAlgebraic(IsolatedRoot, ScaledEvaluator)), never from P's
-/// power basis but for one evaluation per interval Newton step. Empty for
-/// an identically zero speed or P = 0.
+/// power basis but for one to three evaluations per interval Newton step.
+/// Empty for an identically zero speed or P = 0.
 std::vector<RealAlgebraic> critical_points(const Speed& s);
 
 /// T = (0, every zero of sigma * sigma' in (0, 1), 1) in increasing order,
