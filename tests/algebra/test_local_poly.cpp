@@ -10,8 +10,8 @@
 
 #include <cmath>
 #include <functional>
-#include <string>
 #include <random>
+#include <string>
 #include <thread>
 #include <vector>
 
