@@ -378,6 +378,10 @@ std::size_t LocalPoly::cells() const {
 
 namespace {
 
+// A cell's centre is its parent's plus child_side(j) 2^-(level+1): the odd
+// index is the right half.
+int child_side(unsigned long long j) { return (j & 1) ? 1 : -1; }
+
 // The cell (level, j) of variant `variant` (-1: p; i >= 0: p / (t - roots[i]))
 // at working precision wp, built on demand.
 // Thread-safe: the map and the roots are read and written under `mu`; the
@@ -405,11 +409,7 @@ CellPtr get_cell(std::mutex& mu, CellMap& cells, const std::vector<RealAlgebraic
     bool built = false;
     if (level > kExactLevel) {
       const CellPtr parent = get_cell(mu, cells, roots, p, variant, wp, level - 1, j >> 1, true);
-      arb_t delta;
-      arb_init(delta);
-      arf_sub(arb_midref(delta), cell->centre, parent->centre, ARF_PREC_EXACT, ARF_RND_DOWN);
-      arb_poly_taylor_shift(cell->P, parent->P, delta, kCoarsePrec);
-      arb_clear(delta);
+      taylor_shift_pow2(cell->P, parent->P, -(level + 1), child_side(j), kCoarsePrec);
       for (int t = 0; t < 3; ++t) mag_set(cell->tail + t, parent->tail + t);
       truncate(*cell, kCoarseBits);
       built = level > kMaxExactLevel || accurate(*cell, kCoarseBits + kGuardBits);
@@ -432,11 +432,7 @@ CellPtr get_cell(std::mutex& mu, CellMap& cells, const std::vector<RealAlgebraic
     // |t - c| <= 2h = h_p (|c - c_p| = h_p / 2), so its tail bounds hold here.
     const CellPtr parent_ptr = get_cell(mu, cells, roots, p, variant, wp, level - 1, j >> 1, false);
     const Cell& parent = *parent_ptr;
-    arb_t delta;
-    arb_init(delta);
-    arf_sub(arb_midref(delta), cell->centre, parent.centre, ARF_PREC_EXACT, ARF_RND_DOWN);
-    arb_poly_taylor_shift(cell->P, parent.P, delta, wp);
-    arb_clear(delta);
+    taylor_shift_pow2(cell->P, parent.P, -(level + 1), child_side(j), wp);
     for (int t = 0; t < 3; ++t) mag_set(cell->tail + t, parent.tail + t);
     truncate(*cell, wp);
     // p may be far larger on the parent's disc than on this cell's: then the

@@ -21,6 +21,7 @@
 
 #include "root_refine.hpp"
 #include "uniparam/algebra/squarefree.hpp"
+#include "uniparam/core/ball_poly.hpp"
 #include "uniparam/core/budget.hpp"
 #include "uniparam/core/error.hpp"
 
@@ -612,11 +613,7 @@ int end_test(const Expansion& e, long log2h, int dir, long prec) {
   arb_poly_t B;
   arb_poly_init(B);
   arb_poly_set_round(B, e.P, prec);
-  ArbVar d;
-  arb_one(d.v);
-  arb_mul_2exp_si(d.v, d.v, log2h);  // shift to the end m - dir h
-  if (dir > 0) arb_neg(d.v, d.v);
-  arb_poly_taylor_shift(B, B, d.v, prec);
+  taylor_shift_pow2(B, B, log2h, -dir, prec);  // shift to the end m - dir h
   const slong n = arb_poly_length(B);
   int result = 0;
   if (n >= 2) {
@@ -748,7 +745,6 @@ void subdivide(const Poly& G, std::vector<Cell>& leaves, std::vector<Cell>& exac
   }
   long cells = 0;
   MagVar var0, var1, lo, err, rad;
-  ArbVar delta;
   while (!stack.empty()) {
     SubCell sc = std::move(stack.back());
     stack.pop_back();
@@ -826,11 +822,8 @@ void subdivide(const Poly& G, std::vector<Cell>& leaves, std::vector<Cell>& exac
     }
     for (int side : {1, -1}) {  // the right child first: the left is processed first
       auto ch = std::make_unique<Expansion>();
-      arb_one(delta.v);
-      arb_mul_2exp_si(delta.v, delta.v, log2h - 1);
-      if (side < 0) arb_neg(delta.v, delta.v);
       arb_poly_set_round(ch->P, e.P, cwp);
-      arb_poly_taylor_shift(ch->P, ch->P, delta.v, cwp);
+      taylor_shift_pow2(ch->P, ch->P, log2h - 1, side, cwp);
       mag_set(ch->tail0, e.tail0);
       mag_set(ch->tail1, e.tail1);
       truncate_expansion(*ch, log2h - 1, an.eps.v);

@@ -1,0 +1,187 @@
+// Tests of taylor_shift_pow2 (core/ball_poly.hpp): random ball polynomials
+// against the exact shift of exact polynomials picked inside their balls.
+#include <gtest/gtest.h>
+
+#include <arb_poly.h>
+#include <flint/fmpq.h>
+
+#include <random>
+#include <vector>
+
+#include "support/iterations.hpp"
+#include "uniparam/core/ball_poly.hpp"
+#include "uniparam/core/error.hpp"
+#include "uniparam/core/number.hpp"
+
+namespace uniparam {
+namespace {
+
+using test_support::iterations;
+
+struct ArbPoly {
+  arb_poly_t v;
+  ArbPoly() { arb_poly_init(v); }
+  ~ArbPoly() { arb_poly_clear(v); }
+  ArbPoly(const ArbPoly&) = delete;
+  ArbPoly& operator=(const ArbPoly&) = delete;
+};
+
+// 2^e as a rational, any sign of e.
+Rational pow2q(long e) {
+  Rational r(1);
+  if (e >= 0) fmpq_mul_2exp(r.get(), r.get(), static_cast<ulong>(e));
+  else fmpq_div_2exp(r.get(), r.get(), static_cast<ulong>(-e));
+  return r;
+}
+
+// The exact midpoint and radius of a ball as rationals.
+Rational mid_q(const arb_t x) {
+  Rational q;
+  arf_get_fmpq(q.get(), arb_midref(x));
+  return q;
+}
+Rational rad_q(const arb_t x) {
+  arf_t r;
+  arf_init(r);
+  arf_set_mag(r, arb_radref(x));
+  Rational q;
+  arf_get_fmpq(q.get(), r);
+  arf_clear(r);
+  return q;
+}
+
+bool contains(const arb_t x, const Rational& q) { return arb_contains_fmpq(x, q.get()); }
+
+// out_j = sum_{k >= j} C(k, j) a_k d^(k - j), exactly.
+std::vector<Rational> exact_shift(const std::vector<Rational>& a, const Rational& d) {
+  const std::size_t n = a.size();
+  std::vector<Rational> out(n, Rational(0));
+  for (std::size_t j = 0; j < n; ++j) {
+    Rational dk(1);  // d^(k - j)
+    Integer binom(1);  // C(k, j)
+    for (std::size_t k = j; k < n; ++k) {
+      if (k > j) {
+        dk = dk * d;
+        fmpz_mul_ui(binom.get(), binom.get(), static_cast<ulong>(k));
+        fmpz_divexact_ui(binom.get(), binom.get(), static_cast<ulong>(k - j));
+      }
+      out[j] = out[j] + Rational(binom) * a[k] * dk;
+    }
+  }
+  return out;
+}
+
+// A random ball polynomial: midpoints of random sizes (exponents spread
+// over ~100 bits, some zero), radii zero or a little below the midpoints'
+// last bits.
+void random_ball_poly(arb_poly_t p, std::mt19937_64& rng, long n, long bits) {
+  std::uniform_int_distribution<long> expo(-60, 40), coin(0, 3);
+  std::uniform_int_distribution<ulong> mant(0, ~0ULL);
+  arb_poly_fit_length(p, n);
+  for (long k = 0; k < n; ++k) {
+    arb_ptr c = p->coeffs + k;
+    if (coin(rng) == 0) {
+      arb_zero(c);
+    } else {
+      fmpz_t m;
+      fmpz_init(m);
+      fmpz_set_ui(m, mant(rng));
+      for (long b = 64; b < bits; b += 64) {
+        fmpz_mul_2exp(m, m, 64);
+        fmpz_add_ui(m, m, mant(rng));
+      }
+      if (coin(rng) < 2) fmpz_neg(m, m);
+      arb_set_fmpz(c, m);
+      arb_mul_2exp_si(c, c, expo(rng) - bits);
+      fmpz_clear(m);
+    }
+    if (coin(rng) != 0) {
+      mag_set_ui_2exp_si(arb_radref(c), static_cast<ulong>(coin(rng) + 1), expo(rng) - bits);
+    }
+  }
+  _arb_poly_set_length(p, n);
+  _arb_poly_normalise(p);
+}
+
+TEST(TaylorShiftPow2, EnclosesTheExactShiftOfEveryPolynomialInTheBalls) {
+  std::mt19937_64 rng(20261122);
+  std::uniform_int_distribution<long> len(1, 40), ex(-12, 3), pick(-4, 4);
+  std::uniform_int_distribution<int> sign(0, 1);
+  const long precs[] = {53, 64, 128, 300};
+  for (long it = 0; it < iterations(60); ++it) {
+    const long n = len(rng), e = ex(rng), prec = precs[it % 4];
+    const int s = sign(rng) ? 1 : -1;
+    ArbPoly p, q;
+    random_ball_poly(p.v, rng, n, prec + 20);
+    taylor_shift_pow2(q.v, p.v, e, s, prec);
+    // Polynomials inside p's balls: mid + t rad with t in {-1, -3/4, ..., 1},
+    // the ends included (where a dropped radius shows).
+    for (int trial = 0; trial < 3; ++trial) {
+      std::vector<Rational> a;
+      for (long k = 0; k < arb_poly_length(p.v); ++k) {
+        const arb_struct* c = p.v->coeffs + k;
+        const long t = trial == 0 ? 4 : trial == 1 ? -4 : pick(rng);
+        a.push_back(mid_q(c) + rad_q(c) * Rational(t, 4));
+      }
+      const std::vector<Rational> want = exact_shift(a, Rational(s) * pow2q(e));
+      ASSERT_EQ(static_cast<long>(want.size()), arb_poly_length(p.v));
+      for (std::size_t j = 0; j < want.size(); ++j) {
+        arb_t got;
+        arb_init(got);
+        arb_poly_get_coeff_arb(got, q.v, static_cast<slong>(j));
+        EXPECT_TRUE(contains(got, want[j])) << "n = " << n << ", e = " << e << ", s = " << s << ", coefficient " << j;
+        arb_clear(got);
+      }
+    }
+  }
+}
+
+TEST(TaylorShiftPow2, AnExactInputIsRoundedOnceToPrec) {
+  // Exact balls: every output is the exact shift rounded once, so its
+  // radius is at most 2^-prec of its midpoint (Arb's arb_poly_taylor_shift
+  // rounds at every step and may not be this tight; a shift that truncated
+  // the inputs would not be).
+  std::mt19937_64 rng(7);
+  std::uniform_int_distribution<long> len(2, 60), ex(-10, 0);
+  for (long it = 0; it < iterations(40); ++it) {
+    const long n = len(rng), e = ex(rng), prec = 64 + 32 * (it % 5);
+    ArbPoly p, q;
+    random_ball_poly(p.v, rng, n, prec);
+    for (long k = 0; k < arb_poly_length(p.v); ++k) mag_zero(arb_radref(p.v->coeffs + k));
+    taylor_shift_pow2(q.v, p.v, e, it % 2 ? 1 : -1, prec);
+    for (long k = 0; k < arb_poly_length(q.v); ++k) {
+      const arb_struct* c = q.v->coeffs + k;
+      if (arf_is_zero(arb_midref(c))) {
+        EXPECT_TRUE(mag_is_zero(arb_radref(c)));
+        continue;
+      }
+      mag_t m;
+      mag_init(m);
+      arf_get_mag(m, arb_midref(c));
+      mag_mul_2exp_si(m, m, -prec + 1);
+      EXPECT_LE(mag_cmp(arb_radref(c), m), 0) << "coefficient " << k << " of " << n;
+      mag_clear(m);
+    }
+  }
+}
+
+TEST(TaylorShiftPow2, NonFiniteBallsAndAliasing) {
+  ArbPoly p;
+  arb_poly_set_coeff_si(p.v, 0, 1);
+  arb_poly_set_coeff_si(p.v, 1, 2);
+  arb_poly_set_coeff_si(p.v, 2, 3);  // 1 + 2w + 3w^2
+  // in place, w -> w + 1/2: 1 + 1 + 3/4, 2 + 3, 3
+  taylor_shift_pow2(p.v, p.v, -1, 1, 64);
+  EXPECT_TRUE(contains(p.v->coeffs + 0, Rational(11, 4)));
+  EXPECT_TRUE(contains(p.v->coeffs + 1, Rational(5)));
+  EXPECT_TRUE(contains(p.v->coeffs + 2, Rational(3)));
+  // an infinite radius spreads to every coefficient it reaches, never lost
+  mag_inf(arb_radref(p.v->coeffs + 2));
+  taylor_shift_pow2(p.v, p.v, -3, -1, 64);
+  for (long k = 0; k < 3; ++k) EXPECT_FALSE(arb_is_finite(p.v->coeffs + k)) << k;
+  EXPECT_THROW(taylor_shift_pow2(p.v, p.v, 0, 0, 64), InvalidArgument);
+  EXPECT_THROW(taylor_shift_pow2(p.v, p.v, 0, 2, 64), InvalidArgument);
+}
+
+}  // namespace
+}  // namespace uniparam
