@@ -50,43 +50,61 @@ RadicalResult radical(const Curve& c, SpeedKind kind, const Options& opt) {
   check_degree(c, opt);
   const Speed s(c, kind);
   RadicalResult r;
-  // The uniformity (its own parallel loop) and the critical points (one
-  // serial root isolation of a polynomial of degree ~12d for a space curve)
-  // do not depend on each other: side by side, the isolation fills the
-  // cores the uniformity's tasks leave idle. The second task works on its
-  // own copy of the speed (caches are shared and locked, see LocalPoly and
-  // RealAlgebraic). The results do not depend on the threads.
-  UniformityResult base;
-  {
-    const Speed s_copy = s;
-    parallel_for(2, std::min<std::size_t>(worker_count(), 2), [&](std::size_t, std::size_t i) {
-      if (i == 0) base = uniformity(s, opt);
-      else r.T = critical_breakpoints(s_copy);
-    });
-  }
   r.kind = kind;
-  r.mu = base.mu;
-  r.u_before = base.u;
-  r.identically_zero = base.identically_zero;
-  const std::size_t N = r.T.size() - 1;
+  r.identically_zero = s.identically_zero();
   if (r.identically_zero) {
+    r.T = critical_breakpoints(s);
+    r.mu = Ball(0);
+    r.u_before = Ball(1);
     r.S = r.Z = {Ball(0), Ball(1)};
     r.u_radical = r.u_after = Ball(1);
     r.integrals.assign(1, piece_integrals(s, r.T[0], r.T[1], 64, opt.max_prec));
     r.A = r.B = r.C = {Ball(0)};
     return r;
   }
+  // mu (its own parallel loop) and the critical points (one serial root
+  // isolation of a polynomial of degree ~12d for a space curve) do not
+  // depend on each other: side by side, the isolation fills the cores mu's
+  // tasks leave idle. The second task works on its own copy of the speed
+  // (caches are shared and locked, see LocalPoly and RealAlgebraic). The
+  // results do not depend on the threads.
+  // The integral of sigma^2 for u_before is not computed here: a piece
+  // without zeros has L_i = Delta t_i int sigma^2 over it (rho = Delta t),
+  // so only the pieces with a zero at an end need their own.
+  long mu_bits = digits_to_bits(opt.digits);
+  {
+    const Speed s_copy = s;
+    parallel_for(2, std::min<std::size_t>(worker_count(), 2), [&](std::size_t, std::size_t i) {
+      if (i == 0) r.mu = mean_speed(s, mu_bits, opt);
+      else r.T = critical_breakpoints(s_copy);
+    });
+  }
+  const std::size_t N = r.T.size() - 1;
+  bool raise_mu = false;
   for (long bits = digits_to_bits(opt.digits) + 8;; bits += 32) {
     check_time_budget();
     const long prec = 2 * bits + 64;
+    if (raise_mu && bits > mu_bits) {
+      mu_bits = bits;
+      r.mu = mean_speed(s, mu_bits, opt);
+    }
     r.integrals = all_piece_integrals(s, r.T, bits, opt.max_prec);
     std::vector<Ball> sqrtL(N), sqrtM(N);
-    Ball sumL(0), sumM(0);
+    Ball sumL(0), sumM(0), mean_square(0);
     for (std::size_t i = 0; i < N; ++i) {
       arb_sqrt(sqrtL[i].get(), r.integrals[i].L.get(), prec);
       arb_sqrt(sqrtM[i].get(), r.integrals[i].M.get(), prec);
       arb_add(sumL.get(), sumL.get(), sqrtL[i].get(), prec);
       arb_add(sumM.get(), sumM.get(), sqrtM[i].get(), prec);
+      Ball part;
+      if (r.side(i) == ZeroSide::None) {
+        Ball dt;
+        arb_sub(dt.get(), r.T[i + 1].t.to_ball(prec).get(), r.T[i].t.to_ball(prec).get(), prec);
+        arb_div(part.get(), r.integrals[i].L.get(), dt.get(), prec);
+      } else {
+        part = integrate_speed_squared(s, r.T[i].t, r.T[i + 1].t, bits, opt.max_prec);
+      }
+      arb_add(mean_square.get(), mean_square.get(), part.get(), prec);
     }
     r.S = cumulative(sqrtL, sumL, prec);
     r.Z = cumulative(sqrtM, sumM, prec);
@@ -105,16 +123,21 @@ RadicalResult radical(const Curve& c, SpeedKind kind, const Options& opt) {
     }
     Ball mu2;
     arb_mul(mu2.get(), r.mu.get(), r.mu.get(), prec);
+    arb_div(r.u_before.get(), mu2.get(), mean_square.get(), prec);
     arb_mul(sumL.get(), sumL.get(), sumL.get(), prec);
     arb_div(r.u_radical.get(), mu2.get(), sumL.get(), prec);
     arb_mul(sumM.get(), sumM.get(), sumM.get(), prec);
     arb_div(r.u_after.get(), mu2.get(), sumM.get(), prec);
 
     const long d = opt.digits + 1;
-    bool ok = r.u_radical.meets_digits(d) && r.u_after.meets_digits(d) && all_meet(r.S, d) && all_meet(r.Z, d) &&
-              all_meet(r.A, d) && all_meet(r.B, d) && all_meet(r.C, d);
+    const bool mu_ok = r.mu.meets_digits(d) && r.u_before.meets_digits(d) && r.u_radical.meets_digits(d) &&
+                       r.u_after.meets_digits(d);
+    bool ok = mu_ok && all_meet(r.S, d) && all_meet(r.Z, d) && all_meet(r.A, d) && all_meet(r.B, d) &&
+              all_meet(r.C, d);
     for (const auto& pi : r.integrals) ok = ok && pi.L.meets_digits(d) && pi.M.meets_digits(d) && pi.alpha.meets_digits(d);
     if (ok) return r;
+    // the quantities made with mu: mu may be the one short of accuracy
+    raise_mu = !mu_ok;
     if (bits > opt.max_prec)
       throw BudgetExceeded("could not certify the radical reparameterization to " + std::to_string(opt.digits) +
                            " digits within " + std::to_string(opt.max_prec) +

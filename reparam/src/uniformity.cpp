@@ -103,6 +103,70 @@ void check_degree(const Curve& c, const Options& opt) {
                          std::to_string(opt.max_degree) + " (raise it with --max-degree)");
 }
 
+namespace {
+
+// mu (and, with squares, the integral of sigma^2) over [0, 1] at relative
+// accuracy 2^-bits: the pieces of mu and of the integral of sigma^2 are
+// independent, spread over worker threads, each extra worker with its own
+// copies of the speed and the ends (both keep mutable caches), made before
+// any starts. The zeros are refined once before the workers start (copies
+// share their refinement; this keeps two workers from refining one number
+// at once); value-neutral: RealAlgebraic::to_ball depends on (t, prec)
+// alone. The first attempt asks for bits + 67 bits (integrate's working
+// precision bits + 32, to_ball's refinement + 35).
+void speed_integrals(const Speed& s, long bits, long max_prec, bool squares, Ball& mu, Ball& mean_square) {
+  const RealAlgebraic zero(0), one(1);
+  for (const SpeedZero& z : s.zeros()) z.t.refine(bits + 67);
+  // mu's pieces end at the zeros of sigma (where it is not analytic) and
+  // at the split points; the integral of sigma^2 (analytic) only at the
+  // split points.
+  const long parts = split_parts(s);
+  const std::vector<RealAlgebraic> ends = detail::with_split_points(speed_piece_ends(s, zero, one), parts);
+  const std::vector<RealAlgebraic> sq_ends =
+      squares ? detail::with_split_points({zero, one}, parts) : std::vector<RealAlgebraic>{zero};
+  const std::size_t pieces = ends.size() - 1, sq_pieces = sq_ends.size() - 1, tasks = pieces + sq_pieces;
+  const std::size_t workers = std::min(worker_count(), tasks);
+  std::vector<Speed> speeds(workers > 1 ? workers - 1 : 0, s);
+  std::vector<std::vector<RealAlgebraic>> ends_copies(speeds.size(), ends), sq_copies(speeds.size(), sq_ends);
+  std::vector<Ball> results(tasks);
+  parallel_for(tasks, workers, [&](std::size_t w, std::size_t i) {
+    const Speed& sw = w == 0 ? s : speeds[w - 1];
+    const std::vector<RealAlgebraic>& ew = w == 0 ? ends : ends_copies[w - 1];
+    const std::vector<RealAlgebraic>& qw = w == 0 ? sq_ends : sq_copies[w - 1];
+    const std::size_t k = i - pieces;
+    results[i] = i < pieces ? integrate_speed_piece(sw, ew[i], ew[i + 1], bits, max_prec)
+                            : integrate_speed_squared(sw, qw[k], qw[k + 1], bits, max_prec);
+  });
+  // sigma and sigma^2 are >= 0: the relative accuracy of every part holds
+  // for their sum.
+  mu = Ball(0);
+  mean_square = Ball(0);
+  for (std::size_t i = 0; i < tasks; ++i)
+    arb_add(i < pieces ? mu.get() : mean_square.get(), i < pieces ? mu.get() : mean_square.get(), results[i].get(),
+            2 * bits + 64);
+}
+
+// BudgetExceeded when `digits` need more bits than max_prec: the integrals
+// cannot reach a relative accuracy finer than the working precision, so
+// refuse at once rather than after hopeless attempts.
+void check_digits_fit(const Options& opt) {
+  if (digits_to_bits(opt.digits) > opt.max_prec)
+    throw BudgetExceeded(std::to_string(opt.digits) + " digits need more than " +
+                         std::to_string(digits_to_bits(opt.digits)) + " bits of working precision, above the " +
+                         "precision limit of " + std::to_string(opt.max_prec) + " bits (raise it with --max-prec)");
+}
+
+}  // namespace
+
+Ball mean_speed(const Speed& s, long rel_goal_bits, const Options& opt) {
+  validate(opt);
+  if (s.identically_zero()) return Ball(0);
+  check_digits_fit(opt);
+  Ball mu, unused;
+  speed_integrals(s, rel_goal_bits, opt.max_prec, false, mu, unused);
+  return mu;
+}
+
 UniformityResult uniformity(const Curve& c, SpeedKind kind, const Options& opt) {
   validate(opt);
   check_degree(c, opt);
@@ -122,51 +186,11 @@ UniformityResult uniformity(const Speed& s, const Options& opt) {
     r.u = Ball(1);
     return r;
   }
-  // The integrals cannot reach a relative accuracy finer than the working
-  // precision: refuse at once rather than after hopeless attempts.
-  if (digits_to_bits(opt.digits) > opt.max_prec)
-    throw BudgetExceeded(std::to_string(opt.digits) + " digits need more than " +
-                         std::to_string(digits_to_bits(opt.digits)) + " bits of working precision, above the " +
-                         "precision limit of " + std::to_string(opt.max_prec) + " bits (raise it with --max-prec)");
-  const RealAlgebraic zero(0), one(1);
+  check_digits_fit(opt);
   // Each integral to relative accuracy 2^-bits gives u to about 4 * 2^-bits.
   for (long bits = digits_to_bits(opt.digits); ; bits += 32) {
     check_time_budget();
-    // The pieces of mu and the integral of sigma^2 are independent: spread
-    // over worker threads, each extra worker with its own copies of the
-    // speed and the ends (both keep mutable caches), made before any starts.
-    // The zeros are refined once before the workers start (copies share
-    // their refinement; this keeps two workers from refining one number at
-    // once); value-neutral: RealAlgebraic::to_ball depends on (t, prec)
-    // alone. The first attempt asks for bits + 67 bits (integrate's working
-    // precision bits + 32, to_ball's refinement + 35).
-    for (const SpeedZero& z : s.zeros()) z.t.refine(bits + 67);
-    // mu's pieces end at the zeros of sigma (where it is not analytic) and
-    // at the split points; the integral of sigma^2 (analytic) only at the
-    // split points.
-    const long parts = split_parts(s);
-    const std::vector<RealAlgebraic> ends = detail::with_split_points(speed_piece_ends(s, zero, one), parts);
-    const std::vector<RealAlgebraic> sq_ends = detail::with_split_points({zero, one}, parts);
-    const std::size_t pieces = ends.size() - 1, sq_pieces = sq_ends.size() - 1, tasks = pieces + sq_pieces;
-    const std::size_t workers = std::min(worker_count(), tasks);
-    std::vector<Speed> speeds(workers > 1 ? workers - 1 : 0, s);
-    std::vector<std::vector<RealAlgebraic>> ends_copies(speeds.size(), ends), sq_copies(speeds.size(), sq_ends);
-    std::vector<Ball> results(tasks);
-    parallel_for(tasks, workers, [&](std::size_t w, std::size_t i) {
-      const Speed& sw = w == 0 ? s : speeds[w - 1];
-      const std::vector<RealAlgebraic>& ew = w == 0 ? ends : ends_copies[w - 1];
-      const std::vector<RealAlgebraic>& qw = w == 0 ? sq_ends : sq_copies[w - 1];
-      const std::size_t k = i - pieces;
-      results[i] = i < pieces ? integrate_speed_piece(sw, ew[i], ew[i + 1], bits, opt.max_prec)
-                              : integrate_speed_squared(sw, qw[k], qw[k + 1], bits, opt.max_prec);
-    });
-    // sigma and sigma^2 are >= 0: the relative accuracy of every part holds
-    // for their sum.
-    r.mu = Ball(0);
-    r.mean_square = Ball(0);
-    for (std::size_t i = 0; i < tasks; ++i)
-      arb_add(i < pieces ? r.mu.get() : r.mean_square.get(), i < pieces ? r.mu.get() : r.mean_square.get(),
-              results[i].get(), 2 * bits + 64);
+    speed_integrals(s, bits, opt.max_prec, true, r.mu, r.mean_square);
     const long prec = 2 * bits + 64;
     arb_mul(r.u.get(), r.mu.get(), r.mu.get(), prec);
     arb_div(r.u.get(), r.u.get(), r.mean_square.get(), prec);

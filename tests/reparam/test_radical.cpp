@@ -118,6 +118,13 @@ TEST_P(RadicalFamily, FormulasAgreeWithDirectIntegrationOfTheReparameterizedSpee
   }
   EXPECT_FALSE(arb_lt(r.u_after.get(), r.u_radical.get())) << c.what;
   EXPECT_TRUE(r.u_after.meets_digits(15));
+  // u_before takes int sigma^2 from the pieces (L_i / Delta t_i where no
+  // zero ends the piece, its own integral where one does): against the
+  // uniformity's direct integral of sigma^2 over [0, 1].
+  const UniformityResult u = uniformity(s);
+  EXPECT_TRUE(arb_overlaps(r.u_before.get(), u.u.get())) << c.what << ": " << r.u_before.str(20) << " vs " << u.u.str(20);
+  EXPECT_TRUE(arb_overlaps(r.mu.get(), u.mu.get())) << c.what;
+  EXPECT_TRUE(r.u_before.meets_digits(16)) << r.u_before.str(25);
   // The independent check of the whole chain.
   Ball direct = radical_direct_uniformity(r, s, 12, 4096);
   EXPECT_TRUE(arb_overlaps(direct.get(), r.u_after.get()))

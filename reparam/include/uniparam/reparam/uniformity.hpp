@@ -53,6 +53,13 @@ struct UniformityResult {
 UniformityResult uniformity(const Curve& c, SpeedKind kind, const Options& opt = {});
 /// The same for an already built speed (the curve's degree is not checked).
 UniformityResult uniformity(const Speed& s, const Options& opt = {});
+/// mu = int_0^1 sigma alone, split and threaded as in uniformity(), each
+/// part to relative accuracy 2^-rel_goal_bits (so mu too: sigma >= 0). For
+/// callers that get int sigma^2 elsewhere (radical(): from its pieces'
+/// integrals L_i), at half the uniformity's cost or less.
+/// \post contains mu; 0 exactly for an identically zero speed.
+/// \throws as uniformity(Speed, opt) (BudgetExceeded, InvalidArgument).
+Ball mean_speed(const Speed& s, long rel_goal_bits, const Options& opt = {});
 /// Throws BudgetExceeded (naming --max-degree) when the curve's degree exceeds
 /// Options::max_degree.
 void check_degree(const Curve& c, const Options& opt);
