@@ -124,7 +124,7 @@ MoebiusResult moebius_c0(const Curve& c, SpeedKind kind, const std::vector<RealA
   validate(opt);
   check_degree(c, opt);
   const Speed s(c, kind);
-  return detail::moebius_c0(s, uniformity(s, opt), T, opt);
+  return detail::moebius_c0(s, detail::mu_only(s, opt), T, opt);
 }
 
 namespace detail {
@@ -139,13 +139,24 @@ std::vector<Breakpoint> moebius_breakpoints(const Speed& s, const std::vector<Re
 
 long moebius_first_bits(const Options& opt) { return digits_to_bits(opt.digits) + 8; }
 
+UniformityResult mu_only(const Speed& s, const Options& opt) {
+  UniformityResult r;
+  r.kind = s.kind();
+  r.speed_squared = s.squared();
+  r.zeros = s.zeros();
+  r.identically_zero = s.identically_zero();
+  r.mu = mean_speed(s, digits_to_bits(opt.digits), opt);
+  arb_indeterminate(r.mean_square.get());
+  arb_indeterminate(r.u.get());
+  return r;
+}
+
 MoebiusResult moebius_c0(const Speed& s, const UniformityResult& base, const std::vector<RealAlgebraic>& T,
                          const Options& opt, const std::vector<PieceIntegrals>* first) {
   MoebiusResult r;
   r.kind = s.kind();
   r.T = moebius_breakpoints(s, T);
   r.mu = base.mu;
-  r.u_before = base.u;
   r.identically_zero = base.identically_zero;
   r.speed_vanishes = !s.zeros().empty();
   const std::size_t N = r.T.size() - 1;
@@ -156,14 +167,20 @@ MoebiusResult moebius_c0(const Speed& s, const UniformityResult& base, const std
     for (std::size_t i = 0; i <= N; ++i)
       r.S.push_back(i == 0 ? Ball(0) : i == N ? Ball(1) : r.T[i].t.to_ball(prec));
     for (std::size_t i = 0; i < N; ++i) r.integrals.push_back(piece_integrals(s, r.T[i], r.T[i + 1], 64, opt.max_prec));
-    r.u_after = Ball(1);
+    r.u_before = r.u_after = Ball(1);
     for (const auto& p : r.integrals) r.alpha.push_back(p.alpha);
     return r;
   }
 
+  long mu_bits = 0;  // 0: base.mu as given
+  bool raise_mu = false;
   for (long bits = moebius_first_bits(opt);; bits += 32) {
     check_time_budget();
     const long prec = 2 * bits + 64;
+    if (raise_mu && bits > mu_bits) {
+      mu_bits = bits;
+      r.mu = mean_speed(s, mu_bits, opt);
+    }
     if (first && bits == moebius_first_bits(opt)) {
       if (first->size() != N) throw InvalidArgument("moebius_c0: precomputed integrals for another T");
       r.integrals = *first;
@@ -171,10 +188,14 @@ MoebiusResult moebius_c0(const Speed& s, const UniformityResult& base, const std
       r.integrals = all_piece_integrals(s, r.T, bits, opt.max_prec);
     }
     std::vector<Ball> sqrtM(N);
-    Ball sum(0);
+    Ball sum(0), mean_square(0);
     for (std::size_t i = 0; i < N; ++i) {
       arb_sqrt(sqrtM[i].get(), r.integrals[i].M.get(), prec);
       arb_add(sum.get(), sum.get(), sqrtM[i].get(), prec);
+      Ball dt, part;  // L_i / Delta t_i = int sigma^2 over piece i
+      arb_sub(dt.get(), r.T[i + 1].t.to_ball(prec).get(), r.T[i].t.to_ball(prec).get(), prec);
+      arb_div(part.get(), r.integrals[i].L.get(), dt.get(), prec);
+      arb_add(mean_square.get(), mean_square.get(), part.get(), prec);
     }
     // S_i = cumulative sqrt M / sum, with the ends exact.
     r.S.assign(1, Ball(0));
@@ -190,9 +211,11 @@ MoebiusResult moebius_c0(const Speed& s, const UniformityResult& base, const std
     arb_mul(mu2.get(), r.mu.get(), r.mu.get(), prec);
     arb_mul(sum2.get(), sum.get(), sum.get(), prec);
     arb_div(r.u_after.get(), mu2.get(), sum2.get(), prec);
+    arb_div(r.u_before.get(), mu2.get(), mean_square.get(), prec);
 
     const long d = opt.digits + 1;
-    bool ok = r.u_after.meets_digits(d);
+    const bool mu_ok = r.mu.meets_digits(d) && r.u_before.meets_digits(d) && r.u_after.meets_digits(d);
+    bool ok = mu_ok;
     for (const auto& b : r.S) ok = ok && b.meets_digits(d);
     for (const auto& pi : r.integrals)
       ok = ok && pi.A.meets_digits(d) && pi.B.meets_digits(d) && pi.C.meets_digits(d) && pi.L.meets_digits(d) &&
@@ -202,6 +225,7 @@ MoebiusResult moebius_c0(const Speed& s, const UniformityResult& base, const std
       for (const auto& p : r.integrals) r.alpha.push_back(p.alpha);
       return r;
     }
+    raise_mu = !mu_ok;  // mu may be the one short of accuracy
     if (bits > opt.max_prec)
       throw BudgetExceeded("could not certify the piecewise Moebius reparameterization to " +
                            std::to_string(opt.digits) + " digits within " + std::to_string(opt.max_prec) +

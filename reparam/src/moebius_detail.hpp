@@ -15,8 +15,17 @@ std::vector<Breakpoint> moebius_breakpoints(const Speed& s, const std::vector<Re
 /// The accuracy goal (bits) of moebius_c0's first round of piece integrals.
 long moebius_first_bits(const Options& opt);
 
-/// moebius_c0 for an already built speed and its uniformity (mu, u_before),
-/// so that callers trying several T compute them once. Same contract.
+/// A UniformityResult with mu alone (mean_speed at digits_to_bits(digits)
+/// bits, the uniformity's first goal): moebius_c0 takes only mu and
+/// identically_zero from its base; mean_square and u stay indeterminate.
+UniformityResult mu_only(const Speed& s, const Options& opt);
+
+/// moebius_c0 for an already built speed and mu (base.mu, from uniformity()
+/// or mu_only()), so that callers trying several T compute it once. Same
+/// contract. u_before comes from the pieces: every piece is integrated
+/// without zeros, so L_i = Delta t_i int sigma^2 over it, and int_0^1
+/// sigma^2 = sum L_i / Delta t_i; mu is recomputed at the loop's accuracy
+/// where u_before (or u_after) falls short of the digits.
 /// `first`, when given, must be all_piece_integrals(s,
 /// moebius_breakpoints(s, T), moebius_first_bits(opt), opt.max_prec) (e.g.
 /// from a batch with other lists); it replaces the first round's

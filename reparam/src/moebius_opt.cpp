@@ -212,12 +212,12 @@ MoebiusResult reparam_c0(const Curve& c, SpeedKind kind, long N, const Options& 
   for (long i = 0; i <= N; ++i) equal.emplace_back(Rational(i, N));
   const Speed s(c, kind);
   if (N == 1 || s.identically_zero()) {
-    MoebiusResult r = detail::moebius_c0(s, uniformity(s, opt), equal, opt);
+    MoebiusResult r = detail::moebius_c0(s, detail::mu_only(s, opt), equal, opt);
     r.optimiser.used = true;
     r.optimiser.phi = r.optimiser.phi_equal = detail::phi_of(r, 2 * digits_to_bits(opt.digits) + 64);
     return r;
   }
-  // The uniformity (its own parallel loop) and the optimised breakpoints
+  // mu (its own parallel loop) and the optimised breakpoints
   // with their piece integrals do not depend on each other: side by side,
   // each fills the cores the other's last tasks leave idle. The second
   // works on its own copy of the speed (caches are shared and locked, see
@@ -235,7 +235,7 @@ MoebiusResult reparam_c0(const Curve& c, SpeedKind kind, long N, const Options& 
     const Speed s_copy = s;
     parallel_for(2, std::min<std::size_t>(worker_count(), 2), [&](std::size_t, std::size_t i) {
       if (i == 0) {
-        base = uniformity(s, opt);
+        base = detail::mu_only(s, opt);  // u_before: from the pieces (moebius_c0)
         return;
       }
       o = optimise(s_copy, N);

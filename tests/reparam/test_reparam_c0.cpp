@@ -97,6 +97,14 @@ TEST(ReparamC0, NeverWorseThanEqualSpacingOnRandomCurves) {
     const MoebiusResult eq = moebius_c0(c, kind, equal_T(N), {});
     EXPECT_TRUE(not_above(eq.u_after, r.u_after)) << c.str() << " N = " << N;
     EXPECT_TRUE(not_above(r.optimiser.phi, r.optimiser.phi_equal));
+    // u_before from the pieces (sum L_i / Delta t_i for int sigma^2, at the
+    // optimised and at the equal T) against the uniformity's own integrals
+    const UniformityResult u = uniformity(s);
+    for (const MoebiusResult* m : {&r, &eq}) {
+      EXPECT_TRUE(arb_overlaps(m->u_before.get(), u.u.get())) << c.str() << ": " << m->u_before.str(20) << " vs "
+                                                              << u.u.str(20);
+      EXPECT_TRUE(m->u_before.meets_digits(16)) << m->u_before.str(25);
+    }
   }
 }
 
