@@ -170,10 +170,24 @@ std::vector<RealAlgebraic> critical_points(const Speed& s) {
   const Poly Pp = P.primitive();
   const auto sev = std::make_shared<const ScaledEvaluator>(
       ScaledEvaluator{ev, Rational(P.leading()) / Rational(Pp.leading())});
-  for (const auto& r : isolate_real_roots(P, ev, Rational(0), Rational(1))) {
-    if (!r.is_exact() && r.factor == Pp) out.emplace_back(r, sev);
-    else out.emplace_back(r);
-  }
+  // The isolation is serial, and its callers run it next to mu's quadrature
+  // (radical, reparam --target): the halves [0, 1/2] and [1/2, 1] side by
+  // side keep both cores busy to the end. A fixed split, so the roots do
+  // not depend on the threads; a root at 1/2 is exact in both, kept once.
+  // ev only reads the speed's caches (locked): safe from both workers.
+  const Rational half(1, 2);
+  std::vector<IsolatedRoot> halves[2];
+  parallel_for(2, std::min<std::size_t>(worker_count(), 2), [&](std::size_t, std::size_t i) {
+    halves[i] = isolate_real_roots(P, ev, i == 0 ? Rational(0) : half, i == 0 ? half : Rational(1));
+  });
+  const bool twice = !halves[0].empty() && !halves[1].empty() && halves[0].back().is_exact() &&
+                     halves[1].front().is_exact() && halves[0].back().lo == half && halves[1].front().lo == half;
+  if (twice) halves[1].erase(halves[1].begin());
+  for (const auto& h : halves)
+    for (const auto& r : h) {
+      if (!r.is_exact() && r.factor == Pp) out.emplace_back(r, sev);
+      else out.emplace_back(r);
+    }
   return out;
 }
 

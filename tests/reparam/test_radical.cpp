@@ -4,8 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <random>
+#include <string>
+#include <vector>
 
 #include "uniparam/reparam/radical.hpp"
+#include "support/curves.hpp"
 #include "support/reference.hpp"
 #include "uniparam/uniparam.hpp"
 
@@ -185,5 +189,60 @@ TEST(Radical, PointsOfTheReparameterizedCurveAreCertified) {
     Ball cur = radical_eval_r(r, Ball(Rational(k, 32), 128), 128);
     EXPECT_TRUE(arb_lt(prev.get(), cur.get())) << k;
     prev = cur;
+  }
+}
+
+namespace {
+
+// The critical points of sigma in [0, 1] the slow way: the real roots of the
+// numerator of (sigma^2)' from its expanded power basis (exact isolation),
+// minus the zeros of sigma (roots of g).
+std::vector<RealAlgebraic> critical_points_exactly(const Speed& s) {
+  const RatFunc d = s.squared().derivative();
+  std::vector<RealAlgebraic> out;
+  if (d.num().is_zero()) return out;
+  for (const auto& r : isolate_real_roots(d.num(), Rational(0), Rational(1))) {
+    RealAlgebraic t(r);
+    if (sign_at(s.g(), t) != 0) out.push_back(t);
+  }
+  return out;
+}
+
+void expect_same_points(const std::vector<RealAlgebraic>& got, const std::vector<RealAlgebraic>& want,
+                        const std::string& what) {
+  ASSERT_EQ(got.size(), want.size()) << what;
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    EXPECT_TRUE(got[i] == want[i]) << what << ": point " << i << " " << got[i].str() << " vs " << want[i].str();
+    if (i > 0) EXPECT_TRUE(got[i - 1] < got[i]) << what;
+  }
+}
+
+}  // namespace
+
+TEST(CriticalPoints, ARootAtOneHalfIsFoundOnceThoughBothHalvesEndThere) {
+  // critical_points isolates [0, 1/2] and [1/2, 1] side by side: curves
+  // symmetric about t = 1/2 have an exact critical point there.
+  for (const char* curve : {"(t, (t - 1/2)^2)", "(t, (2t - 1)^2, (2t - 1)^4)", "(t, 3(t - 1/2)^2 + (t - 1/2)^4)"}) {
+    const Speed s(parse_curve(curve), SpeedKind::Angular);
+    const std::vector<RealAlgebraic> got = critical_points(s);
+    long at_half = 0;
+    for (const auto& t : got) at_half += t == RealAlgebraic(Rational(1, 2)) ? 1 : 0;
+    EXPECT_EQ(at_half, 1) << curve;
+    expect_same_points(got, critical_points_exactly(s), curve);
+  }
+}
+
+TEST(CriticalPoints, MatchTheRootsOfTheExpandedDerivativeOnRandomCurves) {
+  // Low degrees (the exact isolation on each half) and degree 80 (P of
+  // degree ~300: the evaluator's subdivision on each half).
+  std::mt19937_64 rng(99);
+  for (long it = 0; it < test_support::iterations(6); ++it) {
+    const long deg = it == 0 ? 80 : 3 + it % 4;
+    const Curve c({RatFunc(test_support::random_poly(rng, deg, 5)), RatFunc(test_support::random_poly(rng, deg, 5))});
+    for (SpeedKind kind : {SpeedKind::Angular, SpeedKind::Parametric}) {
+      const Speed s(c, kind);
+      if (s.identically_zero()) continue;
+      expect_same_points(critical_points(s), critical_points_exactly(s), c.str());
+    }
   }
 }
