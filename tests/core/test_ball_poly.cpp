@@ -18,14 +18,6 @@ namespace {
 
 using test_support::iterations;
 
-struct ArbPoly {
-  arb_poly_t v;
-  ArbPoly() { arb_poly_init(v); }
-  ~ArbPoly() { arb_poly_clear(v); }
-  ArbPoly(const ArbPoly&) = delete;
-  ArbPoly& operator=(const ArbPoly&) = delete;
-};
-
 // 2^e as a rational, any sign of e.
 Rational pow2q(long e) {
   Rational r(1);
@@ -111,24 +103,24 @@ TEST(TaylorShiftPow2, EnclosesTheExactShiftOfEveryPolynomialInTheBalls) {
   for (long it = 0; it < iterations(60); ++it) {
     const long n = len(rng), e = ex(rng), prec = precs[it % 4];
     const int s = sign(rng) ? 1 : -1;
-    ArbPoly p, q;
-    random_ball_poly(p.v, rng, n, prec + 20);
-    taylor_shift_pow2(q.v, p.v, e, s, prec);
+    BallPoly p, q;
+    random_ball_poly(p.get(), rng, n, prec + 20);
+    taylor_shift_pow2(q.get(), p.get(), e, s, prec);
     // Polynomials inside p's balls: mid + t rad with t in {-1, -3/4, ..., 1},
     // the ends included (where a dropped radius shows).
     for (int trial = 0; trial < 3; ++trial) {
       std::vector<Rational> a;
-      for (long k = 0; k < arb_poly_length(p.v); ++k) {
-        const arb_struct* c = p.v->coeffs + k;
+      for (long k = 0; k < arb_poly_length(p.get()); ++k) {
+        const arb_struct* c = p.get()->coeffs + k;
         const long t = trial == 0 ? 4 : trial == 1 ? -4 : pick(rng);
         a.push_back(mid_q(c) + rad_q(c) * Rational(t, 4));
       }
       const std::vector<Rational> want = exact_shift(a, Rational(s) * pow2q(e));
-      ASSERT_EQ(static_cast<long>(want.size()), arb_poly_length(p.v));
+      ASSERT_EQ(static_cast<long>(want.size()), arb_poly_length(p.get()));
       for (std::size_t j = 0; j < want.size(); ++j) {
         arb_t got;
         arb_init(got);
-        arb_poly_get_coeff_arb(got, q.v, static_cast<slong>(j));
+        arb_poly_get_coeff_arb(got, q.get(), static_cast<slong>(j));
         EXPECT_TRUE(contains(got, want[j])) << "n = " << n << ", e = " << e << ", s = " << s << ", coefficient " << j;
         arb_clear(got);
       }
@@ -145,12 +137,12 @@ TEST(TaylorShiftPow2, AnExactInputIsRoundedOnceToPrec) {
   std::uniform_int_distribution<long> len(2, 60), ex(-10, 0);
   for (long it = 0; it < iterations(40); ++it) {
     const long n = len(rng), e = ex(rng), prec = 64 + 32 * (it % 5);
-    ArbPoly p, q;
-    random_ball_poly(p.v, rng, n, prec);
-    for (long k = 0; k < arb_poly_length(p.v); ++k) mag_zero(arb_radref(p.v->coeffs + k));
-    taylor_shift_pow2(q.v, p.v, e, it % 2 ? 1 : -1, prec);
-    for (long k = 0; k < arb_poly_length(q.v); ++k) {
-      const arb_struct* c = q.v->coeffs + k;
+    BallPoly p, q;
+    random_ball_poly(p.get(), rng, n, prec);
+    for (long k = 0; k < arb_poly_length(p.get()); ++k) mag_zero(arb_radref(p.get()->coeffs + k));
+    taylor_shift_pow2(q.get(), p.get(), e, it % 2 ? 1 : -1, prec);
+    for (long k = 0; k < arb_poly_length(q.get()); ++k) {
+      const arb_struct* c = q.get()->coeffs + k;
       if (arf_is_zero(arb_midref(c))) {
         EXPECT_TRUE(mag_is_zero(arb_radref(c)));
         continue;
@@ -166,21 +158,21 @@ TEST(TaylorShiftPow2, AnExactInputIsRoundedOnceToPrec) {
 }
 
 TEST(TaylorShiftPow2, NonFiniteBallsAndAliasing) {
-  ArbPoly p;
-  arb_poly_set_coeff_si(p.v, 0, 1);
-  arb_poly_set_coeff_si(p.v, 1, 2);
-  arb_poly_set_coeff_si(p.v, 2, 3);  // 1 + 2w + 3w^2
+  BallPoly p;
+  arb_poly_set_coeff_si(p.get(), 0, 1);
+  arb_poly_set_coeff_si(p.get(), 1, 2);
+  arb_poly_set_coeff_si(p.get(), 2, 3);  // 1 + 2w + 3w^2
   // in place, w -> w + 1/2: 1 + 1 + 3/4, 2 + 3, 3
-  taylor_shift_pow2(p.v, p.v, -1, 1, 64);
-  EXPECT_TRUE(contains(p.v->coeffs + 0, Rational(11, 4)));
-  EXPECT_TRUE(contains(p.v->coeffs + 1, Rational(5)));
-  EXPECT_TRUE(contains(p.v->coeffs + 2, Rational(3)));
+  taylor_shift_pow2(p.get(), p.get(), -1, 1, 64);
+  EXPECT_TRUE(contains(p.get()->coeffs + 0, Rational(11, 4)));
+  EXPECT_TRUE(contains(p.get()->coeffs + 1, Rational(5)));
+  EXPECT_TRUE(contains(p.get()->coeffs + 2, Rational(3)));
   // an infinite radius spreads to every coefficient it reaches, never lost
-  mag_inf(arb_radref(p.v->coeffs + 2));
-  taylor_shift_pow2(p.v, p.v, -3, -1, 64);
-  for (long k = 0; k < 3; ++k) EXPECT_FALSE(arb_is_finite(p.v->coeffs + k)) << k;
-  EXPECT_THROW(taylor_shift_pow2(p.v, p.v, 0, 0, 64), InvalidArgument);
-  EXPECT_THROW(taylor_shift_pow2(p.v, p.v, 0, 2, 64), InvalidArgument);
+  mag_inf(arb_radref(p.get()->coeffs + 2));
+  taylor_shift_pow2(p.get(), p.get(), -3, -1, 64);
+  for (long k = 0; k < 3; ++k) EXPECT_FALSE(arb_is_finite(p.get()->coeffs + k)) << k;
+  EXPECT_THROW(taylor_shift_pow2(p.get(), p.get(), 0, 0, 64), InvalidArgument);
+  EXPECT_THROW(taylor_shift_pow2(p.get(), p.get(), 0, 2, 64), InvalidArgument);
 }
 
 }  // namespace
