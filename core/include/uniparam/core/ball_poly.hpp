@@ -44,12 +44,12 @@ class BallPoly {
 /// algebra/ need (a child cell's centre is its parent's plus or minus half
 /// its width). The coefficients are scaled by 2^(e k) (exact), shifted by
 /// +-1, and scaled back by 2^(-e k) (exact). The shift by +-1 takes the
-/// midpoints as integers on one grid (exact, or truncated at prec + 64 bits
-/// below the largest, the error added to the radii), shifts them exactly
-/// (FLINT, additions only) and rounds once to prec; the radii are shifted
-/// with upper-bound arithmetic. Several times cheaper than Arb's
-/// arb_poly_taylor_shift (ball multiply-adds). Non-finite balls fall back
-/// to a ball Horner scheme. out may alias in.
+/// midpoints as exact integers on the grid of their lowest bit, shifts them
+/// exactly (FLINT, additions only) and rounds each result once to prec; the
+/// radii are shifted with upper-bound arithmetic. Several times cheaper
+/// than Arb's arb_poly_taylor_shift (ball multiply-adds). Non-finite balls,
+/// and midpoints spanning more than 2^16 + 16 prec bits, fall back to a
+/// ball Horner scheme (additions). out may alias in.
 /// \post each coefficient of out encloses the corresponding coefficient of
 ///       q(w + s 2^e) for every polynomial q whose coefficients lie in in's
 ///       balls.
