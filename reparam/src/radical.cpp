@@ -99,7 +99,9 @@ RadicalResult radical(const Curve& c, SpeedKind kind, const Options& opt) {
       Ball part;
       if (r.side(i) == ZeroSide::None) {
         Ball dt;
-        arb_sub(dt.get(), r.T[i + 1].t.to_ball(prec).get(), r.T[i].t.to_ball(prec).get(), prec);
+        // the ends at bits + 32: enough for L_i / Delta t_i to 2^-bits (the
+        // pieces are far wider), and no refinement beyond the integrals' own
+        arb_sub(dt.get(), r.T[i + 1].t.to_ball(bits + 32).get(), r.T[i].t.to_ball(bits + 32).get(), prec);
         arb_div(part.get(), r.integrals[i].L.get(), dt.get(), prec);
       } else {
         part = integrate_speed_squared(s, r.T[i].t, r.T[i + 1].t, bits, opt.max_prec);
