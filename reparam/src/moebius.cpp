@@ -192,11 +192,8 @@ MoebiusResult moebius_c0(const Speed& s, const UniformityResult& base, const std
     for (std::size_t i = 0; i < N; ++i) {
       arb_sqrt(sqrtM[i].get(), r.integrals[i].M.get(), prec);
       arb_add(sum.get(), sum.get(), sqrtM[i].get(), prec);
-      Ball dt, part;  // L_i / Delta t_i = int sigma^2 over piece i
-      // the ends at bits + 32: enough for L_i / Delta t_i to 2^-bits (the
-      // pieces are far wider), and no refinement beyond the integrals' own
-      arb_sub(dt.get(), r.T[i + 1].t.to_ball(bits + 32).get(), r.T[i].t.to_ball(bits + 32).get(), prec);
-      arb_div(part.get(), r.integrals[i].L.get(), dt.get(), prec);
+      // int sigma^2 over piece i: L_i / Delta t_i (no zeros: multiplicities reset)
+      const Ball part = piece_square_integral(s, r.T[i], r.T[i + 1], r.integrals[i], bits, opt.max_prec);
       arb_add(mean_square.get(), mean_square.get(), part.get(), prec);
     }
     // S_i = cumulative sqrt M / sum, with the ends exact.

@@ -12,6 +12,7 @@
 #include "uniparam/algebra/real_roots.hpp"
 #include "uniparam/core/error.hpp"
 #include "uniparam/core/parallel.hpp"
+#include "uniparam/reparam/uniformity.hpp"
 
 namespace uniparam {
 
@@ -305,6 +306,16 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
   arb_add_ui(t.get(), t.get(), 1, prec);
   arb_inv(r.alpha.get(), t.get(), prec);
   return r;
+}
+
+Ball piece_square_integral(const Speed& s, const Breakpoint& a, const Breakpoint& b, const PieceIntegrals& pi,
+                           long rel_goal_bits, long max_prec) {
+  if (a.multiplicity > 0 || b.multiplicity > 0) return integrate_speed_squared(s, a.t, b.t, rel_goal_bits, max_prec);
+  const long prec = 2 * rel_goal_bits + 64;
+  Ball dt, out;
+  arb_sub(dt.get(), b.t.to_ball(rel_goal_bits + 32).get(), a.t.to_ball(rel_goal_bits + 32).get(), prec);
+  arb_div(out.get(), pi.L.get(), dt.get(), prec);
+  return out;
 }
 
 std::vector<PieceIntegrals> all_piece_integrals(const Speed& s, const std::vector<Breakpoint>& T,

@@ -96,16 +96,7 @@ RadicalResult radical(const Curve& c, SpeedKind kind, const Options& opt) {
       arb_sqrt(sqrtM[i].get(), r.integrals[i].M.get(), prec);
       arb_add(sumL.get(), sumL.get(), sqrtL[i].get(), prec);
       arb_add(sumM.get(), sumM.get(), sqrtM[i].get(), prec);
-      Ball part;
-      if (r.side(i) == ZeroSide::None) {
-        Ball dt;
-        // the ends at bits + 32: enough for L_i / Delta t_i to 2^-bits (the
-        // pieces are far wider), and no refinement beyond the integrals' own
-        arb_sub(dt.get(), r.T[i + 1].t.to_ball(bits + 32).get(), r.T[i].t.to_ball(bits + 32).get(), prec);
-        arb_div(part.get(), r.integrals[i].L.get(), dt.get(), prec);
-      } else {
-        part = integrate_speed_squared(s, r.T[i].t, r.T[i + 1].t, bits, opt.max_prec);
-      }
+      const Ball part = piece_square_integral(s, r.T[i], r.T[i + 1], r.integrals[i], bits, opt.max_prec);
       arb_add(mean_square.get(), mean_square.get(), part.get(), prec);
     }
     r.S = cumulative(sqrtL, sumL, prec);

@@ -66,6 +66,17 @@ struct PieceIntegrals {
 PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakpoint& b, long rel_goal_bits,
                                long max_prec);
 
+/// int sigma^2 over the piece [a, b] whose integrals are pi (a < b, as
+/// piece_integrals): L / Delta t where no zero of sigma ends the piece
+/// (rho = Delta t there, so L = Delta t int sigma^2), else its own certified
+/// integral of sigma^2 (analytic on the closed piece) at rel_goal_bits. The
+/// ends of Delta t are taken at rel_goal_bits + 32 bits (no refinement
+/// beyond the integrals' own). How radical() and the Moebius methods get
+/// u_before without integrating sigma^2 over [0, 1] again.
+/// \post contains the integral; BudgetExceeded as piece_integrals.
+Ball piece_square_integral(const Speed& s, const Breakpoint& a, const Breakpoint& b, const PieceIntegrals& pi,
+                           long rel_goal_bits, long max_prec);
+
 /// piece_integrals of every piece [T_i, T_i+1] of T (size >= 2, else
 /// InvalidArgument), the pieces spread over worker_count() threads
 /// (core/parallel.hpp; UNIPARAM_THREADS=1 for one thread). Each extra worker
