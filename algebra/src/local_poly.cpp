@@ -8,6 +8,7 @@
 #include "uniparam/algebra/deflation.hpp"
 #include "uniparam/core/error.hpp"
 #include <map>
+#include <future>
 #include <mutex>
 #include <unordered_map>
 #include <vector>
@@ -348,15 +349,26 @@ Scratch& scratch() {
   return s;
 }
 
-}  // namespace
-
-// Shared by a LocalPoly and its copies (threads included): a cell is built
-// outside the lock and is immutable once in the map; a cell's content
-// depends on its key alone, so which thread builds it does not matter.
-struct LocalPoly::Cache {
+// The cells of one polynomial, shared by a LocalPoly and its copies (threads
+// included). `mu` guards every member. A cell is built outside the lock by
+// the first thread that asks for it, once: its key is in `building` until it
+// is in `cells`, and other threads asking for it wait for that build (in
+// parallel phases, two workers often need the same cell at once; building it
+// twice repeated its exact shift). Waiting cannot deadlock: a build waits
+// only on cells of a lower level or, for a coarse cell, the fine cell of the
+// same key, so the waits follow a well-founded order.
+struct CellStore {
   std::mutex mu;
   CellMap cells;
+  std::unordered_map<CellKey, std::shared_future<CellPtr>, CellKeyHash> building;
   std::vector<RealAlgebraic> roots;  // variant i >= 0 expands p / (t - roots[i])
+  std::size_t builds = 0;            // builds started (LocalPoly::builds)
+};
+
+}  // namespace
+
+struct LocalPoly::Cache {
+  CellStore store;  // store.mu also guards `deflated`
   // fallback for p / (t - roots[i]): the deflated power basis, per (i, prec)
   std::map<std::pair<int, long>, std::shared_ptr<const BallPoly>> deflated;
 };
@@ -372,8 +384,14 @@ LocalPoly::~LocalPoly() = default;
 
 std::size_t LocalPoly::cells() const {
   if (!cache_) return 0;  // moved from
-  std::lock_guard<std::mutex> lock(cache_->mu);
-  return cache_->cells.size();
+  std::lock_guard<std::mutex> lock(cache_->store.mu);
+  return cache_->store.cells.size();
+}
+
+std::size_t LocalPoly::builds() const {
+  if (!cache_) return 0;  // moved from
+  std::lock_guard<std::mutex> lock(cache_->store.mu);
+  return cache_->store.builds;
 }
 
 namespace {
@@ -382,20 +400,16 @@ namespace {
 // index is the right half.
 int child_side(unsigned long long j) { return (j & 1) ? 1 : -1; }
 
-// The cell (level, j) of variant `variant` (-1: p; i >= 0: p / (t - roots[i]))
-// at working precision wp, built on demand.
-// Thread-safe: the map and the roots are read and written under `mu`; the
-// cell is built outside the lock (two threads may both build one; the first
-// inserted wins, and both are equal).
-CellPtr get_cell(std::mutex& mu, CellMap& cells, const std::vector<RealAlgebraic>& roots, const Poly& p, int variant,
-                 long wp, int level, unsigned long long j, bool coarse) {
-  const CellKey key{wp, level, variant, j, coarse};
+CellPtr get_cell(CellStore& store, const Poly& p, int variant, long wp, int level, unsigned long long j, bool coarse);
+
+// Builds the cell `key` of p (see get_cell); does not store it.
+CellPtr build_cell(CellStore& store, const Poly& p, const CellKey& key) {
+  const int variant = key.variant;
+  const long wp = key.prec;
+  const int level = key.level;
+  const unsigned long long j = key.j;
+  const bool coarse = key.coarse;
   std::unique_ptr<RealAlgebraic> root;
-  {
-    std::lock_guard<std::mutex> lock(mu);
-    auto it = cells.find(key);
-    if (it != cells.end()) return it->second;
-  }
   auto cell = std::make_shared<Cell>();
   cell->level = level;
   // centre = (2j + 1) 2^-(level+1)
@@ -408,29 +422,27 @@ CellPtr get_cell(std::mutex& mu, CellMap& cells, const std::vector<RealAlgebraic
     // rebuild costs more than the looser bounds), the fine cell truncated.
     bool built = false;
     if (level > kExactLevel) {
-      const CellPtr parent = get_cell(mu, cells, roots, p, variant, wp, level - 1, j >> 1, true);
+      const CellPtr parent = get_cell(store, p, variant, wp, level - 1, j >> 1, true);
       taylor_shift_pow2(cell->P, parent->P, -(level + 1), child_side(j), kCoarsePrec);
       for (int t = 0; t < 3; ++t) mag_set(cell->tail + t, parent->tail + t);
       truncate(*cell, kCoarseBits);
       built = level > kMaxExactLevel || accurate(*cell, kCoarseBits + kGuardBits);
     }
     if (!built) {
-      const CellPtr fine = get_cell(mu, cells, roots, p, variant, wp, level, j, false);
+      const CellPtr fine = get_cell(store, p, variant, wp, level, j, false);
       arb_poly_set_round(cell->P, fine->P, kCoarsePrec);
       for (int t = 0; t < 3; ++t) mag_set(cell->tail + t, fine->tail + t);
       truncate(*cell, kCoarseBits);
     }
     arb_poly_derivative(cell->P1, cell->P, kCoarsePrec);
     arb_poly_derivative(cell->P2, cell->P1, kCoarsePrec);
-    std::lock_guard<std::mutex> lock(mu);
-    if (cells.size() >= kMaxCells) cells.clear();
-    return cells.emplace(key, std::move(cell)).first->second;
+    return cell;
   }
   bool built = false;
   if (level > kExactLevel) {
     // From the parent: its disc |t - c_p| <= 2 h_p holds this cell's disc
     // |t - c| <= 2h = h_p (|c - c_p| = h_p / 2), so its tail bounds hold here.
-    const CellPtr parent_ptr = get_cell(mu, cells, roots, p, variant, wp, level - 1, j >> 1, false);
+    const CellPtr parent_ptr = get_cell(store, p, variant, wp, level - 1, j >> 1, false);
     const Cell& parent = *parent_ptr;
     taylor_shift_pow2(cell->P, parent.P, -(level + 1), child_side(j), wp);
     for (int t = 0; t < 3; ++t) mag_set(cell->tail + t, parent.tail + t);
@@ -446,8 +458,8 @@ CellPtr get_cell(std::mutex& mu, CellMap& cells, const std::vector<RealAlgebraic
   }
   if (!built) {
     if (variant >= 0) {
-      std::lock_guard<std::mutex> lock(mu);
-      root = std::make_unique<RealAlgebraic>(roots[static_cast<std::size_t>(variant)]);
+      std::lock_guard<std::mutex> lock(store.mu);
+      root = std::make_unique<RealAlgebraic>(store.roots[static_cast<std::size_t>(variant)]);
     }
     const long n = p.degree();
     // p(c + w) = 2^(-L n) q(J + 2^L w) with q(x) = 2^(L n) p(x / 2^L),
@@ -508,9 +520,48 @@ CellPtr get_cell(std::mutex& mu, CellMap& cells, const std::vector<RealAlgebraic
   cell->mid.resize(static_cast<std::size_t>(len));
   for (slong k = 0; k < len; ++k)
     cell->mid[static_cast<std::size_t>(k)] = arf_get_d(arb_midref(cell->P->coeffs + k), ARF_RND_NEAR);
-  std::lock_guard<std::mutex> lock(mu);
-  if (cells.size() >= kMaxCells) cells.clear();  // bounded memory: start again (holders keep theirs)
-  return cells.emplace(key, std::move(cell)).first->second;
+  return cell;
+}
+
+// The cell (level, j) of variant `variant` (-1: p; i >= 0: p / (t - roots[i]))
+// at working precision wp, built on demand, once (see CellStore).
+// Thread-safe. An exception in the build reaches every thread waiting for it
+// and the key is freed, so a later call tries again.
+CellPtr get_cell(CellStore& store, const Poly& p, int variant, long wp, int level, unsigned long long j, bool coarse) {
+  const CellKey key{wp, level, variant, j, coarse};
+  std::promise<CellPtr> promise;
+  {
+    std::unique_lock<std::mutex> lock(store.mu);
+    auto it = store.cells.find(key);
+    if (it != store.cells.end()) return it->second;
+    auto b = store.building.find(key);
+    if (b != store.building.end()) {
+      const std::shared_future<CellPtr> pending = b->second;
+      lock.unlock();
+      return pending.get();
+    }
+    store.building.emplace(key, promise.get_future().share());
+    ++store.builds;
+  }
+  CellPtr cell;
+  try {
+    cell = build_cell(store, p, key);
+  } catch (...) {
+    {
+      std::lock_guard<std::mutex> lock(store.mu);
+      store.building.erase(key);
+    }
+    promise.set_exception(std::current_exception());
+    throw;
+  }
+  {
+    std::lock_guard<std::mutex> lock(store.mu);
+    if (store.cells.size() >= kMaxCells) store.cells.clear();  // bounded memory: start again (holders keep theirs)
+    store.cells.emplace(key, cell);
+    store.building.erase(key);
+  }
+  promise.set_value(cell);
+  return cell;
 }
 
 // True when the ball z lies in the disc |t - c| <= 2h of the cell of level
@@ -580,7 +631,7 @@ bool LocalPoly::eval_cells(int variant, acb_t v, acb_t d1, acb_t d2, const acb_t
     arf_set_ui(centre, 2 * j + 1);
     arf_mul_2exp_si(centre, centre, -(level + 1));
     if (in_disc(w, centre, level, z, prec))
-      cell = get_cell(cache.mu, cache.cells, cache.roots, p_, variant, wp, level, j, wide);
+      cell = get_cell(cache.store, p_, variant, wp, level, j, wide);
   }
   arf_clear(centre);
   if (!cell) {
@@ -642,7 +693,7 @@ void LocalPoly::eval_double(double t, double* v, double* d1, double* d2) const {
     arf_t x;
     arf_init(x);
     arf_set_d(x, t);
-    const CellPtr cp = get_cell(cache.mu, cache.cells, cache.roots, p_, -1, wp, kPointLevel, cell_index(x, kPointLevel), false);
+    const CellPtr cp = get_cell(cache.store, p_, -1, wp, kPointLevel, cell_index(x, kPointLevel), false);
     const Cell& cell = *cp;
     arf_clear(x);
     const double w = t - arf_get_d(cell.centre, ARF_RND_NEAR);
@@ -671,7 +722,7 @@ void LocalPoly::eval_double_taylor(double t, int order, double* b) const {
     arf_t x;
     arf_init(x);
     arf_set_d(x, t);
-    const CellPtr cp = get_cell(cache.mu, cache.cells, cache.roots, p_, -1, wp, kPointLevel, cell_index(x, kPointLevel), false);
+    const CellPtr cp = get_cell(cache.store, p_, -1, wp, kPointLevel, cell_index(x, kPointLevel), false);
     arf_clear(x);
     a = cp->mid;
     w = t - arf_get_d(cp->centre, ARF_RND_NEAR);
@@ -698,19 +749,19 @@ void LocalPoly::eval_deflated(acb_t v, const acb_t z, const RealAlgebraic& gamma
   Cache& cache = *cache_;
   int variant = -1;
   {
-    std::lock_guard<std::mutex> lock(cache.mu);
-    for (std::size_t i = 0; i < cache.roots.size(); ++i)
-      if (cache.roots[i] == gamma) variant = static_cast<int>(i);
+    std::lock_guard<std::mutex> lock(cache.store.mu);
+    for (std::size_t i = 0; i < cache.store.roots.size(); ++i)
+      if (cache.store.roots[i] == gamma) variant = static_cast<int>(i);
   }
   if (variant < 0) {
     if (p_.is_zero() || root_multiplicity(p_, gamma) < 1)
       throw DomainError("eval_deflated: " + gamma.str() + " is not a root of " + p_.str());
-    std::lock_guard<std::mutex> lock(cache.mu);
-    for (std::size_t i = 0; i < cache.roots.size() && variant < 0; ++i)  // another thread may have added it
-      if (cache.roots[i] == gamma) variant = static_cast<int>(i);
+    std::lock_guard<std::mutex> lock(cache.store.mu);
+    for (std::size_t i = 0; i < cache.store.roots.size() && variant < 0; ++i)  // another thread may have added it
+      if (cache.store.roots[i] == gamma) variant = static_cast<int>(i);
     if (variant < 0) {
-      cache.roots.push_back(gamma);
-      variant = static_cast<int>(cache.roots.size()) - 1;
+      cache.store.roots.push_back(gamma);
+      variant = static_cast<int>(cache.store.roots.size()) - 1;
     }
   }
   if (p_.degree() + 1 > kMinLength && acb_is_finite(z) && eval_cells(variant, v, nullptr, nullptr, z, prec)) return;
@@ -719,13 +770,13 @@ void LocalPoly::eval_deflated(acb_t v, const acb_t z, const RealAlgebraic& gamma
   const auto key = std::make_pair(variant, prec);
   std::shared_ptr<const BallPoly> q;
   {
-    std::lock_guard<std::mutex> lock(cache.mu);
+    std::lock_guard<std::mutex> lock(cache.store.mu);
     auto it = cache.deflated.find(key);
     if (it != cache.deflated.end()) q = it->second;
   }
   if (!q) {
     q = std::make_shared<const BallPoly>(deflate(p_, gamma, 1, prec + 16));
-    std::lock_guard<std::mutex> lock(cache.mu);
+    std::lock_guard<std::mutex> lock(cache.store.mu);
     if (cache.deflated.size() > 64) cache.deflated.clear();
     cache.deflated.emplace(key, q);
   }

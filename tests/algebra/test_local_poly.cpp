@@ -345,14 +345,16 @@ TEST(LocalPoly, CopiesShareCellsAndThreadsGetTheSameEnclosures) {
     // two threads on the shared cache (one through the copy), in opposite orders
     std::vector<acb_struct> got(6 * kBalls);
     for (auto& v : got) acb_init(&v);
-    auto run = [&](const LocalPoly& lp, int t) {
+    // thread t writes outputs t; `forward` is its order
+    auto run_in = [&](const LocalPoly& lp, int t, bool forward) {
       for (int k = 0; k < kBalls; ++k) {
-        const int b = t == 0 ? k : kBalls - 1 - k;
+        const int b = forward ? k : kBalls - 1 - k;
         acb_ptr o = &got[static_cast<std::size_t>(3 * (t * kBalls + b))];
         lp.eval(o, o + 1, o + 2, &balls[b], 96);
       }
       flint_cleanup();  // this thread's FLINT caches (as parallel_for's workers do)
     };
+    auto run = [&](const LocalPoly& lp, int t) { run_in(lp, t, t == 0); };
     std::thread a(run, std::cref(shared), 0), c(run, std::cref(copy), 1);
     a.join();
     c.join();
@@ -364,6 +366,20 @@ TEST(LocalPoly, CopiesShareCellsAndThreadsGetTheSameEnclosures) {
       for (int b = 0; b < 3 * kBalls; ++b)
         ASSERT_TRUE(acb_equal(&got[static_cast<std::size_t>(3 * t * kBalls + b)], &ref[static_cast<std::size_t>(b)]))
             << "thread " << t << ", output " << b % 3 << " of ball " << b / 3 << ", degree " << p.degree();
+    EXPECT_EQ(shared.builds(), shared.cells());  // far below the cache's limit: nothing emptied
+    // Two threads in the same order ask for the same cells at about the same
+    // time: each is still built once (the second waits for the first).
+    {
+      const LocalPoly fresh(p);
+      const LocalPoly fresh_copy = fresh;  // NOLINT: the copy is the point
+      std::thread x(run_in, std::cref(fresh), 0, true), y(run_in, std::cref(fresh_copy), 1, true);
+      x.join();
+      y.join();
+      EXPECT_EQ(fresh.builds(), fresh.cells()) << "degree " << p.degree();
+      for (int t = 0; t < 2; ++t)
+        for (int b = 0; b < 3 * kBalls; ++b)
+          ASSERT_TRUE(acb_equal(&got[static_cast<std::size_t>(3 * t * kBalls + b)], &ref[static_cast<std::size_t>(b)]));
+    }
     for (auto& v : got) acb_clear(&v);
     for (auto& v : ref) acb_clear(&v);
     for (auto& z : balls) acb_clear(&z);

@@ -101,6 +101,12 @@ class LocalPoly {
 
   /// Number of cached cells (for tests and profiling).
   std::size_t cells() const;
+  /// Number of cells built so far by this LocalPoly and its copies. Each
+  /// cell is built once while it stays cached: a thread asking for a cell
+  /// another is building waits for it. So builds() == cells() until the
+  /// cache is emptied (at 20000 cells, to bound memory). For tests and
+  /// profiling.
+  std::size_t builds() const;
 
  private:
   struct Cache;
