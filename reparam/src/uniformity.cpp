@@ -48,12 +48,17 @@ std::vector<RealAlgebraic> speed_piece_ends(const Speed& s, const RealAlgebraic&
 }
 
 // Equal parts of [0, 1] the integrals are split into, as independent tasks
-// for the worker threads: 8 from degree 100 of sigma^2's numerator on (a
-// long, wavy curve: each part costs far more than the split, and 8 parts
-// balance two workers), else 1.
+// for the worker threads: 8 from degree 100 of sigma^2's numerator
+// g^2 sum K^2 (in the factored form; a long, wavy curve: each part costs far
+// more than the split, and 8 parts balance two workers), else 1.
 // A function of the curve alone, never of the thread count, so results do
 // not depend on the threads.
-long split_parts(const Speed& s) { return s.squared().num().degree() >= 100 ? 8 : 1; }
+long split_parts(const Speed& s) {
+  if (s.identically_zero()) return 1;
+  long k = 0;  // deg sum K^2 = 2 max deg K (the leading terms add, squares)
+  for (const auto& c : s.cofactors()) k = std::max(k, c.degree());
+  return 2 * s.g().degree() + 2 * k >= 100 ? 8 : 1;
+}
 
 }  // namespace
 

@@ -5,6 +5,8 @@
 #include <acb.h>
 
 #include <map>
+#include <memory>
+#include <mutex>
 #include <string>
 #include <utility>
 #include <vector>
@@ -52,8 +54,9 @@ class Speed {
   Speed(const Curve& c, SpeedKind kind);
 
   SpeedKind kind() const { return kind_; }
-  /// sigma^2 as a canonical rational function (exact).
-  const RatFunc& squared() const { return squared_; }
+  /// sigma^2 as a canonical rational function (exact). Computed on the
+  /// first call (thread-safe; copies share it).
+  const RatFunc& squared() const;
   /// True for the angular speed of a straight line (sigma == 0, mu = 0).
   bool identically_zero() const { return zero_; }
   /// The zeros of sigma in [0, 1], sorted increasingly, with multiplicities.
@@ -119,7 +122,11 @@ class Speed {
 
  private:
   SpeedKind kind_;
-  RatFunc squared_;
+  struct Lazy {
+    std::once_flag once;
+    RatFunc squared;
+  };
+  std::shared_ptr<Lazy> lazy_;  // squared(), shared by copies
   bool zero_ = false;
   std::vector<SpeedZero> zeros_;
   Poly g_;
