@@ -60,7 +60,31 @@ struct RealAlgebraic::Shared {
 
 RealAlgebraic::RealAlgebraic(const Rational& q) : poly_(linear_poly(q)), lo_(q), hi_(q) {}
 
-RealAlgebraic::RealAlgebraic(const IsolatedRoot& r) {
+RealAlgebraic::RealAlgebraic(const IsolatedRoot& r) { init(r, nullptr); }
+
+namespace {
+
+// The sign of lambda f(x) from sev's enclosure at 64 bits on a ball of
+// radius 2^-23 around x, 0 when the enclosure does not exclude 0
+// (undecided). Certified as sev's contract is. The radius, as in the
+// interval Newton steps (real_roots.cpp): a narrower ball would make a
+// factored evaluator build full-precision expansions near every end.
+int evaluator_sign(const ScaledEvaluator& sev, const Rational& x) {
+  arb_t X, v;
+  arb_init(X);
+  arb_init(v);
+  arb_set_fmpq(X, x.get(), 64);
+  mag_set_ui_2exp_si(arb_radref(X), 1, -23);  // >= the rounding: still holds x
+  sev.ev(v, nullptr, X, 64);
+  const int s = !arb_is_finite(v) ? 0 : arb_is_positive(v) ? 1 : arb_is_negative(v) ? -1 : 0;
+  arb_clear(X);
+  arb_clear(v);
+  return s;
+}
+
+}  // namespace
+
+void RealAlgebraic::init(const IsolatedRoot& r, const ScaledEvaluator* sev) {
   if (r.is_exact()) {
     poly_ = linear_poly(r.lo);
     lo_ = hi_ = r.lo;
@@ -69,9 +93,20 @@ RealAlgebraic::RealAlgebraic(const IsolatedRoot& r) {
   if (!(r.lo < r.hi)) throw InvalidArgument("isolated root with empty interval [" + r.lo.str() + ", " + r.hi.str() + "]");
   Poly f = r.factor.primitive();
   if (f.degree() < 1) throw InvalidArgument("isolated root of a constant polynomial");
-  const int sl = exact_sign(f, r.lo), sh = exact_sign(f, r.hi);
-  if (sl == 0 || sh == 0 || sl == sh)
-    throw InvalidArgument("(" + r.lo.str() + ", " + r.hi.str() + ") is not an isolating interval of " + f.str());
+  // The ends must be no roots and f must change sign between them. An
+  // evaluator of lambda f usually decides that at once (a high-degree f's
+  // power basis costs far more: two exact signs of the degree-1633 critical
+  // numerator per root at d = 150); the exact signs decide otherwise.
+  bool checked = false;
+  if (sev && sev->ev) {
+    const int el = evaluator_sign(*sev, r.lo), eh = evaluator_sign(*sev, r.hi);
+    checked = el != 0 && eh != 0 && el != eh;
+  }
+  if (!checked) {
+    const int sl = exact_sign(f, r.lo), sh = exact_sign(f, r.hi);
+    if (sl == 0 || sh == 0 || sl == sh)
+      throw InvalidArgument("(" + r.lo.str() + ", " + r.hi.str() + ") is not an isolating interval of " + f.str());
+  }
   if (f.degree() == 1) {  // rational after all: keep it exact
     const Rational q = -Rational(f.coeff(0)) / Rational(f.coeff(1));
     poly_ = linear_poly(q);
@@ -102,7 +137,8 @@ RealAlgebraic::RealAlgebraic(const Poly& squarefree, const Rational& lo, const R
   if (!r.is_exact()) shared_ = std::make_shared<Shared>();
 }
 
-RealAlgebraic::RealAlgebraic(const IsolatedRoot& r, std::shared_ptr<const ScaledEvaluator> sev) : RealAlgebraic(r) {
+RealAlgebraic::RealAlgebraic(const IsolatedRoot& r, std::shared_ptr<const ScaledEvaluator> sev) {
+  init(r, sev.get());
   if (shared_ && sev && sev->ev) shared_->sev = std::move(sev);
 }
 

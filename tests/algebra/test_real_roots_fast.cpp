@@ -366,7 +366,10 @@ PolyEvaluator centred_product_evaluator(const std::vector<Poly>& factors, const 
 /// pairs near [0, 1], and the evaluator a random rational factor c (of
 /// either sign) that lambda must carry. Fails when lambda is ignored or its
 /// sign is dropped, when the new lower end is moved inward, or when f is
-/// evaluated at the Newton guess but N is formed at the midpoint.
+/// evaluated at the Newton guess but N is formed at the midpoint. The
+/// constructor's check of the ends (by the evaluator first) still refuses
+/// intervals with no root or two; fails when one decided end is taken as
+/// enough.
 TEST(RealRootsFast, ScaledEvaluatorRefinesLikeTheExactPath) {
   std::mt19937_64 rng(4242);
   for (long it = 0; it < iterations(3); ++it) {
@@ -426,6 +429,32 @@ TEST(RealRootsFast, ScaledEvaluatorRefinesLikeTheExactPath) {
       }
     }
     EXPECT_GE(checked, 3);  // a root sharing its 2^-12 cell is skipped: most must be checked
+    // The constructor checks the ends with the evaluator first: an interval
+    // with no root or with two (no sign change), ends far from the roots
+    // (where the evaluator decides the signs), is still refused, and an
+    // isolating one is accepted.
+    std::vector<RealAlgebraic> xs;
+    for (const IsolatedRoot& r0 : roots) {
+      xs.emplace_back(r0);
+      xs.back().refine(30);
+    }
+    auto between = [&](std::size_t k) {  // a rational a quarter of the way from root k to root k + 1
+      return xs[k].hi() + (xs[k + 1].lo() - xs[k].hi()) * Rational(1, 4);
+    };
+    auto between_r = [&](std::size_t k) {  // three quarters of the way
+      return xs[k].hi() + (xs[k + 1].lo() - xs[k].hi()) * Rational(3, 4);
+    };
+    for (std::size_t k = 0; k + 2 < xs.size(); ++k) {
+      SCOPED_TRACE("after root " + std::to_string(k));
+      ASSERT_EQ(count_real_roots(p, between(k), between_r(k)), 0);
+      EXPECT_THROW(RealAlgebraic(IsolatedRoot{between(k), between_r(k), f, 1}, shared), InvalidArgument);
+      if (k + 3 < xs.size()) {  // roots k + 1 and k + 2 inside
+        ASSERT_EQ(count_real_roots(p, between(k), between(k + 2)), 2);
+        EXPECT_THROW(RealAlgebraic(IsolatedRoot{between(k), between(k + 2), f, 1}, shared), InvalidArgument);
+      }
+      const RealAlgebraic good(IsolatedRoot{between_r(k), between(k + 1), f, 1}, shared);
+      EXPECT_EQ(compare(good, xs[k + 1]), 0);
+    }
   }
 }
 

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "support/iterations.hpp"
 #include "uniparam/core/error.hpp"
@@ -164,6 +165,33 @@ TEST(Rational, OrderingAndArithmetic) {
   EXPECT_EQ(-a, Rational(-1, 3));
   EXPECT_TRUE(Rational(4, 2).is_integer());
   EXPECT_FALSE(a.is_integer());
+}
+
+// primitive() against FLINT's primitive part on random polynomials times a
+// random integer (content 1 or not, either sign of the leading coefficient,
+// zero coefficients, the zero polynomial): the same polynomial, primitive
+// with a positive leading coefficient.
+TEST(Poly, PrimitiveMatchesFlintsPrimitivePart) {
+  std::mt19937_64 rng(4401);
+  std::uniform_int_distribution<long> coef(-50, 50), deg(-1, 12), scale(-6, 6);
+  for (long it = 0; it < iterations(400); ++it) {
+    const long n = deg(rng);
+    std::vector<long> c(static_cast<std::size_t>(n + 1));
+    for (auto& x : c) x = coef(rng) * (rng() % 3 == 0 ? 0 : 1);
+    long k = scale(rng);
+    if (k == 0) k = 1;
+    const Poly p = Poly(c) * Poly(k);
+    Poly want;
+    fmpz_poly_primitive_part(want.get(), p.get());
+    const Poly got = p.primitive();
+    EXPECT_EQ(got, want) << p.str();
+    if (!got.is_zero()) {
+      EXPECT_GT(got.leading().sign(), 0) << p.str();
+      Integer content;
+      fmpz_poly_content(content.get(), got.get());
+      EXPECT_TRUE(content == Integer(1)) << p.str();
+    }
+  }
 }
 
 }  // namespace

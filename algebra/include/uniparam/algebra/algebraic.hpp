@@ -28,9 +28,11 @@ class RealAlgebraic {
   /// factor's values from the factors of a product, far cheaper than its
   /// power basis at high degree. refine() then takes interval Newton steps
   /// with the derivative from sev at 64 bits, and needs no exact sign
-  /// (root_refine.hpp). The number keeps (shares) sev for as long as any
-  /// copy lives: whatever sev refers to must live as long (capture it by
-  /// value).
+  /// (root_refine.hpp). The check that r.lo and r.hi are not roots and
+  /// that r.factor changes sign between them uses sev's enclosures at 64
+  /// bits first, exact signs only where those hold 0. The number keeps
+  /// (shares) sev for as long as any copy lives: whatever sev refers to must
+  /// live as long (capture it by value).
   /// \pre as for RealAlgebraic(r); sev's contract is trusted, not checked.
   RealAlgebraic(const IsolatedRoot& r, std::shared_ptr<const ScaledEvaluator> sev);
   /// The root of `squarefree` in (lo, hi).
@@ -75,6 +77,9 @@ class RealAlgebraic {
   std::string str() const;
 
  private:
+  // The constructors from an isolated root; sev (may be null) checks the
+  // ends' signs first.
+  void init(const IsolatedRoot& r, const ScaledEvaluator* sev);
   struct Shared;  // the narrowest interval known to the copies (irrational only)
   Poly poly_;
   mutable Rational lo_, hi_;
