@@ -98,15 +98,25 @@ struct Built {
 Built build(const Speed& s, const UniformityResult& base, const std::vector<RealAlgebraic>& T, long digits,
             const Options& opt) {
   const std::size_t N = T.size() - 1;
+  // base holds mu alone (detail::mu_only): u_before comes from the pieces'
+  // integrals, int sigma^2 = sum L_i / Delta t_i (the pieces have no zeros
+  // at their ends: rho = Delta t), as in moebius_c0; mu is recomputed at the
+  // loop's accuracy when a result made with it falls short.
+  Ball mu = base.mu;
+  long mu_bits = 0;
+  bool raise_mu = false;
   for (long bits = digits_to_bits(digits) + 8;; bits += 32) {
     check_time_budget();
     const long prec = 2 * bits + 64;
+    if (raise_mu && bits > mu_bits) {
+      mu_bits = bits;
+      mu = mean_speed(s, mu_bits, opt);
+    }
     Built b;
     MoebiusResult& r = b.r;
     r.kind = s.kind();
     r.continuity = Continuity::C1;
-    r.mu = base.mu;
-    r.u_before = base.u;
+    r.mu = mu;
     r.speed_vanishes = !s.zeros().empty();
     std::vector<Ball> len(N);
     Ball total(0);
@@ -137,11 +147,20 @@ Built build(const Speed& s, const UniformityResult& base, const std::vector<Real
       r.S.push_back(q);
     }
     r.S.push_back(Ball(1));
-    b.d = detail::c1_from_pieces(T, r.S, r.integrals, base.mu, prec);
+    b.d = detail::c1_from_pieces(T, r.S, r.integrals, mu, prec);
     r.alpha = b.d.alpha;
     r.u_after = b.d.u;
+    Ball mean_square(0), mu2;
+    for (std::size_t i = 0; i < N; ++i) {
+      const Ball part = piece_square_integral(s, r.T[i], r.T[i + 1], r.integrals[i], bits, opt.max_prec);
+      arb_add(mean_square.get(), mean_square.get(), part.get(), prec);
+    }
+    arb_mul(mu2.get(), mu.get(), mu.get(), prec);
+    arb_div(r.u_before.get(), mu2.get(), mean_square.get(), prec);
     const long d = digits + 1;
-    bool ok = r.u_after.meets_digits(d);
+    const bool mu_ok = mu.meets_digits(d) && r.u_before.meets_digits(d) && r.u_after.meets_digits(d);
+    raise_mu = !mu_ok;
+    bool ok = mu_ok;
     for (const auto& x : r.S) ok = ok && x.meets_digits(d);
     for (const auto& x : r.alpha) ok = ok && x.meets_digits(d);
     if (ok) return b;
@@ -493,7 +512,7 @@ MoebiusResult detail::reparam_c1_traced(const Curve& c, SpeedKind kind, const Ra
   validate(opt);
   check_degree(c, opt);
   const Speed s(c, kind);
-  // The uniformity (its own parallel loop) and the critical points (one
+  // mu (its own parallel loop) and the critical points (one
   // root isolation of a polynomial of degree ~11d, serial) side by side, as
   // in radical(): the second on its own copy of the speed.
   UniformityResult base;
@@ -501,7 +520,7 @@ MoebiusResult detail::reparam_c1_traced(const Curve& c, SpeedKind kind, const Ra
   {
     const Speed s_copy = s;
     parallel_for(2, std::min<std::size_t>(worker_count(), 2), [&](std::size_t, std::size_t i) {
-      if (i == 0) base = uniformity(s, opt);
+      if (i == 0) base = detail::mu_only(s, opt);  // u_before: from the pieces (build)
       else critical = critical_points(s_copy);
     });
   }

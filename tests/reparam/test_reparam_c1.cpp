@@ -120,6 +120,26 @@ TEST(ReparamC1, ReportsAnUnreachedTargetWithTheBestMap) {
   EXPECT_TRUE(arb_gt(r.u_after.get(), r.u_before.get()));
 }
 
+// u_before comes from the pieces (sum L_i / Delta t_i for int sigma^2) and
+// mu from mean_speed alone: both against the uniformity's own integrals on
+// random curves (plane, space; angular and parametric).
+TEST(ReparamC1, UBeforeAndMuFromThePiecesMatchTheUniformity) {
+  std::mt19937_64 rng(777);
+  for (long it = 0; it < test_support::iterations(6); ++it) {
+    std::vector<RatFunc> comps{RatFunc(test_support::random_poly(rng, 3, 9)), RatFunc(test_support::random_poly(rng, 4, 9))};
+    if (it % 3 == 2) comps.emplace_back(test_support::random_poly(rng, 3, 9));
+    const Curve c(comps);
+    const SpeedKind kind = it % 2 ? SpeedKind::Parametric : SpeedKind::Angular;
+    if (Speed(c, kind).identically_zero()) continue;
+    const MoebiusResult r = reparam_c1(c, kind, Rational(9, 10), {}, 6);
+    const UniformityResult u = uniformity(c, kind);
+    EXPECT_TRUE(arb_overlaps(r.u_before.get(), u.u.get())) << c.str() << ": " << r.u_before.str(20) << " vs "
+                                                           << u.u.str(20);
+    EXPECT_TRUE(r.u_before.meets_digits(16)) << r.u_before.str(25);
+    EXPECT_TRUE(arb_overlaps(r.mu.get(), u.mu.get())) << c.str();
+  }
+}
+
 TEST(ReparamC1, RejectsBadTargets) {
   const Curve c = parse_curve("(t, t^2)");
   EXPECT_THROW(reparam_c1(c, SpeedKind::Angular, Rational(3, 2), {}), InvalidArgument);
