@@ -7,8 +7,8 @@
 
 #include "uniparam/algebra/deflation.hpp"
 #include "uniparam/core/error.hpp"
-#include <map>
 #include <future>
+#include <map>
 #include <mutex>
 #include <unordered_map>
 #include <vector>

@@ -142,7 +142,6 @@ long moebius_first_bits(const Options& opt) { return digits_to_bits(opt.digits) 
 UniformityResult mu_only(const Speed& s, const Options& opt) {
   UniformityResult r;
   r.kind = s.kind();
-  r.speed_squared = s.squared();
   r.zeros = s.zeros();
   r.identically_zero = s.identically_zero();
   r.mu = mean_speed(s, digits_to_bits(opt.digits), opt);

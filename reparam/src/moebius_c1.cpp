@@ -512,9 +512,9 @@ MoebiusResult detail::reparam_c1_traced(const Curve& c, SpeedKind kind, const Ra
   validate(opt);
   check_degree(c, opt);
   const Speed s(c, kind);
-  // mu (its own parallel loop) and the critical points (one
-  // root isolation of a polynomial of degree ~11d, serial) side by side, as
-  // in radical(): the second on its own copy of the speed.
+  // mu (its own parallel loop) and the critical points (the root isolation
+  // of a polynomial of degree ~11d, in two halves) side by side, as in
+  // radical(): the second on its own copy of the speed.
   UniformityResult base;
   std::vector<RealAlgebraic> critical;
   {

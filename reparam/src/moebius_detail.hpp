@@ -16,8 +16,10 @@ std::vector<Breakpoint> moebius_breakpoints(const Speed& s, const std::vector<Re
 long moebius_first_bits(const Options& opt);
 
 /// A UniformityResult with mu alone (mean_speed at digits_to_bits(digits)
-/// bits, the uniformity's first goal): moebius_c0 takes only mu and
-/// identically_zero from its base; mean_square and u stay indeterminate.
+/// bits, the uniformity's first goal): moebius_c0 and the C1 construction
+/// take only mu and identically_zero from their base; mean_square and u stay
+/// indeterminate, and speed_squared empty (the exact sigma^2 is built only
+/// when asked for, Speed::squared).
 UniformityResult mu_only(const Speed& s, const Options& opt);
 
 /// moebius_c0 for an already built speed and mu (base.mu, from uniformity()
