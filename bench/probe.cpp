@@ -2,7 +2,8 @@
 // prints the result and the wall time (for profiling with perf / callgrind):
 //   uniparam_probe FAMILY DEGREE uniformity|radical|piecesN|target99|phases [DIGITS]
 // `phases` times radical's steps one after the other, each alone: the speed's
-// construction, mu, the critical points, the piece integrals.
+// construction, mu, the critical points, the piece integrals. PROBE_RUNS=N
+// runs the operation N times in one process (cold first run, then warm).
 #include "bench_curves.hpp"
 #include "uniparam/reparam/pieces.hpp"
 #include <chrono>
@@ -12,6 +13,8 @@ int main(int argc, char** argv) {
   auto c = uniparam::bench::make_curve(fam, d);
   if (getenv("SHOW")) std::cout << c.str() << "\n";
   uniparam::Options o; o.digits = digits;
+  const int runs = getenv("PROBE_RUNS") ? atoi(getenv("PROBE_RUNS")) : 1;
+  for (int run = 0; run < runs; ++run) {
   auto t0 = std::chrono::steady_clock::now();
   if (op == "uniformity") { auto r = uniparam::uniformity(c, uniparam::SpeedKind::Angular, o); std::cout << r.u.str(20) << " zeros " << r.zeros.size() << "\n"; }
   else if (op == "radical") { auto r = uniparam::radical(c, uniparam::SpeedKind::Angular, o); std::cout << r.u_after.str(20) << " pieces " << r.pieces() << "\n"; }
@@ -32,4 +35,5 @@ int main(int argc, char** argv) {
   else if (op.rfind("pieces", 0) == 0) { auto r = uniparam::reparam_c0(c, uniparam::SpeedKind::Angular, atol(op.c_str() + 6), o); std::cout << r.u_after.str(20) << "\n"; }
   else { auto r = uniparam::reparam_c1(c, uniparam::SpeedKind::Angular, uniparam::Rational(99, 100), o); std::cout << r.u_after.str(20) << " pieces " << r.pieces() << (r.target.reached ? "" : " (target not reached)") << "\n"; }
   std::cout << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() << " s\n";
+  }
 }

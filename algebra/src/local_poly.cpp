@@ -336,12 +336,48 @@ struct Growing {
   }
 };
 
-// Scratch for the powers of w, one per thread.
+// Scratch for the powers of w, one per thread. The powers of the last w
+// (and precision) are kept: a speed evaluates all its factors at the same
+// z, and factors of similar degree use cells with the same centre at the
+// same level (the level depends on z alone), so they share w = z - c and
+// its powers (a quarter of an evaluation of a rational space curve's
+// speed). Reused powers are the ones recomputing would give (the same
+// products of the same balls at the same precision), so results do not
+// change.
+template <typename Ptr, Ptr (*Init)(slong), void (*Clear)(Ptr, slong), typename Ball, void (*BallInit)(Ball*),
+          void (*BallClear)(Ball*), int (*Equal)(const Ball*, const Ball*), void (*Set)(Ball*, const Ball*),
+          void (*One)(Ball*), void (*Mul)(Ball*, const Ball*, const Ball*, slong)>
+struct PowerMemo {
+  Growing<Ptr, Init, Clear> pw;
+  Ball w;           // the ball whose powers pw holds
+  long prec = 0;    // their precision
+  slong valid = 0;  // pw[0..valid) = w^0..w^(valid-1)
+  PowerMemo() { BallInit(&w); }
+  PowerMemo(const PowerMemo&) = delete;
+  PowerMemo& operator=(const PowerMemo&) = delete;
+  ~PowerMemo() { BallClear(&w); }
+  /// w^0, ..., w^(n-1) at precision p (n >= 1).
+  Ptr powers(const Ball* x, slong n, long p) {
+    if (n > pw.cap) valid = 0;  // at_least reallocates
+    Ptr v = pw.at_least(n);
+    if (valid == 0 || p != prec || !Equal(&w, x)) {
+      Set(&w, x);
+      prec = p;
+      One(v);
+      valid = 1;
+    }
+    for (; valid < n; ++valid) Mul(v + valid, v + valid - 1, &w, p);
+    return v;
+  }
+};
+
 struct Scratch {
-  Growing<arb_ptr, _arb_vec_init, _arb_vec_clear> real;
-  Growing<acb_ptr, _acb_vec_init, _acb_vec_clear> complex;
-  arb_ptr real_powers(slong n) { return real.at_least(n); }
-  acb_ptr complex_powers(slong n) { return complex.at_least(n); }
+  PowerMemo<arb_ptr, _arb_vec_init, _arb_vec_clear, arb_struct, arb_init, arb_clear, arb_equal, arb_set, arb_one,
+            arb_mul>
+      real;
+  PowerMemo<acb_ptr, _acb_vec_init, _acb_vec_clear, acb_struct, acb_init, acb_clear, acb_equal, acb_set, acb_one,
+            acb_mul>
+      complex;
 };
 
 Scratch& scratch() {
@@ -647,9 +683,7 @@ bool LocalPoly::eval_cells(int variant, acb_t v, acb_t d1, acb_t d2, const acb_t
   acb_ptr outs[3] = {v, d1, d2};
   const slong K = std::max<slong>(arb_poly_length(cell->P), 1);
   if (acb_is_real(w)) {
-    arb_ptr pw = scratch().real_powers(K);
-    arb_one(pw);
-    for (slong k = 1; k < K; ++k) arb_mul(pw + k, pw + k - 1, acb_realref(w), prec);
+    arb_srcptr pw = scratch().real.powers(acb_realref(w), K, prec);
     for (int j = 0; j <= 2; ++j) {
       if (!outs[j]) continue;
       arb_dot(acb_realref(outs[j]), nullptr, 0, polys[j]->coeffs, 1, pw, 1, arb_poly_length(polys[j]), prec);
@@ -658,9 +692,7 @@ bool LocalPoly::eval_cells(int variant, acb_t v, acb_t d1, acb_t d2, const acb_t
       arb_add_error_mag(acb_realref(outs[j]), cell->tail + j);
     }
   } else {
-    acb_ptr pw = scratch().complex_powers(K);
-    acb_one(pw);
-    for (slong k = 1; k < K; ++k) acb_mul(pw + k, pw + k - 1, w, prec);
+    acb_srcptr pw = scratch().complex.powers(w, K, prec);
     // real coefficients: real and imaginary parts are two real dot products
     // over the interleaved parts of the powers (stride 2)
     arb_srcptr parts = reinterpret_cast<arb_srcptr>(pw);

@@ -8,6 +8,7 @@
 #include <flint/flint.h>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <functional>
 #include <random>
@@ -382,6 +383,60 @@ TEST(LocalPoly, CopiesShareCellsAndThreadsGetTheSameEnclosures) {
     }
     for (auto& v : got) acb_clear(&v);
     for (auto& v : ref) acb_clear(&v);
+    for (auto& z : balls) acb_clear(&z);
+  }
+}
+
+// A thread keeps the powers of the last w = z - c (the factors of a speed
+// are evaluated at the same z, often on cells with the same centre): every
+// evaluation must give what it gives alone on a fresh thread, whatever was
+// evaluated before on its own thread (other polynomials, other balls,
+// other precisions, fewer or more terms).
+TEST(LocalPoly, SharedPowersGiveTheEnclosuresOfALoneEvaluation) {
+  std::mt19937_64 rng(2311);
+  for (long it = 0; it < iterations(3); ++it) {
+    // p and q of the same degree share cell centres; r of another degree
+    // has more or fewer terms on the same cells
+    const long n = std::uniform_int_distribution<long>(20, 120)(rng);
+    const LocalPoly p(random_poly(rng, n, 20)), q(random_poly(rng, n, 20)),
+        r(random_poly(rng, std::uniform_int_distribution<long>(11, 160)(rng), 20));
+    const LocalPoly* polys[3] = {&p, &q, &r};
+    constexpr int kBalls = 40;
+    const long precs[2] = {64, 200};
+    // calls: (poly, ball, prec), in an order that reuses and invalidates the powers
+    std::vector<std::array<int, 3>> calls;
+    for (int b = 0; b < kBalls; ++b)
+      for (int k : {0, 1, 2, 1})
+        calls.push_back({k, b, static_cast<int>(std::uniform_int_distribution<int>(0, 1)(rng))});
+    std::vector<acb_struct> balls(kBalls), got(3 * calls.size()), alone(3 * calls.size());
+    for (auto& z : balls) {
+      acb_init(&z);
+      random_ball(&z, rng);
+    }
+    for (auto& v : got) acb_init(&v);
+    for (auto& v : alone) acb_init(&v);
+    auto call = [&](std::size_t i, acb_ptr o) {
+      const auto& c = calls[i];
+      polys[c[0]]->eval(o, o + 1, o + 2, &balls[static_cast<std::size_t>(c[1])], precs[c[2]]);
+    };
+    std::thread seq([&] {
+      for (std::size_t i = 0; i < calls.size(); ++i) call(i, &got[3 * i]);
+      flint_cleanup();
+    });
+    seq.join();
+    for (std::size_t i = 0; i < calls.size(); ++i) {
+      std::thread lone([&] {
+        call(i, &alone[3 * i]);
+        flint_cleanup();
+      });
+      lone.join();
+      for (int j = 0; j < 3; ++j)
+        ASSERT_TRUE(acb_equal(&got[3 * i + static_cast<std::size_t>(j)], &alone[3 * i + static_cast<std::size_t>(j)]))
+            << "call " << i << " (polynomial " << calls[i][0] << ", ball " << calls[i][1] << ", precision "
+            << precs[calls[i][2]] << "), output " << j;
+    }
+    for (auto& v : got) acb_clear(&v);
+    for (auto& v : alone) acb_clear(&v);
     for (auto& z : balls) acb_clear(&z);
   }
 }
