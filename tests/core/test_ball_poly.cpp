@@ -128,6 +128,56 @@ TEST(TaylorShiftPow2, EnclosesTheExactShiftOfEveryPolynomialInTheBalls) {
   }
 }
 
+// Radii alone (zero midpoints): the output radius of coefficient j must be
+// at least sum_{k >= j} C(k, j) r_k 2^(e (k - j)) (the shift of the radii,
+// for either sign), and, where that sum is not made of radii far below the
+// largest (which may be raised to 2^-1000 of it), within 2^-20 of it (the
+// double path, n <= 900) or n 2^-28 (the mag path: each of up to n mag
+// additions rounds up by 2^-30). Lengths up to 953 reach both paths.
+TEST(TaylorShiftPow2, RadiiAreShiftedUpwardAndTightly) {
+  std::mt19937_64 rng(2311);
+  std::uniform_int_distribution<int> kind(0, 3), sign(0, 1);
+  std::uniform_int_distribution<long> near(-200, 0), far(-1150, -1050), ex(-8, 0), top(-3000, 3000);
+  std::uniform_int_distribution<ulong> mant(1, (1UL << 30) - 1);
+  for (long it = 0; it < iterations(24); ++it) {
+    const long n = it % 6 == 5 ? 950 + static_cast<long>(kind(rng)) : 2 + static_cast<long>(rng() % 160);
+    const long e = ex(rng), R = top(rng);
+    BallPoly p, q;
+    arb_poly_fit_length(p.get(), n);
+    std::vector<Rational> r(static_cast<std::size_t>(n), Rational(0));
+    for (long k = 0; k < n; ++k) {
+      arb_ptr c = p.get()->coeffs + k;
+      arb_zero(c);
+      const int kd = k == 0 ? 3 : kind(rng);  // r_0 sets the scale
+      if (kd == 0) continue;
+      const long x = R + (kd == 1 ? far(rng) : near(rng));
+      mag_set_ui_2exp_si(arb_radref(c), mant(rng), x - 30);
+      r[static_cast<std::size_t>(k)] = rad_q(c);
+    }
+    _arb_poly_set_length(p.get(), n);  // zero midpoints: length set by hand
+    taylor_shift_pow2(q.get(), p.get(), e, sign(rng) ? 1 : -1, 64);
+    const long step = n > 200 ? n / 7 : 1;
+    for (long j = 0; j < n; j += step) {
+      Rational want(0);
+      Integer binom(1);  // C(k, j)
+      for (long k = j; k < n; ++k) {
+        if (k > j) {
+          fmpz_mul_ui(binom.get(), binom.get(), static_cast<ulong>(k));
+          fmpz_divexact_ui(binom.get(), binom.get(), static_cast<ulong>(k - j));
+        }
+        if (r[static_cast<std::size_t>(k)].sign() != 0)
+          want = want + Rational(binom) * r[static_cast<std::size_t>(k)] * pow2q(e * (k - j));
+      }
+      const arb_struct* c = j < arb_poly_length(q.get()) ? q.get()->coeffs + j : nullptr;
+      const Rational got = c ? rad_q(c) : Rational(0);
+      ASSERT_TRUE(c == nullptr || arf_is_zero(arb_midref(c)));
+      ASSERT_GE(got, want) << "n = " << n << ", coefficient " << j;
+      const Rational slack = n <= 900 ? pow2q(-20) : Rational(n) * pow2q(-28);
+      if (want > pow2q(R - 900)) EXPECT_LE(got, want * (Rational(1) + slack)) << "n = " << n << ", coefficient " << j;
+    }
+  }
+}
+
 TEST(TaylorShiftPow2, AnExactInputIsRoundedOnceToPrec) {
   // Exact balls: every output is the exact shift rounded once, so its
   // radius is at most 2^-prec of its midpoint (Arb's arb_poly_taylor_shift
