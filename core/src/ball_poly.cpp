@@ -48,6 +48,7 @@ void shift_radii(std::vector<mag_struct>& r) {
   for (const mag_struct& x : r) {
     if (mag_is_zero(&x)) continue;
     if (!mag_is_finite(&x) || !fmpz_fits_si(MAG_EXPREF(&x))) {
+      any = true;
       doubles = false;
       break;
     }
