@@ -74,7 +74,9 @@ int evaluator_sign(const ScaledEvaluator& sev, const Rational& x) {
   arb_init(X);
   arb_init(v);
   arb_set_fmpq(X, x.get(), 64);
-  mag_set_ui_2exp_si(arb_radref(X), 1, -23);  // >= the rounding: still holds x
+  // widened, not replaced: the rounding of a far x (|x| > 2^40) exceeds
+  // 2^-23, and a ball without x could decide the wrong sign
+  if (mag_cmp_2exp_si(arb_radref(X), -23) < 0) arb_add_error_2exp_si(X, -23);
   sev.ev(v, nullptr, X, 64);
   const int s = !arb_is_finite(v) ? 0 : arb_is_positive(v) ? 1 : arb_is_negative(v) ? -1 : 0;
   arb_clear(X);

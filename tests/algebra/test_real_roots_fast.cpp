@@ -458,5 +458,30 @@ TEST(RealRootsFast, ScaledEvaluatorRefinesLikeTheExactPath) {
   }
 }
 
+// The ends' signs by the evaluator must hold for the exact end, even where
+// its 64-bit ball is rounded by more than the evaluator's 2^-23 radius:
+// lo = 2^50 + 2/3 rounds ~2^-14 below itself, and the only root of f lies
+// 2^-40 below lo, so [lo, hi] isolates nothing (f > 0 at both ends). A ball
+// centred on the rounded lo with radius 2^-23 lies left of the root and
+// would show f < 0 there, accepting the interval.
+TEST(RealRootsFast, EvaluatorEndChecksHoldForFarEnds) {
+  const Rational lo = Rational(1L << 50) + Rational(2, 3), hi = lo + Rational(1, 2);
+  Rational eps(1);
+  fmpq_div_2exp(eps.get(), eps.get(), 40);
+  const Rational r = lo - eps;
+  // f = den(r) t - num(r), exact; its evaluator is Arb's at the ball
+  const Poly f(std::vector<Integer>{Integer(0) - Integer(fmpq_numref(r.get())), Integer(fmpq_denref(r.get()))});
+  ScaledEvaluator sev;
+  sev.lambda = Rational(1);
+  sev.ev = [f](arb_t v, arb_t d, const arb_t x, long) {
+    arb_fmpz_poly_evaluate_arb(v, f.get(), x, 512);  // tight: f's 2^90 coefficients cancel
+    if (d) arb_set_fmpz(d, f.get()->coeffs + 1);
+  };
+  IsolatedRoot bad{lo, hi, f, 1};
+  EXPECT_THROW(RealAlgebraic(bad, std::make_shared<const ScaledEvaluator>(sev)), InvalidArgument);
+  // the same check without the evaluator (exact signs) refuses it too
+  EXPECT_THROW(RealAlgebraic{bad}, InvalidArgument);
+}
+
 }  // namespace
 }  // namespace uniparam
