@@ -340,8 +340,8 @@ struct Growing {
 // (and precision) are kept: a speed evaluates all its factors at the same
 // z, and factors of similar degree use cells with the same centre at the
 // same level (the level depends on z alone), so they share w = z - c and
-// its powers (a quarter of an evaluation of a rational space curve's
-// speed). Reused powers are the ones recomputing would give (the same
+// its powers (7.5% of a degree-150 rational space curve's radical,
+// one thread). Reused powers are the ones recomputing would give (the same
 // products of the same balls at the same precision), so results do not
 // change.
 template <typename Ptr, Ptr (*Init)(slong), void (*Clear)(Ptr, slong), typename Ball, void (*BallInit)(Ball*),
