@@ -66,8 +66,8 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
     for (const auto& x : X) Y.push_back(divexact(x, gx));
   }
   // Two independent halves, side by side (the construction is serial
-  // otherwise, ~10% of radical's time at degree 150): D and the check that
-  // it has no root in [0, 1]; the numerators N, g = gcd(N), the cofactors
+  // otherwise, ~10% of radical's time at degree 150): D and (parametric
+  // speed) the check that it has no root in [0, 1]; the numerators N, g = gcd(N), the cofactors
   // K and g's zeros. Both are exact, so nothing depends on the threads. An
   // error (a root of D) is rethrown after both have stopped.
   std::vector<Poly> N;
@@ -76,9 +76,13 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
       if (kind == SpeedKind::Angular) {
         D_ = Poly(0);
         for (const auto& y : Y) D_ = D_ + y * y;
-      } else {
-        D_ = c.derivative_denominator();
+        // No check needed: the Y_i = X_i / gcd(X) are coprime, so they have
+        // no common complex zero and D = sum Y_i^2 > 0 on the whole real
+        // line. (Its root isolation, exact at degree 2d, was a tenth of
+        // dense-plane d=150 uniformity's instructions.)
+        return;
       }
+      D_ = c.derivative_denominator();
       // D must not vanish on [0, 1] (the speed would be infinite there).
       auto r = isolate_real_roots(D_, Rational(0), Rational(1));
       if (!r.empty()) {

@@ -8,6 +8,8 @@
 
 #include <memory>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "support/iterations.hpp"
 #include "uniparam/uniparam.hpp"
@@ -381,4 +383,34 @@ TEST(SpeedEval, CriticalNumeratorFromFactorsContainsTheExactOne) {
     }
   }
   EXPECT_GT(checked, 40);
+}
+
+// The angular speed's denominator D = sum Y_i^2 (Y = X / gcd(X)) is never
+// checked for roots in [0, 1]: the Y_i are coprime, so D > 0 on the whole
+// real line. Checked exactly here on the curves where that could fail:
+// singular points, p'(a) = 0, at random rational and irrational a in [0, 1]
+// (a common factor m(t) of every X_i, which D would keep if the Y_i were not
+// reduced), plane and space, and random rational Bezier curves.
+TEST(SpeedEval, AngularDenominatorHasNoRealRootEvenWhereTheDerivativeVanishes) {
+  std::mt19937_64 rng(20261123);
+  std::uniform_int_distribution<long> num(1, 99), small(-5, 5);
+  long checked = 0;
+  for (long it = 0; it < test_support::iterations(12); ++it) {
+    const std::string a = std::to_string(num(rng)) + "/100";
+    // m vanishes in [0, 1]: at a, or at sqrt(a) (irrational unless a square).
+    const std::string m = it % 2 ? "(t - " + a + ")" : "(t^2 - " + a + ")";
+    const std::string x = m + "^2", y = m + "^3 + (" + std::to_string(small(rng)) + "*t + 1)*" + m + "^2";
+    const std::string z = std::to_string(small(rng)) + "*" + m + "^3 + t*" + m + "^2";
+    std::vector<Curve> curves = {parse_curve("(" + x + ", " + y + ")"), parse_curve("(" + x + ", " + y + ", " + z + ")"),
+                                 random_bezier(rng, 3 + it % 5, 2 + it % 2, true)};
+    for (const Curve& c : curves) {
+      const Speed s(c, SpeedKind::Angular);
+      if (s.identically_zero()) continue;
+      const Poly& D = s.denominator();
+      ASSERT_GT(D.degree(), -1) << c.str();
+      EXPECT_TRUE(isolate_real_roots(D, Rational(-4), Rational(4)).empty()) << c.str() << ": D = " << D.str();
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 30);
 }
