@@ -67,8 +67,8 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
   }
   // Two independent halves, side by side (the construction is serial
   // otherwise, ~10% of radical's time at degree 150): D and (parametric
-  // speed) the check that it has no root in [0, 1]; the numerators N, g = gcd(N), the cofactors
-  // K and g's zeros. Both are exact, so nothing depends on the threads. An
+  // speed) the check that it has no root in [0, 1]; the numerators N,
+  // g = gcd(N), the cofactors K and g's zeros. Both are exact, so nothing depends on the threads. An
   // error (a root of D) is rethrown after both have stopped.
   std::vector<Poly> N;
   parallel_for(2, std::min<std::size_t>(worker_count(), 2), [&](std::size_t, std::size_t task) {
@@ -78,8 +78,8 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
         for (const auto& y : Y) D_ = D_ + y * y;
         // No check needed: the Y_i = X_i / gcd(X) are coprime, so they have
         // no common complex zero and D = sum Y_i^2 > 0 on the whole real
-        // line. (Its root isolation, exact at degree 2d, was a tenth of
-        // dense-plane d=150 uniformity's instructions.)
+        // line. (Its isolation on [0, 1] cost ~1% of dense-plane d=150
+        // uniformity's instructions.)
         return;
       }
       D_ = c.derivative_denominator();

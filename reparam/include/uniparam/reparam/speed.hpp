@@ -50,7 +50,9 @@ struct SpeedZero {
 class Speed {
  public:
   /// \throws DomainError if the speed is infinite somewhere in [0, 1]
-  ///         (a root of D there), naming the parameter value.
+  ///         (a root of D there), naming the parameter value. Only the
+  ///         parametric speed can be: the angular D = sum Y_i^2 has coprime
+  ///         Y_i, so it is positive on the whole real line.
   Speed(const Curve& c, SpeedKind kind);
 
   SpeedKind kind() const { return kind_; }
