@@ -68,8 +68,9 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
   // Two independent halves, side by side (the construction is serial
   // otherwise, ~10% of radical's time at degree 150): D and (parametric
   // speed) the check that it has no root in [0, 1]; the numerators N,
-  // g = gcd(N), the cofactors K and g's zeros. Both are exact, so nothing depends on the threads. An
-  // error (a root of D) is rethrown after both have stopped.
+  // g = gcd(N), the cofactors K and g's zeros. Both are exact, so nothing
+  // depends on the threads. An error (a root of D) is rethrown after both
+  // have stopped.
   std::vector<Poly> N;
   parallel_for(2, std::min<std::size_t>(worker_count(), 2), [&](std::size_t, std::size_t task) {
     if (task == 0) {
