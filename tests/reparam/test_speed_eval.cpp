@@ -414,3 +414,96 @@ TEST(SpeedEval, AngularDenominatorHasNoRealRootEvenWhereTheDerivativeVanishes) {
   }
   EXPECT_GE(checked, 30);
 }
+
+TEST(SpeedEval, DoubleWordPathContainsTheExactSpeedAtNodeBalls) {
+  // The quadrature's nodes are real balls of tiny radius at ~70-100 bits:
+  // there eval and eval_squared first try Horner's rule in double-word balls
+  // (eval_double_word). Whenever it answers, sigma^2 must hold the exact
+  // squared() at rational points of the ball, sigma (from a piece's signs)
+  // the square root of it with the piece's sign, and both must agree with
+  // the Arb path at 256 bits. Plane, space, polynomial and rational curves
+  // (with a common weight and with one denominator per component), angular
+  // and parametric.
+  std::mt19937_64 rng(21);
+  std::uniform_int_distribution<long> num(0, 1 << 20), prec(64, 110);
+  long answered = 0, checked = 0;
+  for (long it = 0; it < test_support::iterations(24); ++it) {
+    const long d = 2 + static_cast<long>(rng() % 9);
+    const std::size_t dim = 2 + static_cast<std::size_t>(it % 2);
+    Curve c = random_bezier(rng, d, dim, it % 4 == 2);
+    if (it % 4 == 3) {  // a different denominator per component
+      std::vector<RatFunc> comps;
+      for (std::size_t i = 0; i < dim; ++i) comps.emplace_back(small_poly(rng, d, false), small_poly(rng, d, true));
+      c = Curve(comps);
+    }
+    for (SpeedKind kind : {SpeedKind::Angular, SpeedKind::Parametric}) {
+      const std::unique_ptr<Speed> s = regular_speed(c, kind);
+      if (!s || s->squared().num().is_zero()) continue;
+      acb_t z, dw, ref;
+      acb_init(z);
+      acb_init(dw);
+      acb_init(ref);
+      for (int p = 0; p < 8; ++p) {
+        const Rational t(num(rng), 1 << 20);
+        const long wp = prec(rng);
+        acb_zero(z);
+        arb_set_fmpq(acb_realref(z), t.get(), wp);  // a node: radius ~2^-wp
+        if (!s->eval_double_word(dw, z, Speed::PieceSigns{}, true, wp)) continue;
+        ++answered;
+        ASSERT_TRUE(arb_is_zero(acb_imagref(dw)));
+        ASSERT_LE(mag_cmp_2exp_si(arb_radref(acb_realref(dw)), 0), 0);
+        // every point of z: its ends and t
+        arb_t e;
+        arb_init(e);
+        for (int side = -1; side <= 1; ++side) {
+          arf_set_mag(arb_midref(e), arb_radref(acb_realref(z)));
+          arf_mul_si(arb_midref(e), arb_midref(e), side, ARF_PREC_EXACT, ARF_RND_DOWN);
+          arf_add(arb_midref(e), arb_midref(e), arb_midref(acb_realref(z)), ARF_PREC_EXACT, ARF_RND_DOWN);
+          mag_zero(arb_radref(e));
+          Rational pt;
+          arf_get_fmpq(pt.get(), arb_midref(e));
+          const Ball re(acb_realref(dw));
+          ASSERT_TRUE(re.contains(s->squared()(pt)))
+              << c.str() << " " << to_string(kind) << " at t = " << pt.str() << ": " << re.str(20);
+        }
+        arb_clear(e);
+        // sigma itself, against the Arb path at 256 bits (the ball's midpoint)
+        const Speed::PieceSigns sg{};
+        if (s->eval_double_word(dw, z, sg, false, wp)) {
+          acb_zero(ref);
+          arb_set_fmpq(acb_realref(ref), t.get(), 256);
+          acb_t v;
+          acb_init(v);
+          s->eval(v, ref, sg, false, 256);
+          ASSERT_TRUE(acb_overlaps(dw, v) || (acb_neg(v, v), acb_overlaps(dw, v)))
+              << c.str() << " " << to_string(kind) << " at t = " << t.str();
+          acb_clear(v);
+        }
+        ++checked;
+      }
+      acb_clear(z);
+      acb_clear(dw);
+      acb_clear(ref);
+    }
+  }
+  EXPECT_GT(answered, 100);  // the path is taken on these low-degree curves
+  EXPECT_EQ(answered, checked);
+}
+
+TEST(SpeedEval, DoubleWordPathDeclinesWideComplexAndHighPrecisionBalls) {
+  const Curve c = Curve({RatFunc(Poly::t()), RatFunc(Poly::t().pow(3))});  // (t, t^3)
+  const Speed s(c, SpeedKind::Angular);
+  acb_t z, out;
+  acb_init(z);
+  acb_init(out);
+  acb_set_d(z, 0.375);
+  EXPECT_TRUE(s.eval_double_word(out, z, Speed::PieceSigns{}, true, 90));
+  EXPECT_FALSE(s.eval_double_word(out, z, Speed::PieceSigns{}, true, 200));  // more bits than double words
+  arb_set_d(acb_imagref(z), 0.125);
+  EXPECT_FALSE(s.eval_double_word(out, z, Speed::PieceSigns{}, true, 90));   // complex
+  acb_set_d(z, 0.375);
+  mag_set_d(arb_radref(acb_realref(z)), 1e-3);
+  EXPECT_FALSE(s.eval_double_word(out, z, Speed::PieceSigns{}, true, 90));   // wide
+  acb_clear(z);
+  acb_clear(out);
+}

@@ -15,6 +15,7 @@
 #include "uniparam/algebra/local_poly.hpp"
 #include "uniparam/algebra/squarefree.hpp"
 #include "uniparam/core/ball_poly.hpp"
+#include "uniparam/core/dd_ball.hpp"
 #include "uniparam/core/ratfunc.hpp"
 #include "uniparam/reparam/curve.hpp"
 
@@ -121,6 +122,20 @@ class Speed {
   /// \post v (and d) contain P(t) (P'(t)) for every t in z; may be wide or
   ///       infinite, never wrong.
   void eval_critical(acb_t v, acb_t d, const acb_t z, long prec) const;
+  /// The double-word path that eval (squared = false, with signs p) and
+  /// eval_squared (squared = true; p unused) take first on the quadrature's
+  /// nodes: the components' N, Q and their derivatives by Horner's rule in
+  /// double-word ball arithmetic (core/dd_ball.hpp), ~100 bits, several
+  /// times cheaper than Arb's balls at low degree.
+  /// \return true and out = a real ball that contains sigma(t) (sigma(t)^2)
+  ///         for every t in z, with a relative radius of at most
+  ///         2^-(prec - 16) (the quadrature normally asks for prec - 20
+  ///         bits); false, out untouched, when the path does not apply (z
+  ///         not a real ball of radius < 2^-30; prec > 110; components that
+  ///         are not double words, of degree above 64, or that lose more
+  ///         than 24 bits in Horner's rule on [0, 1]) or cannot reach that
+  ///         accuracy at this point.
+  bool eval_double_word(acb_t out, const acb_t z, const PieceSigns& p, bool squared, long prec) const;
 
  private:
   SpeedKind kind_;
@@ -154,6 +169,12 @@ class Speed {
     std::size_t q_index = 0;        // first component with this Q (evaluated once per ball)
   };
   std::vector<Component> comp_;
+  // eval_double_word's components (N_i, Q_i), shared by copies; null where
+  // that path does not apply to this curve
+  struct DDComponents {
+    std::vector<DDPoly> N, Q;
+  };
+  std::shared_ptr<const DDComponents> dd_;
   // ball versions for evaluation
   LocalPoly g_b_;               // g itself (eval_critical: g, g', g'')
   Integer g_content_;          // g = content * prod h^m; content is 1 here but kept general

@@ -1,0 +1,90 @@
+// uniparam/core/dd_ball.hpp -- real balls with a double-word midpoint: a
+// fixed-precision (~100-bit) ball arithmetic for the quadrature's nodes,
+// several times cheaper than Arb's 2-limb balls, and as rigorous.
+#pragma once
+
+#include <arb.h>
+
+#include <vector>
+
+#include "uniparam/core/poly.hpp"
+
+namespace uniparam {
+
+/// The real ball [hi + lo +/- rad]: hi + lo is a double-word number
+/// (|lo| <= ulp(hi) / 2) and rad >= 0 a double.
+///
+/// Every operation below returns a ball that contains the exact result of
+/// the operation for every choice of points in its input balls (the proof
+/// is at the top of dd_ball.cpp). Relative accuracy is about 2^-100 of the
+/// midpoint plus the propagated radii. A ball that is not finite (hi, lo or
+/// rad NaN or infinite) means "nothing is known"; operations propagate it,
+/// so callers check dd_is_finite once at the end. Magnitudes are kept within
+/// 2^+-900: a product with a larger factor answers a non-finite ball, and an
+/// absolute 2^-1000 is added to every radius to cover underflow.
+struct DDBall {
+  double hi = 0, lo = 0, rad = 0;
+};
+
+/// True if hi, lo and rad are finite.
+bool dd_is_finite(const DDBall& x);
+/// x as a DDBall. False (out unspecified) if x is not finite or its midpoint
+/// or radius is outside 2^+-900. The midpoint is split into hi + lo and
+/// what is left of it (for midpoints of more than 106 bits) goes to rad.
+bool dd_set_arb(DDBall& out, const arb_t x);
+/// out = x exactly (midpoint hi + lo, radius rad rounded upward).
+/// \pre dd_is_finite(x)
+void dd_get_arb(arb_t out, const DDBall& x);
+/// The exact ball [v +/- 0] for a double v.
+DDBall dd_from_double(double v);
+
+DDBall dd_neg(const DDBall& a);
+DDBall dd_add(const DDBall& a, const DDBall& b);
+DDBall dd_sub(const DDBall& a, const DDBall& b);
+DDBall dd_mul(const DDBall& a, const DDBall& b);
+/// a * 2^e, exact for |e| <= 64 (midpoints and radii within range).
+DDBall dd_mul_2exp(const DDBall& a, int e);
+/// a / b. False (out non-finite) if b's ball contains 0. out may alias a or b.
+bool dd_div(DDBall& out, const DDBall& a, const DDBall& b);
+/// sqrt(a). False (out non-finite) unless a's ball is contained in (0, inf).
+/// out may alias a.
+bool dd_sqrt(DDBall& out, const DDBall& a);
+/// An upper bound of rad / |midpoint| (infinity when the midpoint is 0 or
+/// the ball not finite): the relative accuracy of x.
+double dd_rel_rad(const DDBall& x);
+
+/// A polynomial in Z[t] evaluated with its first two derivatives by Horner's
+/// rule in double-word arithmetic, with a priori rounding bounds
+/// (Higham, Accuracy and Stability of Numerical Algorithms, eq. 5.3).
+/// For low degrees and coefficients that do not cancel much on the point,
+/// several times cheaper than a ball evaluation at 2 limbs; the caller
+/// checks the result's accuracy and falls back to Arb otherwise.
+class DDPoly {
+ public:
+  DDPoly() = default;
+  /// \post usable() iff every coefficient of p, p' and p'' is exactly a
+  ///       double-word number below 2^500 in magnitude.
+  explicit DDPoly(const Poly& p);
+  bool usable() const { return usable_; }
+  long degree() const { return n_; }
+  /// v = p(x), d1 = p'(x), d2 = p''(x) (d1 and d2 may be null): balls that
+  /// contain the values at every point of x. \pre usable().
+  /// \return false if a bound is not finite (x too large).
+  bool eval(DDBall* v, DDBall* d1, DDBall* d2, const DDBall& x) const;
+  /// UNCERTIFIED estimate, for choosing a path only: log2 of
+  /// sum |c_k| / max |p(t)| over t = 0, 1/16, ..., 1 for p, p' and p''
+  /// (the bits that Horner's rule loses on [0, 1]); large for a
+  /// polynomial that vanishes identically on that grid.
+  double cancellation_bits() const { return loss_; }
+
+ private:
+  bool usable_ = false;
+  long n_ = -1;
+  // coefficients (low to high) of p, p', p'' as double words
+  std::vector<double> hi_[3], lo_[3];
+  // upper bounds of |coefficients| of p, p', p'', p'''
+  std::vector<double> abs_[4];
+  double loss_ = 0;
+};
+
+}  // namespace uniparam
