@@ -78,12 +78,15 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
     // degree Bezier curves lose more than 24; the local expansions serve
     // them).
     auto dd = std::make_shared<DDComponents>();
-    bool ok = true;
+    bool ok = c.components().size() <= 3;  // eval_double_word's bound
+    for (const auto& x : c.components())
+      ok = ok && x.num().degree() <= kDDMaxDegree && x.den().degree() <= kDDMaxDegree;
     for (const auto& x : c.components()) {
+      if (!ok) break;
       dd->N.emplace_back(x.num());
       dd->Q.emplace_back(x.den());
       for (const DDPoly* q : {&dd->N.back(), &dd->Q.back()})
-        ok = ok && q->usable() && q->cancellation_bits() <= kDDMaxLoss && q->degree() <= kDDMaxDegree;
+        ok = ok && q->usable() && q->cancellation_bits() <= kDDMaxLoss;
     }
     if (ok) dd_ = std::move(dd);
   }
