@@ -157,6 +157,9 @@ class Speed {
   // `skip`, if given), R = sqrt(sum K^2) / D
   void eval_g(acb_t out, const acb_t z, long prec, std::size_t skip = static_cast<std::size_t>(-1)) const;
   void eval_cofactor(acb_t out, const acb_t z, bool analytic, long prec) const;
+  // sigma = s g R (the sign s from p); false (out not finite) where D's
+  // enclosure holds 0 or the square root is not certified analytic
+  bool eval_factored(acb_t out, const acb_t z, const PieceSigns& p, bool analytic, long prec) const;
   // x_i'(z) (and x_i''(z) when d2 is non-null) from the components
   void eval_derivatives(acb_ptr d1, acb_ptr d2, const acb_t z, long prec) const;
   // sum x_i'^2 and, for the angular speed, F = sum_{i<j} (x_i' x_j'' - x_i'' x_j')^2
