@@ -35,10 +35,21 @@ struct MagVar {
   MagVar& operator=(const MagVar&) = delete;
 };
 
-/// What acb_calc_integrate hands back to the trampoline.
+/// count enclosures (an acb vector), freed on scope exit.
+struct AcbVec {
+  acb_ptr v;
+  slong n;
+  explicit AcbVec(std::size_t count) : v(_acb_vec_init(static_cast<slong>(count))), n(static_cast<slong>(count)) {}
+  ~AcbVec() { _acb_vec_clear(v, n); }
+  AcbVec(const AcbVec&) = delete;
+  AcbVec& operator=(const AcbVec&) = delete;
+};
+
+/// The integrand and its state during one attempt.
 struct Context {
   const Integrand* f;
-  std::exception_ptr error;  ///< first exception thrown by *f, rethrown after the C call
+  std::size_t count;         ///< values f writes per call
+  std::exception_ptr error;  ///< first exception thrown by *f, rethrown after the attempt
   long wide_prec;            ///< precision for wide balls (see integrate)
 };
 
@@ -48,52 +59,36 @@ bool is_wide(const acb_t z) {
   return mag_cmp_2exp_si(arb_radref(acb_realref(z)), -30) >= 0 || mag_cmp_2exp_si(arb_radref(acb_imagref(z)), -30) >= 0;
 }
 
-}  // namespace
-}  // namespace uniparam
-
-extern "C" {
-/// acb_calc_func_t -> Integrand. No exception crosses the C frames: the first
-/// one is stored, and from then on every call answers an exact 0 without
-/// calling the integrand, so that Arb accepts every subinterval at once
-/// (indeterminate answers would make it bisect up to eval_limit); the
-/// enclosure of that run is discarded and integrate() rethrows.
-/// acb_calc_integrate only asks for order 0 (evaluate) and order 1 (evaluate
-/// and certify holomorphy); any other order gets an indeterminate answer.
-static int uniparam_quadrature_trampoline(acb_ptr out, const acb_t z, void* param, slong order,
-                                          slong prec) {
-  auto* ctx = static_cast<uniparam::Context*>(param);
-  if (ctx->error) {
-    acb_zero(out);
-    return 0;
+/// out[0 .. count) = f(z). No exception leaves: the first one is stored, and
+/// from then on every call answers exact 0s without calling f, so that
+/// every subinterval is accepted at once (indeterminate answers would make
+/// the subdivision bisect up to eval_limit); the enclosure of that attempt
+/// is discarded and integrate_many() rethrows. `analytic`: f must also
+/// certify holomorphy on z (the ellipses of the error bounds).
+void call(Context& ctx, acb_ptr out, const acb_t z, bool analytic, long prec) {
+  if (!ctx.error) {
+    try {
+      check_time_budget();  // --timeout, noticed within one evaluation
+      // A wide ball's enclosure is as wide as f's variation on it: the bits
+      // of the goal buy nothing there (only those lost to cancellation do).
+      (*ctx.f)(out, z, analytic, is_wide(z) ? std::min(prec, ctx.wide_prec) : prec);
+      return;
+    } catch (...) {
+      ctx.error = std::current_exception();
+    }
   }
-  if (order < 0 || order > 1) {
-    acb_indeterminate(out);
-    return 0;  // Arb reserves the return value; indeterminate is the answer
-  }
-  try {
-    uniparam::check_time_budget();  // --timeout, noticed within one evaluation
-    // A wide ball's enclosure is as wide as f's variation on it: the bits
-    // of the goal buy nothing there (only those lost to cancellation do).
-    (*ctx->f)(out, z, order == 1, uniparam::is_wide(z) ? std::min(prec, ctx->wide_prec) : prec);
-  } catch (...) {
-    ctx->error = std::current_exception();
-    acb_zero(out);
-  }
-  return 0;
+  _acb_vec_zero(out, static_cast<slong>(ctx.count));
 }
-}  // extern "C"
 
-namespace uniparam {
-// Guard bits of the relative goal handed to Arb over the caller's goal: the
+// Guard bits of the relative goal over the caller's goal: the
 // per-subinterval tolerances add up over at most a few thousand
 // subintervals (~12 bits). More only raises the Gauss-Legendre degrees.
 constexpr long kGoalGuardBits = 12;
-namespace {
 
-/// f on the whole segment [a, b] (a ball) times b - a: Arb's direct
-/// enclosure of the integral, crude but rigorous for any f that answers
+/// f on the whole segment [a, b] (a ball) times b - a: the direct
+/// enclosure of each integral, crude but rigorous for any f that answers
 /// finite enclosures on the segment.
-void direct_estimate(acb_t res, acb_calc_func_t f, void* param, const acb_t a, const acb_t b, long prec) {
+void direct_estimate(acb_ptr res, Context& ctx, const acb_t a, const acb_t b, long prec) {
   AcbVar mid, delta, wide;
   MagVar m;
   acb_sub(delta.v, b, a, prec);
@@ -105,9 +100,11 @@ void direct_estimate(acb_t res, acb_calc_func_t f, void* param, const acb_t a, c
   arb_add_error_mag(acb_realref(wide.v), m.v);
   arb_get_mag(m.v, acb_imagref(delta.v));
   arb_add_error_mag(acb_imagref(wide.v), m.v);
-  f(res, wide.v, param, 0, prec);
-  acb_mul(res, res, delta.v, prec);
-  acb_mul_2exp_si(res, res, 1);
+  call(ctx, res, wide.v, false, prec);
+  for (std::size_t k = 0; k < ctx.count; ++k) {
+    acb_mul(res + k, res + k, delta.v, prec);
+    acb_mul_2exp_si(res + k, res + k, 1);
+  }
 }
 
 /// Gauss-Legendre degrees tried (Arb's steps of about 2^(k/2)).
@@ -160,48 +157,59 @@ constexpr long kEllipseCost = 4;
 /// replaces a bisection (two ellipses and two rules) near a singularity.
 constexpr long kSmallEllipseDegLimit = 46;
 
-/// Smallest Gauss-Legendre step index whose error bound
-/// (64/15) M / ((rho - 1) rho^(2n - 1)) is below tol (its bound in err), or
-/// -1 when no n <= deg_limit does.
-int gl_degree(const mag_t M, const mag_t rho, const mag_t tol, long deg_limit, mag_t err) {
+/// The error bound (64/15) M / ((rho - 1) rho^(2n - 1)) of the n-point rule
+/// (an upper bound) in err.
+void gl_error(mag_t err, const mag_t M, const mag_t rho, long n) {
   MagVar t, u;
-  for (int i = 0; i < kGlStepCount && kGlSteps[i] <= deg_limit; ++i) {
-    const long n = kGlSteps[i];
-    mag_pow_ui_lower(t.v, rho, static_cast<ulong>(2 * n - 1));
-    mag_one(u.v);
-    mag_sub_lower(u.v, rho, u.v);
-    mag_mul_lower(t.v, t.v, u.v);
-    mag_mul_ui_lower(t.v, t.v, 15);
-    mag_div(t.v, M, t.v);
-    mag_mul_2exp_si(t.v, t.v, 6);
-    if (mag_cmp(t.v, tol) < 0) {
-      mag_set(err, t.v);
-      return i;
-    }
-  }
-  return -1;
+  mag_pow_ui_lower(t.v, rho, static_cast<ulong>(2 * n - 1));
+  mag_one(u.v);
+  mag_sub_lower(u.v, rho, u.v);
+  mag_mul_lower(t.v, t.v, u.v);
+  mag_mul_ui_lower(t.v, t.v, 15);
+  mag_div(err, M, t.v);
+  mag_mul_2exp_si(err, err, 6);
 }
 
-/// One Gauss-Legendre step on [a, b], the method of Arb's
-/// acb_calc_integrate_gl_auto_deg: |f| <= M/|delta| on a Bernstein ellipse
-/// with semi-axes X, sqrt(X^2 - 1) (times delta = (b - a)/2; f is bounded on
-/// the ellipse's bounding box, order 1) gives the error bound
-/// (64/15) M / ((rho - 1) rho^(2n - 1)), rho = X + sqrt(X^2 - 1), of the
-/// n-point rule; the smallest n below tol is evaluated at its nodes (order 0).
-/// Arb tries X = 2, 4, 8, 32, ... until f is not finite, and fails the step
-/// when X = 2 does. Here:
+/// Smallest Gauss-Legendre step index whose error bound is below tol[k] for
+/// every k < count (M[k] = |delta| sup |f_k| on the ellipse rho), or -1
+/// when no n <= deg_limit does.
+int gl_degree(const std::vector<MagVar>& M, const mag_t rho, const std::vector<MagVar>& tol, long deg_limit) {
+  MagVar err;
+  int i = 0;
+  for (std::size_t k = 0; k < M.size(); ++k) {
+    for (;; ++i) {
+      if (i >= kGlStepCount || kGlSteps[i] > deg_limit) return -1;
+      gl_error(err.v, M[k].v, rho, kGlSteps[i]);
+      if (mag_cmp(err.v, tol[k].v) < 0) break;
+    }
+  }
+  return i;  // the largest of the components' smallest indices (the bound falls with n)
+}
+
+/// One Gauss-Legendre step on [a, b] for the count integrals at once, the
+/// method of Arb's acb_calc_integrate_gl_auto_deg: |f_k| <= M_k/|delta| on
+/// a Bernstein ellipse with semi-axes X, sqrt(X^2 - 1) (times
+/// delta = (b - a)/2; f is bounded on the ellipse's bounding box, with
+/// holomorphy certified) gives the error bound
+/// (64/15) M_k / ((rho - 1) rho^(2n - 1)), rho = X + sqrt(X^2 - 1), of the
+/// n-point rule; the smallest n below every tol[k] is evaluated at its nodes
+/// (one call of f per node for all k). Arb tries X = 2, 4, 8, 32, ... until
+/// f is not finite, and fails the step when X = 2 does. Here:
 ///   * the search stops once a larger ellipse could not save kEllipseCost
 ///     nodes even if |f| did not grow on it (so most steps no longer end on a
 ///     failing ellipse, the costliest kind of call);
 ///   * where X = 2 fails, X = 5/4 (rho = 2) is tried with up to
 ///     kSmallEllipseDegLimit nodes before the step fails (which bisects).
 /// Every ellipse gives a rigorous bound, so the choice only moves the cost.
-/// Returns ARB_CALC_SUCCESS with an enclosure of the integral in res, or
+/// Returns ARB_CALC_SUCCESS with enclosures of the integrals in res[k], or
 /// ARB_CALC_NO_CONVERGENCE (res indeterminate). *evals counts the calls of f.
-int gl_step(acb_t res, long* evals, acb_calc_func_t f, void* param, const acb_t a, const acb_t b, const mag_t tol,
+int gl_step(acb_ptr res, long* evals, Context& ctx, const acb_t a, const acb_t b, const std::vector<MagVar>& tol,
             long deg_limit, long prec) {
-  AcbVar mid, delta, wide, v, s;
-  MagVar M, X, Y, rho, t, err, best_err, dm, next_err;
+  const std::size_t count = ctx.count;
+  AcbVar mid, delta, wide;
+  AcbVec v(count), s(count);
+  MagVar X, Y, rho, t, dm;
+  std::vector<MagVar> M(count), best_M(count);
   *evals = 0;
   acb_sub(delta.v, b, a, prec);
   acb_mul_2exp_si(delta.v, delta.v, -1);
@@ -216,7 +224,7 @@ int gl_step(acb_t res, long* evals, acb_calc_func_t f, void* param, const acb_t 
     mag_sqrt_lower(r, r);
     mag_add_lower(r, r, x);
   };
-  // M = |delta| sup |f| on the ellipse X; false when f is not finite there
+  // M_k = |delta| sup |f_k| on the ellipse X; false when f is not finite there
   auto bound_on = [&](const mag_t x) {
     mag_mul(Y.v, x, x);  // Y = sqrt(X^2 - 1), an upper bound
     mag_one(t.v);
@@ -227,33 +235,38 @@ int gl_step(acb_t res, long* evals, acb_calc_func_t f, void* param, const acb_t 
     mag_set(arb_radref(acb_imagref(wide.v)), Y.v);
     acb_mul(wide.v, wide.v, delta.v, prec);
     acb_add(wide.v, wide.v, mid.v, prec);
-    f(v.v, wide.v, param, 1, prec);
+    call(ctx, v.v, wide.v, true, prec);
     ++*evals;
-    if (!acb_is_finite(v.v)) return false;
-    acb_get_mag(M.v, v.v);
-    mag_mul(M.v, M.v, dm.v);
+    for (std::size_t k = 0; k < count; ++k) {
+      if (!acb_is_finite(v.v + k)) return false;
+      acb_get_mag(M[k].v, v.v + k);
+      mag_mul(M[k].v, M[k].v, dm.v);
+    }
     return true;
   };
+  // best: the fewest nodes found so far, with the M_k and rho it was found with
   int best = -1;
+  MagVar best_rho;
+  auto consider = [&](long deg) {
+    rho_of(rho.v, X.v);
+    const int i = gl_degree(M, rho.v, tol, deg);
+    if (i >= 0 && (best < 0 || i < best)) {
+      best = i;
+      mag_set(best_rho.v, rho.v);
+      for (std::size_t k = 0; k < count; ++k) mag_set(best_M[k].v, M[k].v);
+    }
+  };
   for (long Xexp = 0; Xexp < prec; Xexp += std::max(1L, Xexp)) {
     mag_one(X.v);
     mag_mul_2exp_si(X.v, X.v, Xexp + 1);
     if (!bound_on(X.v)) {
       if (Xexp == 0) {  // X = 2 failed: the small ellipse X = 5/4
         mag_set_ui_2exp_si(X.v, 5, -2);
-        if (bound_on(X.v)) {
-          rho_of(rho.v, X.v);
-          best = gl_degree(M.v, rho.v, tol, std::max(deg_limit, kSmallEllipseDegLimit), best_err.v);
-        }
+        if (bound_on(X.v)) consider(std::max(deg_limit, kSmallEllipseDegLimit));
       }
       break;
     }
-    rho_of(rho.v, X.v);
-    const int i = gl_degree(M.v, rho.v, tol, deg_limit, err.v);
-    if (i >= 0 && (best < 0 || i < best)) {
-      best = i;
-      mag_set(best_err.v, err.v);
-    }
+    consider(deg_limit);
     if (best == 0) break;
     if (best > 0) {
       // The next ellipse, optimistically with the same M: is it worth it?
@@ -262,19 +275,19 @@ int gl_step(acb_t res, long* evals, acb_calc_func_t f, void* param, const acb_t 
       mag_one(X.v);
       mag_mul_2exp_si(X.v, X.v, next + 1);
       rho_of(rho.v, X.v);
-      const int j = gl_degree(M.v, rho.v, tol, deg_limit, next_err.v);
+      const int j = gl_degree(M, rho.v, tol, deg_limit);
       if (j < 0 || kGlSteps[best] - kGlSteps[j] < kEllipseCost) break;
     }
   }
   if (best < 0) {
-    acb_indeterminate(res);
+    _acb_vec_indeterminate(res, static_cast<slong>(count));
     return ARB_CALC_NO_CONVERGENCE;
   }
   const long n = kGlSteps[best];
   const GlRule& rule = gl_rule(best, prec);
   arb_t x;
   arb_init(x);
-  acb_zero(s.v);
+  _acb_vec_zero(s.v, static_cast<slong>(count));
   for (long k = 0; k < n; ++k) {
     // nodes x_0 > x_1 > ... > 0 > ... > -x_0: the rule holds the positive half
     const slong kk = 2 * k < n ? k : n - 1 - k;
@@ -282,14 +295,18 @@ int gl_step(acb_t res, long* evals, acb_calc_func_t f, void* param, const acb_t 
     else arb_neg_round(x, rule.x + kk, prec);
     acb_mul_arb(wide.v, delta.v, x, prec);
     acb_add(wide.v, wide.v, mid.v, prec);
-    f(v.v, wide.v, param, 0, prec);
+    call(ctx, v.v, wide.v, false, prec);
     arb_set_round(x, rule.w + kk, prec);
-    acb_addmul_arb(s.v, v.v, x, prec);
+    for (std::size_t j = 0; j < count; ++j) acb_addmul_arb(s.v + j, v.v + j, x, prec);
   }
   arb_clear(x);
   *evals += n;
-  acb_mul(res, s.v, delta.v, prec);
-  acb_add_error_mag(res, best_err.v);
+  MagVar err;
+  for (std::size_t j = 0; j < count; ++j) {
+    acb_mul(res + j, s.v + j, delta.v, prec);
+    gl_error(err.v, best_M[j].v, best_rho.v, n);
+    acb_add_error_mag(res + j, err.v);
+  }
   return ARB_CALC_SUCCESS;
 }
 
@@ -300,25 +317,38 @@ int gl_step(acb_t res, long* evals, acb_calc_func_t f, void* param, const acb_t 
 /// of 2^-goal of the integral unless f is tiny there.
 constexpr long kDirectDepth = 12;
 
-/// Adaptive Gauss-Legendre quadrature: Arb's acb_calc_integrate without its
-/// direct evaluation of f on every subinterval before the Gauss-Legendre
-/// attempt. Arb uses that evaluation to skip hopeless attempts and to accept
-/// tiny subintervals; on the quadrature of a speed it is the costliest kind
-/// of call (a wide real segment: new local expansions of every factor, and
-/// often the factored form), and it is wasted on every subinterval where
-/// Gauss-Legendre succeeds. Here each subinterval goes to gl_step (which
-/// bounds f on ellipses, order 1, and evaluates it at its nodes, order 0)
-/// first; where that fails it is bisected,
-/// and from depth kDirectDepth on the direct enclosure is tried first.
-/// Every accepted piece is a rigorous enclosure (Arb's error bound included),
-/// so the sum is one. The tolerances follow Arb: an absolute tolerance `tol`
-/// per subinterval, raised to 2^-goal times the largest lower bound of an
-/// accepted piece (or of the direct enclosure on [a, b]).
+/// Raises tol[k] to 2^-goal times a lower bound of |u[k]| (Arb's rule: the
+/// tolerance follows the largest piece seen).
+void raise_tolerances(std::vector<MagVar>& tol, acb_srcptr u, long goal) {
+  MagVar lower;
+  for (std::size_t k = 0; k < tol.size(); ++k) {
+    acb_get_mag_lower(lower.v, u + k);
+    mag_mul_2exp_si(lower.v, lower.v, -goal);
+    mag_max(tol[k].v, tol[k].v, lower.v);
+  }
+}
+
+/// Adaptive Gauss-Legendre quadrature of count integrals at once: Arb's
+/// acb_calc_integrate without its direct evaluation of f on every
+/// subinterval before the Gauss-Legendre attempt. Arb uses that evaluation
+/// to skip hopeless attempts and to accept tiny subintervals; on the
+/// quadrature of a speed it is the costliest kind of call (a wide real
+/// segment: new local expansions of every factor, and often the factored
+/// form), and it is wasted on every subinterval where Gauss-Legendre
+/// succeeds. Here each subinterval goes to gl_step (which bounds f on
+/// ellipses and evaluates it at its nodes) first; where that fails it is
+/// bisected, and from depth kDirectDepth on the direct enclosure is tried
+/// first. Every accepted piece is a rigorous enclosure (Arb's error bound
+/// included), so the sums are. The tolerances follow Arb, per integral: an
+/// absolute tolerance `tol` per subinterval, raised to 2^-goal times the
+/// largest lower bound of an accepted piece (or of the direct enclosure on
+/// [a, b]); a subinterval is accepted when every integral meets its own.
 /// Returns ARB_CALC_SUCCESS, or ARB_CALC_NO_CONVERGENCE when eval_limit or
 /// depth_limit stopped the subdivision (the remaining subintervals then hold
 /// their direct enclosures: still rigorous, maybe wide or not finite).
-int adaptive_integrate(acb_t res, acb_calc_func_t f, void* param, const acb_t a, const acb_t b, long goal,
-                       const mag_t tol, long eval_limit, long depth_limit, long prec) {
+int adaptive_integrate(acb_ptr res, Context& ctx, const acb_t a, const acb_t b, long goal, const mag_t tol,
+                       long eval_limit, long depth_limit, long prec) {
+  const std::size_t count = ctx.count;
   goal = std::max(goal, 0L);
   const long deg_limit = static_cast<long>(0.5 * static_cast<double>(goal) + 10);  // Arb's default
   if (depth_limit <= 0) depth_limit = 2 * prec;
@@ -337,16 +367,15 @@ int adaptive_integrate(acb_t res, acb_calc_func_t f, void* param, const acb_t a,
     stack.push_back(std::move(iv));
   };
 
-  AcbVar sum, u, diff;
-  MagVar new_tol, lower, rad;
-  acb_zero(sum.v);
-  mag_set(new_tol.v, tol);
-  // Tolerance from a lower bound of the whole integral (as Arb does).
-  direct_estimate(u.v, f, param, a, b, prec);
+  AcbVar diff;
+  AcbVec sum(count), u(count);
+  MagVar rad;
+  std::vector<MagVar> new_tol(count);
+  for (auto& t : new_tol) mag_set(t.v, tol);
+  // Tolerances from a lower bound of the whole integrals (as Arb does).
+  direct_estimate(u.v, ctx, a, b, prec);
   long evals = 1;
-  acb_get_mag_lower(lower.v, u.v);
-  mag_mul_2exp_si(lower.v, lower.v, -goal);
-  mag_max(new_tol.v, new_tol.v, lower.v);
+  raise_tolerances(new_tol, u.v, goal);
 
   int status = ARB_CALC_SUCCESS;
   push(a, b, 0);
@@ -357,27 +386,29 @@ int adaptive_integrate(acb_t res, acb_calc_func_t f, void* param, const acb_t a,
     const bool stop = status != ARB_CALC_SUCCESS;
     if (stop || acb_contains_zero(diff.v)) {
       // Out of budget, or an interval narrower than its ends' enclosures.
-      direct_estimate(u.v, f, param, iv->a.v, iv->b.v, prec);
+      direct_estimate(u.v, ctx, iv->a.v, iv->b.v, prec);
       ++evals;
-      acb_add(sum.v, sum.v, u.v, prec);
+      _acb_vec_add(sum.v, sum.v, u.v, static_cast<slong>(count), prec);
       continue;
     }
     long feval = 0;
-    const int gl = gl_step(u.v, &feval, f, param, iv->a.v, iv->b.v, new_tol.v, deg_limit, prec);
+    const int gl = gl_step(u.v, &feval, ctx, iv->a.v, iv->b.v, new_tol, deg_limit, prec);
     evals += feval;
     if (gl == ARB_CALC_SUCCESS) {
-      acb_add(sum.v, sum.v, u.v, prec);
-      acb_get_mag_lower(lower.v, u.v);
-      mag_mul_2exp_si(lower.v, lower.v, -goal);
-      mag_max(new_tol.v, new_tol.v, lower.v);
+      _acb_vec_add(sum.v, sum.v, u.v, static_cast<slong>(count), prec);
+      raise_tolerances(new_tol, u.v, goal);
       continue;
     }
     if (iv->depth >= kDirectDepth) {
-      direct_estimate(u.v, f, param, iv->a.v, iv->b.v, prec);
+      direct_estimate(u.v, ctx, iv->a.v, iv->b.v, prec);
       ++evals;
-      mag_hypot(rad.v, arb_radref(acb_realref(u.v)), arb_radref(acb_imagref(u.v)));
-      if (mag_cmp(rad.v, new_tol.v) < 0) {
-        acb_add(sum.v, sum.v, u.v, prec);
+      bool small = true;
+      for (std::size_t k = 0; k < count && small; ++k) {
+        mag_hypot(rad.v, arb_radref(acb_realref(u.v + k)), arb_radref(acb_imagref(u.v + k)));
+        small = mag_cmp(rad.v, new_tol[k].v) < 0;
+      }
+      if (small) {
+        _acb_vec_add(sum.v, sum.v, u.v, static_cast<slong>(count), prec);
         continue;
       }
     }
@@ -392,22 +423,26 @@ int adaptive_integrate(acb_t res, acb_calc_func_t f, void* param, const acb_t a,
     push(m.v, iv->b.v, iv->depth + 1);  // right half after the left one
     push(iv->a.v, m.v, iv->depth + 1);
   }
-  acb_set(res, sum.v);
+  _acb_vec_set(res, sum.v, static_cast<slong>(count));
   return status;
 }
 
-/// Adds rad(end) * sup |f(end)| to the error of `res`: the integral over the
-/// piece between the true end and the midpoint of its enclosure `end`.
-void add_end_error(acb_t res, const Integrand& f, const Ball& end, long prec) {
+/// Adds rad(end) * sup |f_k(end)| to the error of each res[k]: the integral
+/// over the piece between the true end and the midpoint of its enclosure
+/// `end`.
+void add_end_error(acb_ptr res, const Integrand& f, std::size_t count, const Ball& end, long prec) {
   const mag_struct* rad = arb_radref(end.get());
   if (mag_is_zero(rad)) return;  // exact dyadic end: nothing to add, f not evaluated
-  AcbVar z, fz;
+  AcbVar z;
+  AcbVec fz(count);
   acb_set_arb(z.v, end.get());
   f(fz.v, z.v, false, prec);  // exceptions propagate; the holders clean up
   MagVar bound;
-  acb_get_mag(bound.v, fz.v);  // upper bound of |f| on the end ball (inf if not finite)
-  mag_mul(bound.v, bound.v, rad);
-  acb_add_error_mag(res, bound.v);
+  for (std::size_t k = 0; k < count; ++k) {
+    acb_get_mag(bound.v, fz.v + k);  // upper bound of |f_k| on the end ball (inf if not finite)
+    mag_mul(bound.v, bound.v, rad);
+    acb_add_error_mag(res + k, bound.v);
+  }
 }
 
 /// radius <= 2^-rel * |mid| (with a lower bound of |mid|), or radius <=
@@ -425,35 +460,38 @@ bool meets_goal(const Ball& r, const QuadratureOptions& opt) {
 /// Bits that evaluating f loses to cancellation on [a, b] (e.g. a power-basis
 /// polynomial of high degree with large alternating coefficients): f at 7
 /// interior points at precision `prec`, absolute radius against the largest
-/// |f| seen. The first attempt then starts that much higher instead of
-/// failing and doubling. 0 when nothing can be measured; an exception from f
-/// propagates (as from the quadrature itself).
-long cancellation_bits(const Integrand& f, const Ball& a, const Ball& b, long prec) {
+/// |f_k| seen, the worst k. The first attempt then starts that much higher
+/// instead of failing and doubling. 0 when nothing can be measured; an
+/// exception from f propagates (as from the quadrature itself).
+long cancellation_bits(const Integrand& f, std::size_t count, const Ball& a, const Ball& b, long prec) {
   long worst = 0;
-  {
-    AcbVar z, fz;
-    MagVar big;
-    std::vector<MagVar> rads(7);
-    for (int j = 0; j < 7; ++j) {
-      // z = a + (b - a) (j + 1) / 8 at exact dyadic midpoints
-      arb_sub(acb_realref(z.v), b.get(), a.get(), prec);
-      arb_mul_si(acb_realref(z.v), acb_realref(z.v), j + 1, prec);
-      arb_mul_2exp_si(acb_realref(z.v), acb_realref(z.v), -3);
-      arb_add(acb_realref(z.v), acb_realref(z.v), a.get(), prec);
-      mag_zero(arb_radref(acb_realref(z.v)));
-      arb_zero(acb_imagref(z.v));
-      f(fz.v, z.v, false, prec);
-      if (!acb_is_finite(fz.v)) return prec;  // everything lost (or a true pole: the real run reports it)
+  AcbVar z;
+  AcbVec fz(count);
+  std::vector<MagVar> big(count), rads(7 * count);
+  for (int j = 0; j < 7; ++j) {
+    // z = a + (b - a) (j + 1) / 8 at exact dyadic midpoints
+    arb_sub(acb_realref(z.v), b.get(), a.get(), prec);
+    arb_mul_si(acb_realref(z.v), acb_realref(z.v), j + 1, prec);
+    arb_mul_2exp_si(acb_realref(z.v), acb_realref(z.v), -3);
+    arb_add(acb_realref(z.v), acb_realref(z.v), a.get(), prec);
+    mag_zero(arb_radref(acb_realref(z.v)));
+    arb_zero(acb_imagref(z.v));
+    f(fz.v, z.v, false, prec);
+    for (std::size_t k = 0; k < count; ++k) {
+      if (!acb_is_finite(fz.v + k)) return prec;  // everything lost (or a true pole: the real run reports it)
       MagVar m;
-      acb_get_mag(m.v, fz.v);
-      if (mag_cmp(m.v, big.v) > 0) mag_set(big.v, m.v);
-      mag_hypot(rads[static_cast<std::size_t>(j)].v, arb_radref(acb_realref(fz.v)), arb_radref(acb_imagref(fz.v)));
+      acb_get_mag(m.v, fz.v + k);
+      if (mag_cmp(m.v, big[k].v) > 0) mag_set(big[k].v, m.v);
+      mag_hypot(rads[j * count + k].v, arb_radref(acb_realref(fz.v + k)), arb_radref(acb_imagref(fz.v + k)));
     }
-    if (mag_is_zero(big.v)) return 0;
-    for (auto& r : rads) {
+  }
+  for (std::size_t k = 0; k < count; ++k) {
+    if (mag_is_zero(big[k].v)) continue;
+    for (int j = 0; j < 7; ++j) {
+      const MagVar& r = rads[j * count + k];
       if (mag_is_zero(r.v)) continue;
       // accuracy = log2(big / rad); loss = prec - accuracy
-      const long acc = fmpz_get_si(MAG_EXPREF(big.v)) - fmpz_get_si(MAG_EXPREF(r.v));
+      const long acc = fmpz_get_si(MAG_EXPREF(big[k].v)) - fmpz_get_si(MAG_EXPREF(r.v));
       worst = std::max(worst, prec - acc);
     }
   }
@@ -468,16 +506,17 @@ std::string goal_text(const QuadratureOptions& opt) {
 
 }  // namespace
 
-Ball integrate(const Integrand& f, const RealAlgebraic& a, const RealAlgebraic& b,
-               const QuadratureOptions& opt) {
+std::vector<Ball> integrate_many(const Integrand& f, std::size_t count, const RealAlgebraic& a,
+                                 const RealAlgebraic& b, const QuadratureOptions& opt) {
   if (!f) throw InvalidArgument("integrate: empty integrand");
+  if (count == 0) throw InvalidArgument("integrate: at least one integral is needed");
   if (opt.rel_goal_bits < 0 || opt.abs_goal_bits < 0)
     throw InvalidArgument("integrate: accuracy goals must be non-negative");
   if (opt.max_prec < 2) throw InvalidArgument("integrate: max_prec must be at least 2 bits");
   if (opt.initial_prec < 0) throw InvalidArgument("integrate: initial_prec must be non-negative");
   const int c = compare(a, b);
   if (c > 0) throw InvalidArgument("integrate: lower end " + a.str() + " exceeds upper end " + b.str());
-  if (c == 0) return Ball(0L);
+  if (c == 0) return std::vector<Ball>(count, Ball(0L));
 
   // The end enclosures at each precision used, converted once: the probe and
   // the first attempt share a precision, and RealAlgebraic::to_ball keeps
@@ -504,14 +543,14 @@ Ball integrate(const Integrand& f, const RealAlgebraic& a, const RealAlgebraic& 
     const long base = start;
     for (int round = 0; round < 4 && start < opt.max_prec; ++round) {
       const EndBalls& e = ends_at(start);
-      const long lost = cancellation_bits(f, e.a, e.b, start);
+      const long lost = cancellation_bits(f, count, e.a, e.b, start);
       const long need = lost >= start ? 2 * start : base + lost;
       if (need <= start + 16) break;
       start = std::min(need, opt.max_prec);
     }
   }
 
-  Ball last;
+  std::vector<Ball> last(count);
   bool converged = false;
   long prec = start;
   for (;;) {
@@ -522,16 +561,17 @@ Ball integrate(const Integrand& f, const RealAlgebraic& a, const RealAlgebraic& 
     const EndBalls& ends = ends_at(prec);
     const Ball& ea = ends.a;
     const Ball& eb = ends.b;
-    AcbVar ma, mb, res;
+    AcbVar ma, mb;
+    AcbVec res(count);
     arb_set_arf(acb_realref(ma.v), arb_midref(ea.get()));  // exact dyadic midpoints
     arb_set_arf(acb_realref(mb.v), arb_midref(eb.get()));
 
-    // Relative goal for Arb: rel_goal_bits + kGoalGuardBits (for the sum
-    // over subintervals), raised with each retry; never the extra precision that
+    // Relative goal: rel_goal_bits + kGoalGuardBits (for the sum over
+    // subintervals), raised with each retry; never the extra precision that
     // only pays for cancellation in f (asking for it would double the nodes
-    // and subintervals for nothing). Absolute
-    // tolerance: 2^-prec, or 2^-(abs_goal_bits + 32 + growth) when an
-    // absolute goal is set, tightened with the precision so a retry helps.
+    // and subintervals for nothing). Absolute tolerance: 2^-prec, or
+    // 2^-(abs_goal_bits + 32 + growth) when an absolute goal is set,
+    // tightened with the precision so a retry helps.
     long tol_bits = prec;
     if (opt.abs_goal_bits > 0) tol_bits = std::min(prec, opt.abs_goal_bits + 32 + (prec - start));
     MagVar tol;
@@ -540,28 +580,38 @@ Ball integrate(const Integrand& f, const RealAlgebraic& a, const RealAlgebraic& 
 
     // Wide balls (error bounds) at the bits lost to cancellation plus 64:
     // prec - rel_goal_bits is what the start precision added for them.
-    Context ctx{&f, nullptr, std::max(64L, prec - opt.rel_goal_bits + 32)};
-    const int status =
-        adaptive_integrate(res.v, uniparam_quadrature_trampoline, &ctx, ma.v, mb.v, goal, tol.v, eval_limit, opt.depth_limit, prec);
+    Context ctx{&f, count, nullptr, std::max(64L, prec - opt.rel_goal_bits + 32)};
+    const int status = adaptive_integrate(res.v, ctx, ma.v, mb.v, goal, tol.v, eval_limit, opt.depth_limit, prec);
     if (ctx.error) std::rethrow_exception(ctx.error);
-    // The enclosure is valid whatever the status; NO_CONVERGENCE only means
-    // it may be wide, which the goal check below sees.
+    // The enclosures are valid whatever the status; NO_CONVERGENCE only
+    // means they may be wide, which the goal check below sees.
     converged = status == ARB_CALC_SUCCESS;
 
-    add_end_error(res.v, f, ea, prec);
-    add_end_error(res.v, f, eb, prec);
+    add_end_error(res.v, f, count, ea, prec);
+    add_end_error(res.v, f, count, eb, prec);
 
-    if (!arb_contains_zero(acb_imagref(res.v)))
-      throw DomainError("integrate: " + opt.what + " is not real: the integrand is not real-valued on [" +
-                        a.str() + ", " + b.str() + "]");
-    last = Ball(acb_realref(res.v));
-    if (meets_goal(last, opt)) return last;
+    bool met = true;
+    for (std::size_t k = 0; k < count; ++k) {
+      if (!arb_contains_zero(acb_imagref(res.v + k)))
+        throw DomainError("integrate: " + opt.what + " is not real: the integrand is not real-valued on [" +
+                          a.str() + ", " + b.str() + "]");
+      last[k] = Ball(acb_realref(res.v + k));
+      met = met && meets_goal(last[k], opt);
+    }
+    if (met) return last;
     if (prec >= opt.max_prec) break;
     prec = prec > opt.max_prec / 2 ? opt.max_prec : 2 * prec;
   }
+  std::string enclosures;
+  for (std::size_t k = 0; k < count; ++k) enclosures += (k ? ", " : "") + last[k].str(10);
   throw BudgetExceeded("could not certify " + opt.what + " to " + goal_text(opt) + " within " +
-                       std::to_string(prec) + " bits of working precision (last enclosure " + last.str(10) +
-                       (converged ? "" : ", quadrature did not converge") + "); raise --max-prec");
+                       std::to_string(prec) + " bits of working precision (last enclosure" +
+                       (count > 1 ? "s " : " ") + enclosures + (converged ? "" : ", quadrature did not converge") +
+                       "); raise --max-prec");
+}
+
+Ball integrate(const Integrand& f, const RealAlgebraic& a, const RealAlgebraic& b, const QuadratureOptions& opt) {
+  return std::move(integrate_many(f, 1, a, b, opt).front());
 }
 
 }  // namespace uniparam

@@ -1,10 +1,8 @@
 #include "uniparam/reparam/pieces.hpp"
 
 #include <algorithm>
-#include <deque>
 #include <functional>
 #include <memory>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -28,63 +26,6 @@ Poly critical_numerator(const Speed& s) {
   for (const auto& k : s.cofactors()) Q = Q + k * k;
   return Poly(2) * g.derivative() * Q * D + g * Q.derivative() * D - Poly(2) * g * Q * D.derivative();
 }
-
-// Memo of the expensive factor sigma^2 rho of the integrands of A, B and C:
-// the three quadratures evaluate it at largely the same balls (the same
-// subintervals and Gauss-Legendre nodes), so each value is computed once.
-// Keys are compared exactly (midpoints, radii and precision).
-class EvalMemo {
- public:
-  EvalMemo() = default;
-  EvalMemo(const EvalMemo&) = delete;
-  EvalMemo& operator=(const EvalMemo&) = delete;
-  ~EvalMemo() {
-    for (auto& e : entries_) {
-      acb_clear(e.z);
-      acb_clear(e.v);
-    }
-  }
-  /// out = the stored value for (z, prec), or compute(out) stored.
-  template <class F>
-  void get(acb_t out, const acb_t z, long prec, const F& compute) {
-    const std::size_t h = hash(z, prec);
-    auto range = index_.equal_range(h);
-    for (auto it = range.first; it != range.second; ++it) {
-      const Entry& e = entries_[it->second];
-      if (e.prec == prec && acb_equal(e.z, z)) {
-        acb_set(out, e.v);
-        return;
-      }
-    }
-    compute(out);
-    if (entries_.size() >= kMax) return;  // bounded memory: stop memoising
-    entries_.emplace_back();
-    Entry& e = entries_.back();
-    acb_init(e.z);
-    acb_init(e.v);
-    acb_set(e.z, z);
-    acb_set(e.v, out);
-    e.prec = prec;
-    index_.emplace(h, entries_.size() - 1);
-  }
-
- private:
-  struct Entry {
-    acb_t z, v;
-    long prec = 0;
-  };
-  static constexpr std::size_t kMax = 200000;
-  static std::size_t hash(const acb_t z, long prec) {
-    std::hash<double> hd;
-    std::size_t h = std::hash<long>()(prec);
-    for (double d : {arf_get_d(arb_midref(acb_realref(z)), ARF_RND_DOWN), arf_get_d(arb_midref(acb_imagref(z)), ARF_RND_DOWN),
-                     mag_get_d(arb_radref(acb_realref(z))), mag_get_d(arb_radref(acb_imagref(z)))})
-      h = h * 1000003u ^ hd(d);
-    return h;
-  }
-  std::deque<Entry> entries_;
-  std::unordered_multimap<std::size_t, std::size_t> index_;
-};
 
 // The piece's left end a and its length b - a as balls at precision
 // prec + 16, for each working precision the integrands are called with (the
@@ -231,67 +172,65 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
   const int mu = side == ZeroSide::Left ? a.multiplicity : side == ZeroSide::Right ? b.multiplicity : 0;
   const SpeedZero zero = side == ZeroSide::Left ? a.zero() : side == ZeroSide::Right ? b.zero() : SpeedZero{a.t, 0};
 
-  // f_k(t) = sigma^2 rho w_k(s~): k = 0, 1, 2 for (1-s~)^2, 2 s~(1-s~), s~^2.
-  EvalMemo memo;
+  // f_k(t) = sigma^2 rho w_k(s~): k = 0, 1, 2 for (1-s~)^2, 2 s~(1-s~), s~^2,
+  // the three in one quadrature (one evaluation of the speed per point).
   PieceEnds ends(a.t, b.t);
-  auto make = [&](int k) -> Integrand {
-    // zero by reference: the three integrands share one copy of gamma (and
-    // its refinement, see RealAlgebraic::refine)
-    return [&s, &ends, &memo, &zero, side, mu, k](acb_t out, const acb_t z, bool, long prec) {
-      acb_t ta, dt, tt, st, w;
-      acb_init(ta);
-      acb_init(dt);
-      acb_init(tt);
-      acb_init(st);
-      acb_init(w);
-      ends.get(ta, dt, prec);
-      acb_sub(tt, z, ta, prec);
-      acb_div(tt, tt, dt, prec);  // t~
-      if (side == ZeroSide::None) {
-        memo.get(out, z, prec, [&](acb_t v) { s.eval_squared(v, z, prec); });
-        acb_mul(out, out, dt, prec);  // rho = Delta t
-        acb_set(st, tt);
+  Integrand f = [&s, &ends, &zero, side, mu](acb_ptr out, const acb_t z, bool, long prec) {
+    acb_t ta, dt, tt, st, w, v;
+    acb_init(ta);
+    acb_init(dt);
+    acb_init(tt);
+    acb_init(st);
+    acb_init(w);
+    acb_init(v);
+    ends.get(ta, dt, prec);
+    acb_sub(tt, z, ta, prec);
+    acb_div(tt, tt, dt, prec);  // t~
+    if (side == ZeroSide::None) {
+      s.eval_squared(v, z, prec);
+      acb_mul(v, v, dt, prec);  // rho = Delta t
+      acb_set(st, tt);
+    } else {
+      // sigma^2 rho = Delta t^(mu+1) / (mu+1) * sigma^2 / (side (t - gamma))^mu
+      s.eval_squared_over_zero(v, z, zero, side == ZeroSide::Left ? 1 : -1, mu, prec);
+      acb_pow_ui(w, dt, static_cast<ulong>(mu + 1), prec);
+      acb_mul(v, v, w, prec);
+      acb_div_ui(v, v, static_cast<ulong>(mu + 1), prec);
+      if (side == ZeroSide::Left) {
+        acb_pow_ui(st, tt, static_cast<ulong>(mu + 1), prec);
       } else {
-        // sigma^2 rho = Delta t^(mu+1) / (mu+1) * sigma^2 / (side (t - gamma))^mu
-        memo.get(out, z, prec, [&](acb_t v) {
-          s.eval_squared_over_zero(v, z, zero, side == ZeroSide::Left ? 1 : -1, mu, prec);
-        });
-        acb_pow_ui(w, dt, static_cast<ulong>(mu + 1), prec);
-        acb_mul(out, out, w, prec);
-        acb_div_ui(out, out, static_cast<ulong>(mu + 1), prec);
-        if (side == ZeroSide::Left) {
-          acb_pow_ui(st, tt, static_cast<ulong>(mu + 1), prec);
-        } else {
-          acb_sub_ui(w, tt, 1, prec);
-          acb_neg(w, w);  // 1 - t~
-          acb_pow_ui(w, w, static_cast<ulong>(mu + 1), prec);
-          acb_sub_ui(st, w, 1, prec);
-          acb_neg(st, st);
-        }
+        acb_sub_ui(w, tt, 1, prec);
+        acb_neg(w, w);  // 1 - t~
+        acb_pow_ui(w, w, static_cast<ulong>(mu + 1), prec);
+        acb_sub_ui(st, w, 1, prec);
+        acb_neg(st, st);
       }
-      // weight
-      acb_sub_ui(w, st, 1, prec);
-      acb_neg(w, w);  // 1 - s~
-      if (k == 0) acb_mul(w, w, w, prec);
-      else if (k == 1) { acb_mul(w, w, st, prec); acb_mul_2exp_si(w, w, 1); }
-      else acb_mul(w, st, st, prec);
-      acb_mul(out, out, w, prec);
-      acb_clear(ta);
-      acb_clear(dt);
-      acb_clear(tt);
-      acb_clear(st);
-      acb_clear(w);
-    };
+    }
+    // weights (1 - s~)^2, 2 s~ (1 - s~), s~^2
+    acb_sub_ui(w, st, 1, prec);
+    acb_neg(w, w);  // 1 - s~
+    acb_mul(out, w, w, prec);
+    acb_mul(out, out, v, prec);
+    acb_mul(out + 1, w, st, prec);
+    acb_mul_2exp_si(out + 1, out + 1, 1);
+    acb_mul(out + 1, out + 1, v, prec);
+    acb_mul(out + 2, st, st, prec);
+    acb_mul(out + 2, out + 2, v, prec);
+    acb_clear(ta);
+    acb_clear(dt);
+    acb_clear(tt);
+    acb_clear(st);
+    acb_clear(w);
+    acb_clear(v);
   };
   QuadratureOptions qo;
   qo.rel_goal_bits = rel_goal_bits;
   qo.max_prec = max_prec;
-  Ball* outs[3] = {&r.A, &r.B, &r.C};
-  const char* names[3] = {"A", "B", "C"};
-  for (int k = 0; k < 3; ++k) {
-    qo.what = std::string("the piece integral ") + names[k];
-    *outs[k] = integrate(make(k), a.t, b.t, qo);
-  }
+  qo.what = "the piece integrals A, B, C";
+  std::vector<Ball> abc = integrate_many(f, 3, a.t, b.t, qo);
+  r.A = std::move(abc[0]);
+  r.B = std::move(abc[1]);
+  r.C = std::move(abc[2]);
   const long prec = 2 * rel_goal_bits + 64;
   arb_add(r.L.get(), r.A.get(), r.B.get(), prec);
   arb_add(r.L.get(), r.L.get(), r.C.get(), prec);

@@ -38,6 +38,23 @@ Ball integrate_speed_piece(const Speed& s, const RealAlgebraic& a, const RealAlg
   return integrate(f, a, b, qo);
 }
 
+// The integrals of sigma and sigma^2 over one piece [a, b] free of zeros of
+// sigma inside, in one quadrature: sigma^2 is sigma squared at every point
+// (one evaluation of the speed for both).
+std::vector<Ball> integrate_speed_and_square(const Speed& s, const RealAlgebraic& a, const RealAlgebraic& b,
+                                             long rel_goal_bits, long max_prec) {
+  const Speed::PieceSigns sign = s.piece_signs(a, b);
+  Integrand f = [&s, sign](acb_ptr out, const acb_t z, bool analytic, long prec) {
+    s.eval(out, z, sign, analytic, prec);
+    acb_mul(out + 1, out, out, prec);
+  };
+  QuadratureOptions qo;
+  qo.rel_goal_bits = rel_goal_bits;
+  qo.max_prec = max_prec;
+  qo.what = "the integrals of the " + to_string(s.kind()) + " speed and its square";
+  return integrate_many(f, 2, a, b, qo);
+}
+
 // a, the zeros of sigma strictly inside (a, b), b.
 std::vector<RealAlgebraic> speed_piece_ends(const Speed& s, const RealAlgebraic& a, const RealAlgebraic& b) {
   std::vector<RealAlgebraic> ends{a};
@@ -111,44 +128,42 @@ void check_degree(const Curve& c, const Options& opt) {
 namespace {
 
 // mu (and, with squares, the integral of sigma^2) over [0, 1] at relative
-// accuracy 2^-bits: the pieces of mu and of the integral of sigma^2 are
-// independent, spread over worker threads, each extra worker with its own
-// copies of the speed and the ends (both keep mutable caches), made before
-// any starts. The zeros are refined once before the workers start (copies
-// share their refinement; this keeps two workers from refining one number
-// at once); value-neutral: RealAlgebraic::to_ball depends on (t, prec)
+// accuracy 2^-bits: the pieces between the zeros of sigma and the split
+// points are independent tasks (with squares, each integrates sigma and
+// sigma^2 together), spread over worker threads, each extra worker with its
+// own copies of the speed and the ends (both keep mutable caches), made
+// before any starts. The zeros are refined once before the workers start
+// (copies share their refinement; this keeps two workers from refining one
+// number at once); value-neutral: RealAlgebraic::to_ball depends on (t, prec)
 // alone. The first attempt asks for bits + 67 bits (integrate's working
 // precision bits + 32, to_ball's refinement + 35).
 void speed_integrals(const Speed& s, long bits, long max_prec, bool squares, Ball& mu, Ball& mean_square) {
   const RealAlgebraic zero(0), one(1);
   for (const SpeedZero& z : s.zeros()) z.t.refine(bits + 67);
-  // mu's pieces end at the zeros of sigma (where it is not analytic) and
-  // at the split points; the integral of sigma^2 (analytic) only at the
-  // split points.
-  const long parts = split_parts(s);
+  // At least two parts with squares: the two tasks of a curve without
+  // zeros were mu and the integral of sigma^2 side by side, and a part is
+  // about what the quadrature's first bisection makes anyway.
+  const long parts = std::max(split_parts(s), squares ? 2L : 1L);
   const std::vector<RealAlgebraic> ends = detail::with_split_points(speed_piece_ends(s, zero, one), parts);
-  const std::vector<RealAlgebraic> sq_ends =
-      squares ? detail::with_split_points({zero, one}, parts) : std::vector<RealAlgebraic>{zero};
-  const std::size_t pieces = ends.size() - 1, sq_pieces = sq_ends.size() - 1, tasks = pieces + sq_pieces;
+  const std::size_t tasks = ends.size() - 1;
   const std::size_t workers = std::min(worker_count(), tasks);
   std::vector<Speed> speeds(workers > 1 ? workers - 1 : 0, s);
-  std::vector<std::vector<RealAlgebraic>> ends_copies(speeds.size(), ends), sq_copies(speeds.size(), sq_ends);
-  std::vector<Ball> results(tasks);
+  std::vector<std::vector<RealAlgebraic>> ends_copies(speeds.size(), ends);
+  std::vector<std::vector<Ball>> results(tasks);
   parallel_for(tasks, workers, [&](std::size_t w, std::size_t i) {
     const Speed& sw = w == 0 ? s : speeds[w - 1];
     const std::vector<RealAlgebraic>& ew = w == 0 ? ends : ends_copies[w - 1];
-    const std::vector<RealAlgebraic>& qw = w == 0 ? sq_ends : sq_copies[w - 1];
-    const std::size_t k = i - pieces;
-    results[i] = i < pieces ? integrate_speed_piece(sw, ew[i], ew[i + 1], bits, max_prec)
-                            : integrate_speed_squared(sw, qw[k], qw[k + 1], bits, max_prec);
+    results[i] = squares ? integrate_speed_and_square(sw, ew[i], ew[i + 1], bits, max_prec)
+                         : std::vector<Ball>{integrate_speed_piece(sw, ew[i], ew[i + 1], bits, max_prec)};
   });
   // sigma and sigma^2 are >= 0: the relative accuracy of every part holds
   // for their sum.
   mu = Ball(0);
   mean_square = Ball(0);
-  for (std::size_t i = 0; i < tasks; ++i)
-    arb_add(i < pieces ? mu.get() : mean_square.get(), i < pieces ? mu.get() : mean_square.get(), results[i].get(),
-            2 * bits + 64);
+  for (const std::vector<Ball>& r : results) {
+    arb_add(mu.get(), mu.get(), r[0].get(), 2 * bits + 64);
+    if (squares) arb_add(mean_square.get(), mean_square.get(), r[1].get(), 2 * bits + 64);
+  }
 }
 
 // BudgetExceeded when `digits` need more bits than max_prec: the integrals

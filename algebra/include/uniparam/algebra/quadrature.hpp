@@ -7,6 +7,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "uniparam/algebra/algebraic.hpp"
 #include "uniparam/core/ball.hpp"
@@ -57,5 +58,22 @@ struct QuadratureOptions {
 ///         is not real. An exception thrown by f propagates unchanged.
 Ball integrate(const Integrand& f, const RealAlgebraic& a, const RealAlgebraic& b,
                const QuadratureOptions& opt = {});
+
+/// Certified integrals of count functions f_0, ..., f_{count-1} over [a, b]
+/// at once, sharing one subdivision and one call of f per point: f(out, z,
+/// analytic, prec) must write enclosures of f_k(z) to out[k] for every
+/// k < count (with the Integrand contract above for each: holomorphy
+/// certified on z when `analytic`, out[k] indeterminate where it cannot be).
+/// Each subinterval's Gauss-Legendre degree is the largest any f_k needs for
+/// its own tolerance (so the integrals cost the evaluations of the hardest
+/// one, and one call gives all values: cheaper than count calls of
+/// integrate when the f_k share most of their work, e.g. sigma and sigma^2,
+/// or sigma^2 times three weights).
+/// \post result[k] contains the integral of f_k and meets opt's goal, for
+///       every k (the goal is retried at higher precision until all do).
+/// \throws as integrate; also InvalidArgument when count == 0. On a == b
+///         every result is exactly 0 and f is not called.
+std::vector<Ball> integrate_many(const Integrand& f, std::size_t count, const RealAlgebraic& a,
+                                 const RealAlgebraic& b, const QuadratureOptions& opt = {});
 
 }  // namespace uniparam
