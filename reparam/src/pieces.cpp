@@ -193,6 +193,12 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
     } else {
       // sigma^2 rho = Delta t^(mu+1) / (mu+1) * sigma^2 / (side (t - gamma))^mu
       s.eval_squared_over_zero(v, z, zero, side == ZeroSide::Left ? 1 : -1, mu, prec);
+      // out[3] = sigma^2 = v (side (t - gamma))^mu, for piece_square_integral
+      const Ball gb = zero.t.to_ball(prec + 16);
+      acb_sub_arb(w, z, gb.get(), prec);
+      if (side == ZeroSide::Right) acb_neg(w, w);
+      acb_pow_ui(w, w, static_cast<ulong>(mu), prec);
+      acb_mul(out + 3, v, w, prec);
       acb_pow_ui(w, dt, static_cast<ulong>(mu + 1), prec);
       acb_mul(v, v, w, prec);
       acb_div_ui(v, v, static_cast<ulong>(mu + 1), prec);
@@ -226,11 +232,16 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
   QuadratureOptions qo;
   qo.rel_goal_bits = rel_goal_bits;
   qo.max_prec = max_prec;
-  qo.what = "the piece integrals A, B, C";
-  std::vector<Ball> abc = integrate_many(f, 3, a.t, b.t, qo);
+  // next to a zero, the integral of sigma^2 too (u_before: not L / Delta t there)
+  qo.what = side == ZeroSide::None ? "the piece integrals A, B, C" : "the piece integrals A, B, C and of sigma^2";
+  std::vector<Ball> abc = integrate_many(f, side == ZeroSide::None ? 3 : 4, a.t, b.t, qo);
   r.A = std::move(abc[0]);
   r.B = std::move(abc[1]);
   r.C = std::move(abc[2]);
+  if (side != ZeroSide::None) {
+    r.square = std::move(abc[3]);
+    r.square_bits = rel_goal_bits;
+  }
   const long prec = 2 * rel_goal_bits + 64;
   arb_add(r.L.get(), r.A.get(), r.B.get(), prec);
   arb_add(r.L.get(), r.L.get(), r.C.get(), prec);
@@ -249,7 +260,8 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
 
 Ball piece_square_integral(const Speed& s, const Breakpoint& a, const Breakpoint& b, const PieceIntegrals& pi,
                            long rel_goal_bits, long max_prec) {
-  if (a.multiplicity > 0 || b.multiplicity > 0) return integrate_speed_squared(s, a.t, b.t, rel_goal_bits, max_prec);
+  if (a.multiplicity > 0 || b.multiplicity > 0)
+    return pi.square_bits >= rel_goal_bits ? pi.square : integrate_speed_squared(s, a.t, b.t, rel_goal_bits, max_prec);
   const long prec = 2 * rel_goal_bits + 64;
   Ball dt, out;
   arb_sub(dt.get(), b.t.to_ball(rel_goal_bits + 32).get(), a.t.to_ball(rel_goal_bits + 32).get(), prec);

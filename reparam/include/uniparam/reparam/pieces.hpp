@@ -61,6 +61,11 @@ std::vector<Breakpoint> mark_zeros(const Speed& s, const std::vector<RealAlgebra
 /// singularity of sigma^2 / t~^mu is removed by exact deflation.
 struct PieceIntegrals {
   Ball A, B, C, L, M, alpha;
+  /// int sigma^2 over the piece, computed (in the same quadrature) where a
+  /// zero of sigma ends it, to square_bits bits; square_bits = 0 elsewhere
+  /// (there it is L / Delta t: see piece_square_integral).
+  Ball square;
+  long square_bits = 0;
 };
 
 PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakpoint& b, long rel_goal_bits,
@@ -69,7 +74,8 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
 /// int sigma^2 over the piece [a, b] whose integrals are pi (a < b, as
 /// piece_integrals): L / Delta t where no zero of sigma ends the piece
 /// (rho = Delta t there, so L = Delta t int sigma^2), else its own certified
-/// integral of sigma^2 (analytic on the closed piece) at rel_goal_bits. The
+/// integral of sigma^2 (analytic on the closed piece) at rel_goal_bits: pi's
+/// `square` when piece_integrals computed it to at least those bits. The
 /// ends of Delta t are taken at rel_goal_bits + 32 bits (no refinement
 /// beyond the integrals' own). How radical() and the Moebius methods get
 /// u_before without integrating sigma^2 over [0, 1] again.
