@@ -4,14 +4,16 @@
 #include <flint/fmpz_poly.h>
 
 #include <algorithm>
-
-#include "uniparam/algebra/deflation.hpp"
-#include "uniparam/core/error.hpp"
+#include <cmath>
 #include <future>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <unordered_map>
 #include <vector>
+
+#include "uniparam/algebra/deflation.hpp"
+#include "uniparam/core/error.hpp"
 
 namespace uniparam {
 
@@ -565,7 +567,9 @@ CellPtr build_cell(CellStore& store, const Poly& p, const CellKey& key) {
 // and the key is freed, so a later call tries again.
 CellPtr get_cell(CellStore& store, const Poly& p, int variant, long wp, int level, unsigned long long j, bool coarse) {
   const CellKey key{wp, level, variant, j, coarse};
-  std::promise<CellPtr> promise;
+  // Made only when this thread builds the cell: a promise allocates its
+  // shared state, and most calls find the cell stored.
+  std::optional<std::promise<CellPtr>> promise;
   {
     std::unique_lock<std::mutex> lock(store.mu);
     auto it = store.cells.find(key);
@@ -576,7 +580,8 @@ CellPtr get_cell(CellStore& store, const Poly& p, int variant, long wp, int leve
       lock.unlock();
       return pending.get();
     }
-    store.building.emplace(key, promise.get_future().share());
+    promise.emplace();
+    store.building.emplace(key, promise->get_future().share());
     ++store.builds;
   }
   CellPtr cell;
@@ -587,7 +592,7 @@ CellPtr get_cell(CellStore& store, const Poly& p, int variant, long wp, int leve
       std::lock_guard<std::mutex> lock(store.mu);
       store.building.erase(key);
     }
-    promise.set_exception(std::current_exception());
+    promise->set_exception(std::current_exception());
     throw;
   }
   {
@@ -596,7 +601,7 @@ CellPtr get_cell(CellStore& store, const Poly& p, int variant, long wp, int leve
     store.cells.emplace(key, cell);
     store.building.erase(key);
   }
-  promise.set_value(cell);
+  promise->set_value(cell);
   return cell;
 }
 
@@ -614,21 +619,16 @@ bool in_disc(acb_t w, const arf_t centre, int level, const acb_t z, long prec) {
 }
 
 // Index of the level-l cell whose closure holds x (clamped to [0, 1]).
-unsigned long long cell_index(const arf_t x, int level) {
+// Exact from x rounded down to a double d: every cell end k 2^-l <= x
+// (k < 2^53) is a double, so d >= k 2^-l too and floor(d 2^l) = floor(x 2^l).
+unsigned long long cell_index(double d, int level) {
   const unsigned long long cells = 1ULL << level;
-  if (arf_sgn(x) <= 0) return 0;
-  arf_t y;
-  arf_init(y);
-  arf_mul_2exp_si(y, x, level);
-  fmpz_t f;
-  fmpz_init(f);
-  arf_get_fmpz(f, y, ARF_RND_FLOOR);
-  unsigned long long j = cells - 1;
-  if (fmpz_sgn(f) >= 0 && fmpz_cmp_ui(f, cells - 1) < 0) j = fmpz_get_ui(f);
-  fmpz_clear(f);
-  arf_clear(y);
-  return j;
+  if (!(d > 0)) return 0;
+  const double y = std::floor(std::ldexp(d, level));
+  return y < static_cast<double>(cells - 1) ? static_cast<unsigned long long>(y) : cells - 1;
 }
+
+unsigned long long cell_index(const arf_t x, int level) { return cell_index(arf_get_d(x, ARF_RND_FLOOR), level); }
 
 }  // namespace
 
@@ -722,12 +722,8 @@ void LocalPoly::eval_double(double t, double* v, double* d1, double* d2) const {
     Cache& cache = *cache_;
     // 64 + guard bits: the same cells as a 64-bit certified evaluation.
     const long wp = (64 + kGuardBits + FLINT_BITS - 1) / FLINT_BITS * FLINT_BITS;
-    arf_t x;
-    arf_init(x);
-    arf_set_d(x, t);
-    const CellPtr cp = get_cell(cache.store, p_, -1, wp, kPointLevel, cell_index(x, kPointLevel), false);
+    const CellPtr cp = get_cell(cache.store, p_, -1, wp, kPointLevel, cell_index(t, kPointLevel), false);
     const Cell& cell = *cp;
-    arf_clear(x);
     const double w = t - arf_get_d(cell.centre, ARF_RND_NEAR);
     for (std::size_t k = cell.mid.size(); k-- > 0;) {
       c[2] = c[2] * w + c[1];

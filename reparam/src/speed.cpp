@@ -481,7 +481,10 @@ void Speed::eval_squared(acb_t out, const acb_t z, long prec) const {
 double Speed::squared_double(double t) const {
   if (zero_) return 0;
   const std::size_t n = comp_.size();
-  std::vector<double> d1(n), d2(n);
+  double buf[16];  // the optimisers call this ~10^5 times: no allocation up to 8 components
+  std::vector<double> heap(n > 8 ? 2 * n : 0);
+  double* d1 = n > 8 ? heap.data() : buf;
+  double* d2 = d1 + n;
   for (std::size_t i = 0; i < n; ++i) {
     double nv, n1, n2, q, q1, q2;
     comp_[i].N.eval_double(t, &nv, &n1, &n2);
@@ -491,7 +494,7 @@ double Speed::squared_double(double t) const {
     d2[i] = (n2 * q - nv * q2) / qq - 2 * q1 * a / (qq * q);
   }
   double S = 0;
-  for (double x : d1) S += x * x;
+  for (std::size_t i = 0; i < n; ++i) S += d1[i] * d1[i];
   if (kind_ == SpeedKind::Parametric) return S;
   double F = 0;
   for (std::size_t i = 0; i < n; ++i)
