@@ -147,6 +147,32 @@ OptimisedT optimise(const Speed& s, long N) {
     }
     if (!accepted) break;
     std::vector<double> gy2 = logit_grad(t2, e2.grad), sv(N), yv(N);
+    // Extrapolation (the curvature half of the Wolfe conditions): where the
+    // slope along d is still at least 0.9 of the first, Phi is not convex
+    // along d (sigma^2 with a sharp peak makes such valleys), the BFGS update
+    // would be skipped (s.y <= 0) and the steps stay tiny for ever (seen:
+    // 200 iterations moving one breakpoint 3e-2). Double the step while Phi
+    // falls and the slope stays steep, up to a factor e^4 in any gap.
+    auto dir_slope = [&](const std::vector<double>& g) {
+      double v = 0;
+      for (long i = 0; i < N; ++i) v += d[i] * g[i];
+      return v;
+    };
+    while (dir_slope(gy2) < 0.9 * slope && 2 * step * dmax <= 4.0) {
+      std::vector<double> y3(N);
+      for (long i = 0; i < N; ++i) y3[i] = y[i] + 2 * step * d[i];
+      const std::vector<double> t3 = from_logits(y3);
+      bool ordered = true;
+      for (long j = 0; j < N; ++j) ordered = ordered && t3[j + 1] - t3[j] > 1e-12;
+      if (!ordered) break;
+      const PhiEval e3 = phi_eval(s, t3);
+      if (!(e3.phi < e2.phi)) break;
+      step *= 2;
+      y2 = y3;
+      t2 = t3;
+      e2 = e3;
+      gy2 = logit_grad(t2, e2.grad);
+    }
     double sy = 0, yy = 0;
     for (long i = 0; i < N; ++i) {
       sv[i] = y2[i] - y[i];
@@ -170,6 +196,11 @@ OptimisedT optimise(const Speed& s, long N) {
         for (long k = 0; k < N; ++k)
           H[i * N + k] += rho * ((1 + rho * yHy) * sv[i] * sv[k] - Hy[i] * sv[k] - sv[i] * Hy[k]);
     }
+    // Stalled at double precision (the gradient's noise keeps stationarity
+    // above its threshold; seen: 160 iterations that moved nothing by 1e-12)
+    double moved = 0;
+    for (long j = 1; j < N; ++j) moved = std::max(moved, std::fabs(t2[j] - t[j]));
+    const bool stalled = moved <= 1e-12 && e.phi - e2.phi <= 1e-15 * e.phi;
     y = y2;
     t = t2;
     e = e2;
@@ -178,6 +209,7 @@ OptimisedT optimise(const Speed& s, long N) {
     best.phi = e.phi;
     best.stationarity = stationarity(t, e);
     best.iterations = it + 1;
+    if (stalled) break;
   }
   return best;
 }

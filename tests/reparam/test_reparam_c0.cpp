@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <string>
 #include <vector>
 
 #include "support/curves.hpp"
@@ -106,6 +107,33 @@ TEST(ReparamC0, NeverWorseThanEqualSpacingOnRandomCurves) {
       EXPECT_TRUE(m->u_before.meets_digits(16)) << m->u_before.str(25);
     }
   }
+}
+
+TEST(ReparamC0, StationaryLocalOptimaNearACusp) {
+  // (w^2, w^3 + e w), w = t - a: a near-cusp, whose angular speed has a
+  // peak of height ~1/e and width ~e at a. Phi is not convex along the
+  // descent direction there: the optimiser must still end stationary (it
+  // crawled for its 200 iterations with the BFGS update skipped, ending at
+  // stationarity ~1e-6 to 1e-2), and no breakpoint moved by +-1e-3 may raise
+  // the certified u.
+  for (const char* a : {"7/10", "3/10", "11/20"})
+    for (const char* e : {"1/1000", "1/300"}) {
+      const std::string w = std::string("(t - ") + a + ")";
+      const Curve c = parse_curve("(" + w + "^2, " + w + "^3 + " + e + " " + w + ")");
+      const MoebiusResult r = reparam_c0(c, SpeedKind::Angular, 3, {});
+      EXPECT_LT(r.optimiser.stationarity, 1e-6) << c.str() << " after " << r.optimiser.iterations << " iterations";
+      const std::vector<RealAlgebraic> T = rational_T(r);
+      for (std::size_t j = 1; j + 1 < T.size(); ++j)
+        for (long sgn : {-1L, 1L}) {
+          std::vector<RealAlgebraic> T2 = T;
+          T2[j] = RealAlgebraic(T[j].rational() + Rational(sgn, 1000));
+          if (!(T2[j - 1] < T2[j] && T2[j] < T2[j + 1])) continue;
+          const MoebiusResult moved = moebius_c0(c, SpeedKind::Angular, T2, {});
+          EXPECT_TRUE(not_above(moved.u_after, r.u_after))
+              << c.str() << ": breakpoint " << j << " moved by " << sgn << "/1000 gives " << moved.u_after.str(20)
+              << " > " << r.u_after.str(20);
+        }
+    }
 }
 
 TEST(ReparamC0, RejectsBadPieceCounts) {
