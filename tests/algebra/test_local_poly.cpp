@@ -466,6 +466,35 @@ TEST(LocalPoly, RealBallsGiveRealEnclosures) {
 namespace uniparam {
 namespace {
 
+/// The Taylor coefficients e_k of p at the double t (p(t + h) = sum e_k h^k),
+/// exact (t is dyadic), then rounded to doubles.
+std::vector<double> exact_taylor(const Poly& p, double t) {
+  arb_poly_t e;
+  arb_poly_init(e);
+  arb_poly_set_fmpz_poly(e, p.get(), ARF_PREC_EXACT);
+  arb_t tt;
+  arb_init(tt);
+  arb_set_d(tt, t);
+  arb_poly_taylor_shift(e, e, tt, 4 * (p.degree() + 64) + p.max_bits());
+  std::vector<double> out(static_cast<std::size_t>(arb_poly_length(e)));
+  for (std::size_t k = 0; k < out.size(); ++k)
+    out[k] = arf_get_d(arb_midref(arb_poly_get_coeff_ptr(e, static_cast<slong>(k))), ARF_RND_NEAR);
+  arb_clear(tt);
+  arb_poly_clear(e);
+  return out;
+}
+
+/// The scale of the j-th Taylor coefficient on a cell near t:
+/// sum_{k >= j} C(k, j) |e_k| 2^-(k-j).
+double local_scale(const std::vector<double>& e, int j) {
+  double scale = 0, binom = 1;
+  for (std::size_t k = static_cast<std::size_t>(j); k < e.size(); ++k) {
+    scale += binom * std::fabs(e[k]) * std::ldexp(1.0, -static_cast<int>(k - static_cast<std::size_t>(j)));
+    binom = binom * static_cast<double>(k + 1) / static_cast<double>(k + 1 - static_cast<std::size_t>(j));
+  }
+  return scale;
+}
+
 /// eval_double_taylor against the exact Taylor coefficients p^(j)(t) / j!
 /// (p shifted to the double t exactly, then rounded): random polynomials
 /// (Bernstein ones up to degree 160, whose power basis is useless in
@@ -486,27 +515,16 @@ TEST(LocalPoly, DoubleTaylorCoefficientsMatchTheExactShift) {
       std::vector<double> b(static_cast<std::size_t>(order + 1));
       lp.eval_double_taylor(t, order, b.data());
       // exact: p(t + h) = sum e_j h^j (t is a dyadic double)
-      arb_poly_t e;
-      arb_poly_init(e);
-      arb_poly_set_fmpz_poly(e, p.get(), ARF_PREC_EXACT);
-      arb_t tt;
-      arb_init(tt);
-      arb_set_d(tt, t);
-      arb_poly_taylor_shift(e, e, tt, 4 * (p.degree() + 64) + p.max_bits());
-      const long len = arb_poly_length(e);
-      auto ed = [&](long k) {
-        return k < len ? arf_get_d(arb_midref(arb_poly_get_coeff_ptr(e, k)), ARF_RND_NEAR) : 0.0;
-      };
+      const std::vector<double> ex = exact_taylor(p, t);
+      const long len = static_cast<long>(ex.size());
+      auto ed = [&](long k) { return k < len ? ex[static_cast<std::size_t>(k)] : 0.0; };
       for (int j = 0; j <= order; ++j) {
         // Inside [0, 1]: the local expansion's scale near t. Outside: the
         // power basis is used (documented), so the scale of its terms,
         // sum_k C(k, j) |c_k| t^(k-j).
         double scale = 0, binom = 1;
         if (t <= 1) {
-          for (long k = j; k < len; ++k) {
-            scale += binom * std::fabs(ed(k)) * std::ldexp(1.0, -static_cast<int>(k - j));
-            binom = binom * static_cast<double>(k + 1) / static_cast<double>(k + 1 - j);
-          }
+          scale = local_scale(ex, j);
         } else {
           for (long k = j; k <= p.degree(); ++k) {
             scale += binom * std::fabs(fmpz_get_d(p.get()->coeffs + k)) * std::pow(t, static_cast<double>(k - j));
@@ -517,8 +535,6 @@ TEST(LocalPoly, DoubleTaylorCoefficientsMatchTheExactShift) {
                      std::to_string(j));
         EXPECT_LE(std::fabs(b[static_cast<std::size_t>(j)] - ed(j)), std::ldexp(scale, -40) + 1e-300);
       }
-      arb_clear(tt);
-      arb_poly_clear(e);
     }
   }
   double b[17];
@@ -544,30 +560,14 @@ TEST(LocalPoly, DoubleValuesMatchTheExactValuesAtCellEndsAndInside) {
     for (double t : ts) {
       double v, d1, d2;
       lp.eval_double(t, &v, &d1, &d2);
-      arb_poly_t e;
-      arb_poly_init(e);
-      arb_poly_set_fmpz_poly(e, p.get(), ARF_PREC_EXACT);
-      arb_t tt;
-      arb_init(tt);
-      arb_set_d(tt, t);
-      arb_poly_taylor_shift(e, e, tt, 4 * (p.degree() + 64) + p.max_bits());
-      const long len = arb_poly_length(e);
-      auto ed = [&](long k) {
-        return k < len ? arf_get_d(arb_midref(arb_poly_get_coeff_ptr(e, k)), ARF_RND_NEAR) : 0.0;
-      };
+      const std::vector<double> ex = exact_taylor(p, t);
       const double got[3] = {v, d1, d2 / 2};  // Taylor coefficients e_0, e_1, e_2
       for (int j = 0; j < 3; ++j) {
-        double scale = 0, binom = 1;
-        for (long k = j; k < len; ++k) {
-          scale += binom * std::fabs(ed(k)) * std::ldexp(1.0, -static_cast<int>(k - j));
-          binom = binom * static_cast<double>(k + 1) / static_cast<double>(k + 1 - j);
-        }
+        const double want = static_cast<std::size_t>(j) < ex.size() ? ex[static_cast<std::size_t>(j)] : 0.0;
         SCOPED_TRACE("degree " + std::to_string(p.degree()) + ", t = " + std::to_string(t) + ", j = " +
                      std::to_string(j));
-        EXPECT_LE(std::fabs(got[j] - ed(j)), std::ldexp(scale, -40) + 1e-300);
+        EXPECT_LE(std::fabs(got[j] - want), std::ldexp(local_scale(ex, j), -40) + 1e-300);
       }
-      arb_clear(tt);
-      arb_poly_clear(e);
     }
   }
 }
