@@ -437,7 +437,7 @@ bool horner_is_accurate(const Poly& p) {
       for (long k = n; k >= 0; --k) v = v * t + fmpz_get_d(c + k);
       big = std::max(big, std::fabs(v));
     }
-    if (!(sum <= 256 * big)) return false;
+    if (!std::isfinite(big) || !(sum <= 256 * big)) return false;  // (overflow: the cells)
   }
   return true;
 }
