@@ -24,35 +24,21 @@ long digits_to_bits(long digits) { return static_cast<long>(std::ceil(digits * 3
 
 namespace {
 
-// The integral of sigma over one piece [a, b] free of zeros of sigma inside.
-Ball integrate_speed_piece(const Speed& s, const RealAlgebraic& a, const RealAlgebraic& b, long rel_goal_bits,
-                           long max_prec) {
+// The integral of sigma over one piece [a, b] free of zeros of sigma inside
+// and, with square, that of sigma^2 in the same quadrature (sigma squared at
+// every point: one evaluation of the speed for both).
+std::vector<Ball> integrate_speed_piece(const Speed& s, const RealAlgebraic& a, const RealAlgebraic& b,
+                                        long rel_goal_bits, long max_prec, bool square = false) {
   const Speed::PieceSigns sign = s.piece_signs(a, b);
-  Integrand f = [&s, sign](acb_t out, const acb_t z, bool analytic, long prec) {
+  Integrand f = [&s, sign, square](acb_ptr out, const acb_t z, bool analytic, long prec) {
     s.eval(out, z, sign, analytic, prec);
+    if (square) acb_mul(out + 1, out, out, prec);
   };
   QuadratureOptions qo;
   qo.rel_goal_bits = rel_goal_bits;
   qo.max_prec = max_prec;
-  qo.what = "the integral of the " + to_string(s.kind()) + " speed";
-  return integrate(f, a, b, qo);
-}
-
-// The integrals of sigma and sigma^2 over one piece [a, b] free of zeros of
-// sigma inside, in one quadrature: sigma^2 is sigma squared at every point
-// (one evaluation of the speed for both).
-std::vector<Ball> integrate_speed_and_square(const Speed& s, const RealAlgebraic& a, const RealAlgebraic& b,
-                                             long rel_goal_bits, long max_prec) {
-  const Speed::PieceSigns sign = s.piece_signs(a, b);
-  Integrand f = [&s, sign](acb_ptr out, const acb_t z, bool analytic, long prec) {
-    s.eval(out, z, sign, analytic, prec);
-    acb_mul(out + 1, out, out, prec);
-  };
-  QuadratureOptions qo;
-  qo.rel_goal_bits = rel_goal_bits;
-  qo.max_prec = max_prec;
-  qo.what = "the integrals of the " + to_string(s.kind()) + " speed and its square";
-  return integrate_many(f, 2, a, b, qo);
+  qo.what = "the integral of the " + to_string(s.kind()) + " speed" + (square ? " and of its square" : "");
+  return integrate_many(f, square ? 2 : 1, a, b, qo);
 }
 
 // a, the zeros of sigma strictly inside (a, b), b.
@@ -102,7 +88,7 @@ Ball integrate_speed(const Speed& s, const RealAlgebraic& a, const RealAlgebraic
   if (s.identically_zero() || a == b) return total;
   const std::vector<RealAlgebraic> ends = speed_piece_ends(s, a, b);
   for (std::size_t i = 0; i + 1 < ends.size(); ++i) {
-    Ball piece = integrate_speed_piece(s, ends[i], ends[i + 1], rel_goal_bits, max_prec);
+    const Ball piece = integrate_speed_piece(s, ends[i], ends[i + 1], rel_goal_bits, max_prec).front();
     arb_add(total.get(), total.get(), piece.get(), 2 * rel_goal_bits + 64);
   }
   return total;
@@ -153,8 +139,7 @@ void speed_integrals(const Speed& s, long bits, long max_prec, bool squares, Bal
   parallel_for(tasks, workers, [&](std::size_t w, std::size_t i) {
     const Speed& sw = w == 0 ? s : speeds[w - 1];
     const std::vector<RealAlgebraic>& ew = w == 0 ? ends : ends_copies[w - 1];
-    results[i] = squares ? integrate_speed_and_square(sw, ew[i], ew[i + 1], bits, max_prec)
-                         : std::vector<Ball>{integrate_speed_piece(sw, ew[i], ew[i + 1], bits, max_prec)};
+    results[i] = integrate_speed_piece(sw, ew[i], ew[i + 1], bits, max_prec, squares);
   });
   // sigma and sigma^2 are >= 0: the relative accuracy of every part holds
   // for their sum.
