@@ -408,9 +408,21 @@ Moebius moebius_c0(const FloatCurve& c, SpeedKind kind, const std::vector<double
 }
 
 Moebius reparam_c0(const FloatCurve& c, SpeedKind kind, int N) {
-  std::vector<double> T;
-  for (int i = 0; i <= N; ++i) T.push_back(static_cast<double>(i) / N);
-  return moebius_c0(c, kind, T);
+  // The library's breakpoint search (the same BFGS on Phi as the certified
+  // reparam_c0) on this baseline's own double quadrature and speed.
+  bool conv = true;
+  const BreakpointChoice ch = optimise_breakpoints(
+      N,
+      [&](double a, double b) {
+        const Piece p = piece(c, kind, a, b, -1, 0, conv);  // over du: h times the integrals over dt
+        const double h = b - a;
+        return PieceMoments{p.A / h, p.B / h, p.C / h};
+      },
+      [&](double t) { return speed_squared(c, kind, t); });
+  Moebius m = moebius_c0(c, kind, ch.t);
+  m.converged = m.converged && conv;
+  m.iterations = ch.iterations;
+  return m;
 }
 
 }  // namespace uniparam::fp

@@ -14,7 +14,12 @@
 //   (relative tolerance 1e-13, at most 4000 subintervals);
 // * the radical pieces' integrands sigma^2 / t~^mu evaluated naively (the
 //   instability of paper 002, section 5), since the zero is only known to
-//   double precision.
+//   double precision;
+// * the breakpoints of `reparam --pieces N` chosen by the library's own
+//   floating-point search (optimise_breakpoints, uniparam/reparam/
+//   breakpoints.hpp) fed with this file's quadrature and speed, so that both
+//   sides run the same optimiser and differ only in evaluation and
+//   certification.
 // Every result carries `converged`: false when the quadrature hit its
 // interval limit. A converged result can still be wrong: the benchmark
 // measures its correct digits against the certified balls.
@@ -24,6 +29,7 @@
 #include <vector>
 
 #include "uniparam/core/ball.hpp"
+#include "uniparam/reparam/breakpoints.hpp"
 #include "uniparam/reparam/curve.hpp"
 #include "uniparam/reparam/speed.hpp"
 
@@ -72,12 +78,16 @@ struct Moebius {
   std::vector<double> T, S, alpha;
   std::vector<Piece> pieces;
   double mu = 0, u_before = 0, u_after = 0;
+  long iterations = 0;  ///< reparam_c0: the breakpoint search's accepted steps
   bool converged = true;
 };
 /// C0 piecewise Moebius on the given breakpoints (UNCERTIFIED).
 Moebius moebius_c0(const FloatCurve& c, SpeedKind kind, const std::vector<double>& T);
-/// N pieces, equally spaced breakpoints (UNCERTIFIED; the same breakpoints
-/// as uniparam::reparam_c0 while that uses equal spacing).
+/// N pieces, the breakpoints chosen by the library's optimise_breakpoints (the
+/// search uniparam::reparam_c0 runs) on this baseline's double quadrature of
+/// A, B, C and its double sigma^2, then moebius_c0 on them (UNCERTIFIED).
+/// `converged` is false when any quadrature of the search or of the final
+/// pieces hit its interval limit.
 Moebius reparam_c0(const FloatCurve& c, SpeedKind kind, int N);
 
 /// Correct decimal digits (0 to 17) of the double x measured against the

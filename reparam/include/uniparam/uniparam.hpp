@@ -29,6 +29,7 @@
 #include "uniparam/core/printer.hpp"
 #include "uniparam/core/ratfunc.hpp"
 #include "uniparam/reparam/bezier.hpp"
+#include "uniparam/reparam/breakpoints.hpp"
 #include "uniparam/reparam/curve.hpp"
 #include "uniparam/reparam/formula.hpp"
 #include "uniparam/reparam/moebius.hpp"
