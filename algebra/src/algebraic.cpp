@@ -259,13 +259,19 @@ std::string RealAlgebraic::str() const {
 int compare(const RealAlgebraic& x, const RealAlgebraic& y) {
   if (x.is_rational()) return -compare_rational(y, x.rational());
   if (y.is_rational()) return compare_rational(x, y.rational());
+  // Copies of one number (they share its refinement state): equal without
+  // any algebra. Caches keyed by an algebraic number (LocalPoly's deflated
+  // variants) look their key up this way thousands of times per quadrature.
+  if (x.shared_ && x.shared_ == y.shared_) return 0;
   if (x.hi() <= y.lo()) return -1;
   if (y.hi() <= x.lo()) return 1;
   // Overlap: x == y iff gcd(x.poly, y.poly) has a root in the intersection
   // (L, H). Its ends are non-roots of one of the polys, hence of g, and g has
-  // at most one (simple) root there: a sign change decides.
+  // at most one (simple) root there: a sign change decides. (Both polys are
+  // squarefree and primitive with positive leading coefficient: equal ones
+  // are their own gcd.)
   const Rational L = std::max(x.lo(), y.lo()), H = std::min(x.hi(), y.hi());
-  const Poly g = gcd(x.poly(), y.poly());
+  const Poly g = x.poly() == y.poly() ? x.poly() : gcd(x.poly(), y.poly());
   if (g.degree() >= 1 && exact_sign(g, L) != exact_sign(g, H)) return 0;
   // Distinct: refine both until the intervals separate.
   for (long b = std::max(8L, std::max(current_bits(x), current_bits(y)) + 1); b <= kMaxBits; b *= 2) {

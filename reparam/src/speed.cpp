@@ -371,7 +371,7 @@ bool Speed::eval_double_word(acb_t out, const acb_t z, const PieceSigns& p, bool
       if (!dd_sqrt(f, F) || !dd_div(r, f, S)) return false;
     }
   }
-  if (!dd_is_finite(r) || !(dd_rel_rad(r) <= std::ldexp(1.0, -static_cast<int>(prec - 16)))) return false;
+  if (!dd_is_finite(r) || !(dd_rel_rad(r) <= std::ldexp(1.0, -static_cast<int>(prec - 20)))) return false;
   dd_get_arb(acb_realref(out), r);
   arb_zero(acb_imagref(out));
   return true;

@@ -452,6 +452,14 @@ TEST(SpeedEval, DoubleWordPathContainsTheExactSpeedAtNodeBalls) {
         ++answered;
         ASSERT_TRUE(arb_is_zero(acb_imagref(dw)));
         ASSERT_LE(mag_cmp_2exp_si(arb_radref(acb_realref(dw)), 0), 0);
+        {  // the promised accuracy: relative radius <= 2^-(wp - 20)
+          mag_t m;
+          mag_init(m);
+          arf_get_mag(m, arb_midref(acb_realref(dw)));
+          mag_mul_2exp_si(m, m, -(wp - 20));
+          EXPECT_LE(mag_cmp(arb_radref(acb_realref(dw)), m), 0) << c.str() << " at " << t.str() << ", wp " << wp;
+          mag_clear(m);
+        }
         // every point of z: its ends and t
         arb_t e;
         arb_init(e);

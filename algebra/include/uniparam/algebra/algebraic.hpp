@@ -77,6 +77,7 @@ class RealAlgebraic {
   std::string str() const;
 
  private:
+  friend int compare(const RealAlgebraic& x, const RealAlgebraic& y);
   // The constructors from an isolated root; sev (may be null) checks the
   // ends' signs first.
   void init(const IsolatedRoot& r, const ScaledEvaluator* sev);
