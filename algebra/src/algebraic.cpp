@@ -99,8 +99,8 @@ void RealAlgebraic::init(const IsolatedRoot& r, const ScaledEvaluator* sev) {
   // evaluator of lambda f usually decides that at once (a high-degree f's
   // power basis costs far more: two exact signs of the degree-1633 critical
   // numerator per root at d = 150); the exact signs decide otherwise.
-  bool checked = false;
-  if (sev && sev->ev) {
+  bool checked = r.certified;  // proven by the isolator (real_roots.hpp)
+  if (!checked && sev && sev->ev) {
     const int el = evaluator_sign(*sev, r.lo), eh = evaluator_sign(*sev, r.hi);
     checked = el != 0 && eh != 0 && el != eh;
   }

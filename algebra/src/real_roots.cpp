@@ -1049,7 +1049,7 @@ std::vector<IsolatedRoot> isolate_real_roots(const Poly& p, const Rational& a, c
   }
   std::vector<IsolatedRoot> out;
   out.reserve(found.size());
-  for (Found& r : found) out.push_back({std::move(r.lo), std::move(r.hi), std::move(r.factor), r.multiplicity});
+  for (Found& r : found) out.push_back({std::move(r.lo), std::move(r.hi), std::move(r.factor), r.multiplicity, true});
   return out;
 }
 
@@ -1159,7 +1159,7 @@ std::vector<IsolatedRoot> isolate_real_roots(const Poly& p, const PolyEvaluator&
   make_disjoint(found, separation_bits(p) + p.degree() + 64);
   std::vector<IsolatedRoot> out;
   out.reserve(found.size());
-  for (Found& r : found) out.push_back({std::move(r.lo), std::move(r.hi), std::move(r.factor), r.multiplicity});
+  for (Found& r : found) out.push_back({std::move(r.lo), std::move(r.hi), std::move(r.factor), r.multiplicity, true});
   return out;
 }
 

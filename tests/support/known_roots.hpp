@@ -53,6 +53,7 @@ inline void check_isolation(const Poly& p, const Rational& a, const Rational& b,
     ASSERT_TRUE(a <= r.lo && r.lo <= r.hi && r.hi <= b);
     if (i + 1 < got.size()) ASSERT_TRUE(r.hi < got[i + 1].lo) << "not sorted/disjoint";
     ASSERT_GE(r.factor.degree(), 1);
+    EXPECT_TRUE(r.certified);  // the isolators vouch for their roots (RealAlgebraic skips its check)
     ASSERT_TRUE(r.factor.leading().sign() > 0);
     ASSERT_EQ(r.factor, r.factor.primitive());
     ASSERT_TRUE(divexact(p, r.factor).degree() >= 0);  // factor divides p (throws otherwise)

@@ -21,7 +21,10 @@ class RealAlgebraic {
   /// The rational q (exact), with polynomial den*t - num.
   RealAlgebraic(const Rational& q);  // NOLINT: exact conversion
   RealAlgebraic(long q) : RealAlgebraic(Rational(q)) {}  // NOLINT: exact conversion
-  /// From an isolated root (see real_roots.hpp).
+  /// From an isolated root (see real_roots.hpp). Unless r.certified (the
+  /// isolator proved it), the contract of IsolatedRoot is checked exactly
+  /// (InvalidArgument when the ends are roots or the factor does not change
+  /// sign between them).
   explicit RealAlgebraic(const IsolatedRoot& r);
   /// From an isolated root, refined with the help of `sev` (may be null):
   /// an evaluator (real_roots.hpp) of lambda * r.factor, typically the
@@ -29,8 +32,9 @@ class RealAlgebraic {
   /// power basis at high degree. refine() then takes interval Newton steps
   /// with the derivative from sev at 64 bits, and needs no exact sign
   /// (root_refine.hpp). The check that r.lo and r.hi are not roots and
-  /// that r.factor changes sign between them uses sev's enclosures at 64
-  /// bits first, exact signs only where those hold 0. The number keeps
+  /// that r.factor changes sign between them (skipped when r.certified)
+  /// uses sev's enclosures at 64 bits first, exact signs only where those
+  /// hold 0. The number keeps
   /// (shares) sev for as long as any copy lives: whatever sev refers to must
   /// live as long (capture it by value).
   /// \pre as for RealAlgebraic(r); sev's contract is trusted, not checked.
