@@ -2,10 +2,10 @@
 // Moebius map with N pieces and optimised breakpoints (MATH.md section 3).
 //
 // The breakpoints are *chosen* by a quasi-Newton method on Phi(T) = sum
-// sqrt M_i evaluated in floating point (uncertified: breakpoints.hpp, on the
-// integrals of float_quadrature.hpp);
-// everything reported is then certified by moebius_c0 on the chosen rational
-// T. A wrong choice can only cost optimality, never correctness.
+// sqrt M_i evaluated in floating point (uncertified: breakpoints.hpp, fed
+// with the integrals of float_quadrature.hpp); everything reported is then
+// certified by moebius_c0 on the chosen rational T. A wrong choice can only
+// cost optimality, never correctness.
 #include <algorithm>
 #include <cmath>
 #include <string>
