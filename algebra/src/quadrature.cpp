@@ -6,8 +6,11 @@
 #include <mag.h>
 
 #include <algorithm>
+#include <cmath>
+#include <complex>
 #include <deque>
 #include <exception>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -51,6 +54,9 @@ struct Context {
   std::size_t count;         ///< values f writes per call
   std::exception_ptr error;  ///< first exception thrown by *f, rethrown after the attempt
   long wide_prec;            ///< precision for wide balls (see integrate)
+  const std::vector<std::complex<double>>* hints = nullptr;  ///< QuadratureOptions::singularity_hints
+  const NodeIntegrand* node_fast = nullptr;                  ///< QuadratureOptions::node_fast (may be empty)
+  std::vector<DDBall> dd_out;                                ///< node_fast's outputs
 };
 
 /// True for the balls of the error bounds (a subinterval's segment or
@@ -119,6 +125,8 @@ struct GlRule {
   long prec = 0;
   arb_ptr x = nullptr, w = nullptr;
   slong len = 0;
+  // x and w as double-word balls (for NodeIntegrand), made with them
+  std::vector<DDBall> dx, dw;
   GlRule() = default;
   GlRule(const GlRule&) = delete;
   GlRule& operator=(const GlRule&) = delete;
@@ -139,8 +147,16 @@ const GlRule& gl_rule(int step, long prec) {
       r.w = _arb_vec_init(r.len);
     }
     const long wp = std::max(prec, 2 * r.prec + 30);  // few recomputations as prec grows
-    for (slong k = 0; k < r.len; ++k)
+    r.dx.assign(static_cast<std::size_t>(r.len), DDBall{});
+    r.dw.assign(static_cast<std::size_t>(r.len), DDBall{});
+    for (slong k = 0; k < r.len; ++k) {
       arb_hypgeom_legendre_p_ui_root(r.x + k, r.w + k, static_cast<ulong>(n), static_cast<ulong>(k), wp);
+      // x in (0, 1), w in (0, 2): always representable; a failure would
+      // leave a non-finite ball, which sends its node to the Integrand
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      if (!dd_set_arb(r.dx[k], r.x + k)) r.dx[k] = DDBall{nan, nan, nan};
+      if (!dd_set_arb(r.dw[k], r.w + k)) r.dw[k] = DDBall{nan, nan, nan};
+    }
     r.prec = wp;
   }
   return r;
@@ -156,6 +172,15 @@ constexpr long kEllipseCost = 4;
 /// tried where X = 2 fails: 46 nodes reach 2^-88 there, so one such step
 /// replaces a bisection (two ellipses and two rules) near a singularity.
 constexpr long kSmallEllipseDegLimit = 46;
+
+/// QuadratureOptions::singularity_hints: an ellipse is skipped when a hint
+/// lies in its bounding box enlarged by this factor. Arb's enclosures on a
+/// wide ball blow up well before a singularity is inside it: on the radical
+/// runs of the benchmark curves of degree 6 to 50 (speeds' poles and branch
+/// points as hints), no ellipse with a hint within 1.5 times its box gave a
+/// finite bound, and 17 of 162 within 1.5 to 2 times did. 1.75 skipped the
+/// most failing ellipses without costing bisections (measured, one thread).
+constexpr double kHintMargin = 1.75;
 
 /// The error bound (64/15) M / ((rho - 1) rho^(2n - 1)) of the n-point rule
 /// (an upper bound) in err.
@@ -199,12 +224,17 @@ int gl_degree(const std::vector<MagVar>& M, const mag_t rho, const std::vector<M
 ///     nodes even if |f| did not grow on it (so most steps no longer end on a
 ///     failing ellipse, the costliest kind of call);
 ///   * where X = 2 fails, X = 5/4 (rho = 2) is tried with up to
-///     kSmallEllipseDegLimit nodes before the step fails (which bisects).
+///     kSmallEllipseDegLimit nodes before the step fails (which bisects);
+///   * with use_hints, an ellipse near a singularity hint is not evaluated
+///     (counted as failing: QuadratureOptions::singularity_hints);
+///   * nodes go to the NodeIntegrand first, when there is one, at prec <=
+///     kNodeFastMaxPrec: its answers are weighted and summed in double-word
+///     balls, the other nodes in Arb balls.
 /// Every ellipse gives a rigorous bound, so the choice only moves the cost.
 /// Returns ARB_CALC_SUCCESS with enclosures of the integrals in res[k], or
 /// ARB_CALC_NO_CONVERGENCE (res indeterminate). *evals counts the calls of f.
 int gl_step(acb_ptr res, long* evals, Context& ctx, const acb_t a, const acb_t b, const std::vector<MagVar>& tol,
-            long deg_limit, long prec) {
+            long deg_limit, bool use_hints, long prec) {
   const std::size_t count = ctx.count;
   AcbVar mid, delta, wide;
   AcbVec v(count), s(count);
@@ -224,8 +254,21 @@ int gl_step(acb_ptr res, long* evals, Context& ctx, const acb_t a, const acb_t b
     mag_sqrt_lower(r, r);
     mag_add_lower(r, r, x);
   };
+  // True when a singularity hint lies in the (enlarged) bounding box of the
+  // ellipse X: its bound would not be finite, so it is not evaluated.
+  const double hm = arf_get_d(arb_midref(acb_realref(mid.v)), ARF_RND_NEAR);
+  const double hd = std::fabs(arf_get_d(arb_midref(acb_realref(delta.v)), ARF_RND_NEAR));
+  auto hinted = [&](const mag_t x) {
+    if (!use_hints || !ctx.hints || ctx.hints->empty()) return false;
+    const double xd = mag_get_d(x);
+    const double bx = kHintMargin * xd * hd, by = kHintMargin * std::sqrt(xd * xd - 1) * hd;
+    for (const std::complex<double>& h : *ctx.hints)
+      if (std::fabs(h.real() - hm) <= bx && std::fabs(h.imag()) <= by) return true;
+    return false;
+  };
   // M_k = |delta| sup |f_k| on the ellipse X; false when f is not finite there
   auto bound_on = [&](const mag_t x) {
+    if (hinted(x)) return false;
     mag_mul(Y.v, x, x);  // Y = sqrt(X^2 - 1), an upper bound
     mag_one(t.v);
     mag_sub(Y.v, Y.v, t.v);
@@ -288,9 +331,42 @@ int gl_step(acb_ptr res, long* evals, Context& ctx, const acb_t a, const acb_t b
   arb_t x;
   arb_init(x);
   _acb_vec_zero(s.v, static_cast<slong>(count));
+  // The nodes NodeIntegrand answers are summed in double words (dsum), the
+  // others in Arb balls (s); both are rigorous and added at the end.
+  DDBall dmid, ddelta;
+  bool fast = ctx.node_fast && *ctx.node_fast && prec <= kNodeFastMaxPrec && arb_is_zero(acb_imagref(mid.v)) &&
+              arb_is_zero(acb_imagref(delta.v)) && dd_set_arb(dmid, acb_realref(mid.v)) &&
+              dd_set_arb(ddelta, acb_realref(delta.v));
+  std::vector<DDBall> dsum(fast ? count : 0, DDBall{});
+  bool any_fast = false;
   for (long k = 0; k < n; ++k) {
     // nodes x_0 > x_1 > ... > 0 > ... > -x_0: the rule holds the positive half
     const slong kk = 2 * k < n ? k : n - 1 - k;
+    if (fast) {
+      const DDBall& xk = rule.dx[static_cast<std::size_t>(kk)];
+      const DDBall t = dd_add(dmid, dd_mul(ddelta, 2 * k < n ? xk : dd_neg(xk)));
+      bool answered = false;
+      if (!ctx.error && dd_is_finite(t)) {
+        try {
+          answered = (*ctx.node_fast)(ctx.dd_out.data(), t, prec);
+        } catch (...) {
+          ctx.error = std::current_exception();  // call() answers 0 from now on; integrate_many rethrows
+        }
+      }
+      if (answered) {
+        const DDBall& wk = rule.dw[static_cast<std::size_t>(kk)];
+        bool ok = true;
+        for (std::size_t j = 0; j < count; ++j) {
+          ctx.dd_out[j] = dd_mul(wk, ctx.dd_out[j]);
+          ok = ok && dd_is_finite(ctx.dd_out[j]);
+        }
+        if (ok) {  // otherwise the node goes to the Integrand
+          for (std::size_t j = 0; j < count; ++j) dsum[j] = dd_add(dsum[j], ctx.dd_out[j]);
+          any_fast = true;
+          continue;
+        }
+      }
+    }
     if (2 * k < n) arb_set_round(x, rule.x + kk, prec);
     else arb_neg_round(x, rule.x + kk, prec);
     acb_mul_arb(wide.v, delta.v, x, prec);
@@ -300,6 +376,15 @@ int gl_step(acb_ptr res, long* evals, Context& ctx, const acb_t a, const acb_t b
     for (std::size_t j = 0; j < count; ++j) acb_addmul_arb(s.v + j, v.v + j, x, prec);
   }
   arb_clear(x);
+  for (std::size_t j = 0; j < count && any_fast; ++j) {
+    if (!dd_is_finite(dsum[j])) {  // a sum overflowed: nothing is known
+      acb_indeterminate(s.v + j);
+      continue;
+    }
+    AcbVar part;
+    dd_get_arb(acb_realref(part.v), dsum[j]);
+    acb_add(s.v + j, s.v + j, part.v, prec);
+  }
   *evals += n;
   MagVar err;
   for (std::size_t j = 0; j < count; ++j) {
@@ -392,7 +477,7 @@ int adaptive_integrate(acb_ptr res, Context& ctx, const acb_t a, const acb_t b, 
       continue;
     }
     long feval = 0;
-    const int gl = gl_step(u.v, &feval, ctx, iv->a.v, iv->b.v, new_tol, deg_limit, prec);
+    const int gl = gl_step(u.v, &feval, ctx, iv->a.v, iv->b.v, new_tol, deg_limit, iv->depth < kDirectDepth, prec);
     evals += feval;
     if (gl == ARB_CALC_SUCCESS) {
       _acb_vec_add(sum.v, sum.v, u.v, static_cast<slong>(count), prec);
@@ -580,7 +665,8 @@ std::vector<Ball> integrate_many(const Integrand& f, std::size_t count, const Re
 
     // Wide balls (error bounds) at the bits lost to cancellation plus 64:
     // prec - rel_goal_bits is what the start precision added for them.
-    Context ctx{&f, count, nullptr, std::max(64L, prec - opt.rel_goal_bits + 32)};
+    Context ctx{&f, count, nullptr, std::max(64L, prec - opt.rel_goal_bits + 32), &opt.singularity_hints,
+                &opt.node_fast, std::vector<DDBall>(count)};
     const int status = adaptive_integrate(res.v, ctx, ma.v, mb.v, goal, tol.v, eval_limit, opt.depth_limit, prec);
     if (ctx.error) std::rethrow_exception(ctx.error);
     // The enclosures are valid whatever the status; NO_CONVERGENCE only

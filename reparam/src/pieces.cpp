@@ -41,27 +41,37 @@ class PieceEnds {
   PieceEnds& operator=(const PieceEnds&) = delete;
   /// ta = a, dt = b - a (real balls, imaginary part exactly 0).
   void get(acb_t ta, acb_t dt, long prec) {
-    for (const Entry& e : entries_)
-      if (e.prec == prec) {
-        acb_set_arb(ta, e.a.get());
-        acb_set_arb(dt, e.d.get());
-        return;
-      }
-    Entry e;
-    e.prec = prec;
-    e.a = a_.to_ball(prec + 16);
-    const Ball bb = b_.to_ball(prec + 16);
-    arb_sub(e.d.get(), bb.get(), e.a.get(), prec + 16);
+    const Entry& e = entry(prec);
     acb_set_arb(ta, e.a.get());
     acb_set_arb(dt, e.d.get());
-    entries_.push_back(std::move(e));
+  }
+  /// The same as double-word balls; false when they are not representable.
+  bool get_dd(DDBall& ta, DDBall& dt, long prec) {
+    const Entry& e = entry(prec);
+    ta = e.dd_a;
+    dt = e.dd_d;
+    return e.dd_ok;
   }
 
  private:
   struct Entry {
     long prec = 0;
     Ball a, d;
+    DDBall dd_a, dd_d;  // a, d as double words (when dd_ok)
+    bool dd_ok = false;
   };
+  Entry& entry(long prec) {
+    for (Entry& e : entries_)
+      if (e.prec == prec) return e;
+    Entry e;
+    e.prec = prec;
+    e.a = a_.to_ball(prec + 16);
+    const Ball bb = b_.to_ball(prec + 16);
+    arb_sub(e.d.get(), bb.get(), e.a.get(), prec + 16);
+    e.dd_ok = dd_set_arb(e.dd_a, e.a.get()) && dd_set_arb(e.dd_d, e.d.get());
+    entries_.push_back(std::move(e));
+    return entries_.back();
+  }
   const RealAlgebraic& a_;
   const RealAlgebraic& b_;
   std::vector<Entry> entries_;  // a handful of precisions per piece
@@ -234,6 +244,24 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
   qo.max_prec = max_prec;
   // next to a zero, the integral of sigma^2 too (u_before: not L / Delta t there)
   qo.what = side == ZeroSide::None ? "the piece integrals A, B, C" : "the piece integrals A, B, C and of sigma^2";
+  qo.singularity_hints = s.singularity_hints(true);
+  // The nodes of a piece without a zero at an end, in double words: the
+  // same f_k as above (sigma^2 Delta t times the weights of t~).
+  if (side == ZeroSide::None)
+    qo.node_fast = [&s, &ends](DDBall* out, const DDBall& t, long prec) {
+      DDBall ta, dt, v, tt;
+      if (!ends.get_dd(ta, dt, prec) || !s.eval_dd(v, t, Speed::PieceSigns{}, true, prec)) return false;
+      v = dd_mul(v, dt);
+      if (!dd_div(tt, dd_sub(t, ta), dt)) return false;
+      const DDBall w = dd_sub(dd_from_double(1), tt);  // 1 - t~
+      out[0] = dd_mul(dd_mul(w, w), v);
+      out[1] = dd_mul_2exp(dd_mul(dd_mul(w, tt), v), 1);
+      out[2] = dd_mul(dd_mul(tt, tt), v);
+      const double goal = std::ldexp(1.0, -static_cast<int>(prec - 20));
+      for (int k = 0; k < 3; ++k)
+        if (!(dd_rel_rad(out[k]) <= goal)) return false;
+      return true;
+    };
   std::vector<Ball> abc = integrate_many(f, side == ZeroSide::None ? 3 : 4, a.t, b.t, qo);
   r.A = std::move(abc[0]);
   r.B = std::move(abc[1]);

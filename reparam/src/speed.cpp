@@ -7,6 +7,7 @@
 #include <memory>
 #include <mutex>
 
+#include "uniparam/algebra/approx_roots.hpp"
 #include "uniparam/algebra/local_poly.hpp"
 #include "uniparam/algebra/real_roots.hpp"
 #include "uniparam/core/error.hpp"
@@ -34,6 +35,20 @@ namespace {
 constexpr long kDDMaxPrec = 110;
 constexpr double kDDMaxLoss = 24;
 constexpr long kDDMaxDegree = 64;
+// singularity_hints: the largest degree of D or sum K^2 whose roots are
+// approximated (O(degree^2) per Aberth sweep).
+constexpr long kHintMaxDegree = 128;
+// ... and the most bits Horner's rule may lose on [0, 1] (DDPoly's
+// estimate): roots from double coefficients are only as good as Horner's
+// rule near [0, 1], and power bases that lose more (high degree Bezier
+// curves) give hints that would mislead.
+constexpr double kHintMaxLoss = 30;
+
+// True when p's power basis is good enough for hints (see kHintMaxLoss).
+bool hint_worthy(const Poly& p) {
+  const DDPoly d(p);
+  return d.usable() && d.cancellation_bits() <= kHintMaxLoss;
+}
 
 Poly gcd_all(const std::vector<Poly>& ps) {
   Poly g;
@@ -179,6 +194,32 @@ const RatFunc& Speed::squared() const {
   return lazy_->squared;
 }
 
+const std::vector<std::complex<double>>& Speed::singularity_hints(bool squared) const {
+  std::call_once(lazy_->hints_once, [this] {
+    if (zero_) return;
+    long k = 0;
+    for (const auto& c : K_) k = std::max(k, c.degree());
+    if (D_.degree() > kHintMaxDegree || 2 * k > kHintMaxDegree || !hint_worthy(D_)) return;
+    // sigma has a square root unless it is a plane curve's angular speed
+    const bool root = !(kind_ == SpeedKind::Angular && comp_.size() == 2);
+    std::vector<std::complex<double>> poles;
+    if (D_.degree() > 0) poles = approximate_complex_roots(D_);
+    lazy_->hints_squared = poles;
+    lazy_->hints_sigma = std::move(poles);
+    if (root && k > 0) {
+      Poly sumK2(0);
+      for (const auto& c : K_) sumK2 = sumK2 + c * c;
+      if (!hint_worthy(sumK2)) {  // no hints rather than half of them
+        lazy_->hints_sigma.clear();
+        return;
+      }
+      const auto branch = approximate_complex_roots(sumK2);
+      lazy_->hints_sigma.insert(lazy_->hints_sigma.end(), branch.begin(), branch.end());
+    }
+  });
+  return squared ? lazy_->hints_squared : lazy_->hints_sigma;
+}
+
 Speed::PieceSigns Speed::piece_signs(const RealAlgebraic& a, const RealAlgebraic& b) const {
   if (!(a < b)) throw DomainError("piece_signs needs a < b");
   // A rational strictly between a and b: the simplest one in the middle half
@@ -320,8 +361,15 @@ bool Speed::eval_double_word(acb_t out, const acb_t z, const PieceSigns& p, bool
   if (!dd_ || zero_ || prec > kDDMaxPrec || !arb_is_zero(acb_imagref(z)) ||
       mag_cmp_2exp_si(arb_radref(acb_realref(z)), -30) >= 0)
     return false;
-  DDBall x;
-  if (!dd_set_arb(x, acb_realref(z))) return false;
+  DDBall x, r;
+  if (!dd_set_arb(x, acb_realref(z)) || !eval_dd(r, x, p, squared, prec)) return false;
+  dd_get_arb(acb_realref(out), r);
+  arb_zero(acb_imagref(out));
+  return true;
+}
+
+bool Speed::eval_dd(DDBall& out, const DDBall& x, const PieceSigns& p, bool squared, long prec) const {
+  if (!dd_ || zero_ || prec > kDDMaxPrec || !dd_is_finite(x) || !(x.rad < 0x1p-30)) return false;
   const std::size_t n = comp_.size();
   const bool angular = kind_ == SpeedKind::Angular;
   DDBall d1[3], d2[3];  // curves of up to 3 components take this path
@@ -372,8 +420,7 @@ bool Speed::eval_double_word(acb_t out, const acb_t z, const PieceSigns& p, bool
     }
   }
   if (!dd_is_finite(r) || !(dd_rel_rad(r) <= std::ldexp(1.0, -static_cast<int>(prec - 20)))) return false;
-  dd_get_arb(acb_realref(out), r);
-  arb_zero(acb_imagref(out));
+  out = r;
   return true;
 }
 

@@ -38,6 +38,12 @@ std::vector<Ball> integrate_speed_piece(const Speed& s, const RealAlgebraic& a, 
   qo.rel_goal_bits = rel_goal_bits;
   qo.max_prec = max_prec;
   qo.what = "the integral of the " + to_string(s.kind()) + " speed" + (square ? " and of its square" : "");
+  qo.singularity_hints = s.singularity_hints(false);
+  qo.node_fast = [&s, sign, square](DDBall* out, const DDBall& t, long prec) {
+    if (!s.eval_dd(out[0], t, sign, false, prec)) return false;
+    if (square) out[1] = dd_mul(out[0], out[0]);
+    return true;
+  };
   return integrate_many(f, square ? 2 : 1, a, b, qo);
 }
 
@@ -102,6 +108,7 @@ Ball integrate_speed_squared(const Speed& s, const RealAlgebraic& a, const RealA
   qo.rel_goal_bits = rel_goal_bits;
   qo.max_prec = max_prec;
   qo.what = "the integral of the squared " + to_string(s.kind()) + " speed";
+  qo.singularity_hints = s.singularity_hints(true);
   return integrate(f, a, b, qo);
 }
 

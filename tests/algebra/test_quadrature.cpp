@@ -7,7 +7,10 @@
 #include <flint/fmpz_poly.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <complex>
 #include <cstdlib>
+#include <memory>
 #include <random>
 #include <set>
 #include <string>
@@ -16,7 +19,9 @@
 #include "support/iterations.hpp"
 #include "uniparam/algebra/algebraic.hpp"
 #include "uniparam/algebra/quadrature.hpp"
+#include "uniparam/core/dd_ball.hpp"
 #include "uniparam/core/error.hpp"
+#include "uniparam/core/poly.hpp"
 
 namespace uniparam {
 namespace {
@@ -720,6 +725,186 @@ TEST(QuadratureMany, InvalidArgumentsAndErrors) {
   EXPECT_THROW(integrate_many(cplx, 2, Rational(0), Rational(1)), DomainError);
   Integrand thrower = [](acb_ptr, const acb_t, bool, long) { throw BudgetExceeded("from the integrand"); };
   EXPECT_THROW(integrate_many(thrower, 2, Rational(0), Rational(1)), BudgetExceeded);
+}
+
+// ---------------------------------------------------------------------------
+// QuadratureOptions::node_fast (double-word nodes) and singularity_hints
+
+/// p and its node path: DDPoly (Horner in double-word balls) on the nodes,
+/// counting the nodes it answers; refuse_every > 0 refuses every such call.
+NodeIntegrand poly_nodes(const std::vector<long>& c, long* answered, long refuse_every = 0) {
+  auto dp = std::make_shared<DDPoly>(Poly(c));
+  auto calls = std::make_shared<long>(0);
+  return [dp, answered, refuse_every, calls](DDBall* out, const DDBall& t, long prec) {
+    if (refuse_every > 0 && (*calls)++ % refuse_every == 0) return false;
+    if (!dp->eval(out, nullptr, nullptr, t)) return false;
+    if (!(dd_rel_rad(out[0]) <= std::ldexp(1.0, -static_cast<int>(prec - 20)))) return false;
+    ++*answered;
+    return true;
+  };
+}
+
+TEST(QuadratureNodes, DoubleWordNodesContainTheExactIntegral) {
+  // Random polynomials, several integrals at once (p, 3p, p with refusals):
+  // the weighted double-word sums must hold the exact integrals and meet
+  // the goal, with the Integrand left only the error bounds (or the
+  // refused nodes).
+  std::mt19937 rng(20261123u);
+  std::uniform_int_distribution<long> coef(-9, 9), num(-30, 30), den(1, 12), deg(0, 9);
+  const long n = iterations(30);
+  for (long it = 0; it < n; ++it) {
+    std::vector<long> c(static_cast<std::size_t>(deg(rng)) + 1);
+    for (long& x : c) x = coef(rng);
+    c.back() = c.back() == 0 ? 1 : c.back();
+    Rational a(num(rng), den(rng)), b(num(rng), den(rng));
+    if (b < a) std::swap(a, b);
+    if (a == b) continue;
+    const Rational exact = exact_poly_integral(c, a, b);
+    if (exact.is_zero()) continue;
+    for (long refuse : {0L, 3L}) {
+      SCOPED_TRACE("iteration " + std::to_string(it) + " poly " + str(c) + " on [" + a.str() + ", " + b.str() +
+                   "] refusing every " + std::to_string(refuse));
+      long answered = 0, narrow_calls = 0;
+      const Integrand arb_f = poly_integrand(c);
+      Integrand f = [&](acb_t out, const acb_t z, bool analytic, long prec) {
+        if (!analytic && acb_is_real(z) && mag_cmp_2exp_si(arb_radref(acb_realref(z)), -30) < 0) ++narrow_calls;
+        arb_f(out, z, analytic, prec);
+      };
+      QuadratureOptions opt;
+      opt.rel_goal_bits = 53;
+      opt.node_fast = poly_nodes(c, &answered, refuse);
+      const Ball r = integrate(f, a, b, opt);
+      EXPECT_TRUE(r.contains(exact)) << r.str(30) << " exact " << exact.str();
+      EXPECT_TRUE(meets_rel(r, 53)) << r.str(30);
+      EXPECT_GT(answered, 0);
+      // Each node goes to one path: the Integrand sees as many narrow balls
+      // as without the node path, less the nodes it answered.
+      long plain_calls = 0;
+      Integrand g = [&](acb_t out, const acb_t z, bool analytic, long prec) {
+        if (!analytic && acb_is_real(z) && mag_cmp_2exp_si(arb_radref(acb_realref(z)), -30) < 0) ++plain_calls;
+        arb_f(out, z, analytic, prec);
+      };
+      QuadratureOptions plain_opt;
+      plain_opt.rel_goal_bits = 53;
+      const Ball plain = integrate(g, a, b, plain_opt);
+      EXPECT_TRUE(plain.contains(exact));
+      EXPECT_EQ(narrow_calls + answered, plain_calls);
+      if (refuse > 0) EXPECT_GT(narrow_calls, plain_calls / 4);
+    }
+  }
+}
+
+TEST(QuadratureNodes, AWrongNodePathIsCaughtByTheExactIntegral) {
+  // The test above can fail: a node path that answers p + 2^-40 (a ball
+  // that misses p(t)) gives an enclosure that misses the exact integral.
+  const std::vector<long> c = {1, -3, 0, 5};  // integral 3/4 on [0, 1]
+  long answered = 0;
+  NodeIntegrand good = poly_nodes(c, &answered);
+  QuadratureOptions opt;
+  opt.rel_goal_bits = 60;  // working precision 92 <= kNodeFastMaxPrec
+  opt.node_fast = [&good](DDBall* out, const DDBall& t, long prec) {
+    if (!good(out, t, prec)) return false;
+    out[0] = dd_add(out[0], dd_from_double(0x1p-40));
+    return true;
+  };
+  const Rational exact = exact_poly_integral(c, Rational(0), Rational(1));
+  const Ball r = integrate(poly_integrand(c), Rational(0), Rational(1), opt);
+  EXPECT_GT(answered, 0);
+  EXPECT_FALSE(r.contains(exact)) << r.str(30);
+}
+
+/// 1 / ((t - 1/2)^2 + a^2): poles at 1/2 +- a i; counts the error bounds
+/// (analytic calls) and those that were not finite.
+struct PolePair {
+  Rational a2;  // a^2
+  long ellipses = 0, failed = 0;
+  Integrand f() {
+    return [this](acb_t out, const acb_t z, bool analytic, long prec) {
+      acb_t h;
+      acb_init(h);
+      acb_set_d(h, 0.5);
+      acb_sub(out, z, h, prec);
+      acb_mul(out, out, out, prec);
+      arb_set_fmpq(acb_realref(h), a2.get(), prec);
+      arb_zero(acb_imagref(h));
+      acb_add(out, out, h, prec);
+      acb_inv(out, out, prec);
+      acb_clear(h);
+      if (analytic) {
+        ++ellipses;
+        if (!acb_is_finite(out)) ++failed;
+      }
+    };
+  }
+};
+
+void pole_pair_reference(arb_t ref, const Rational& a2) {  // (2 / a) atan(1 / (2 a)) on [0, 1]
+  arb_t a;
+  arb_init(a);
+  arb_set_fmpq(a, a2.get(), 256);
+  arb_sqrt(a, a, 256);
+  arb_mul_2exp_si(ref, a, 1);
+  arb_inv(ref, ref, 256);
+  arb_atan(ref, ref, 256);
+  arb_mul_2exp_si(ref, ref, 1);
+  arb_div(ref, ref, a, 256);
+  arb_clear(a);
+}
+
+TEST(QuadratureHints, HintsAtThePolesSkipTheFailingEllipses) {
+  // Poles close to [0, 1] (a = 1/8 .. 1/64): without hints most subintervals
+  // near 1/2 try ellipses whose bounds are infinite; the true poles as hints
+  // must skip some of them, and both answers hold the true integral.
+  for (long inv_a : {8L, 20L, 64L}) {
+    const Rational a2(1, inv_a * inv_a);
+    arb_t ref;
+    arb_init(ref);
+    pole_pair_reference(ref, a2);
+    PolePair plain{a2}, hinted{a2};
+    QuadratureOptions opt;
+    opt.rel_goal_bits = 53;
+    const Ball r0 = integrate(plain.f(), Rational(0), Rational(1), opt);
+    const double a = 1.0 / static_cast<double>(inv_a);
+    opt.singularity_hints = {{0.5, a}, {0.5, -a}};
+    const Ball r1 = integrate(hinted.f(), Rational(0), Rational(1), opt);
+    SCOPED_TRACE("a = 1/" + std::to_string(inv_a));
+    EXPECT_TRUE(overlaps(r0, ref)) << r0.str(30);
+    EXPECT_TRUE(overlaps(r1, ref)) << r1.str(30);
+    EXPECT_TRUE(meets_rel(r1, 53)) << r1.str(30);
+    EXPECT_GT(plain.failed, 0);
+    EXPECT_LT(hinted.failed, plain.failed);
+    EXPECT_LT(hinted.ellipses, plain.ellipses);
+    arb_clear(ref);
+  }
+}
+
+TEST(QuadratureHints, WrongHintsCostTimeNotCorrectness) {
+  // Hints on the segment itself (where f is analytic) refuse every ellipse
+  // near them; from depth 12 on the quadrature tries the ellipses anyway, so
+  // it converges to the true value at a bounded cost (without that rule it
+  // would bisect on: 101 ellipses for the two hints on the segment, against
+  // 59 with it and 10 without hints).
+  const Rational a2(1, 4);
+  arb_t ref;
+  arb_init(ref);
+  pole_pair_reference(ref, a2);
+  PolePair none{a2};
+  QuadratureOptions plain;
+  plain.rel_goal_bits = 53;
+  EXPECT_TRUE(overlaps(integrate(none.f(), Rational(0), Rational(1), plain), ref));
+  for (const auto& hints : std::vector<std::vector<std::complex<double>>>{
+           {{0.3, 0}}, {{0.5, 0}, {0.25, 1e-9}}, {{100, 100}}, {{0.5, 0.5}, {0.5, -0.5}}}) {
+    PolePair p{a2};
+    QuadratureOptions opt;
+    opt.rel_goal_bits = 53;
+    opt.singularity_hints = hints;
+    const Ball r = integrate(p.f(), Rational(0), Rational(1), opt);
+    SCOPED_TRACE("first hint " + std::to_string(hints[0].real()) + " + " + std::to_string(hints[0].imag()) + " i");
+    EXPECT_TRUE(overlaps(r, ref)) << r.str(30);
+    EXPECT_TRUE(meets_rel(r, 53)) << r.str(30);
+    EXPECT_LE(p.ellipses, 8 * none.ellipses);
+  }
+  arb_clear(ref);
 }
 
 }  // namespace

@@ -6,6 +6,8 @@
 // polynomial and rational.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <complex>
 #include <memory>
 #include <random>
 #include <string>
@@ -514,4 +516,47 @@ TEST(SpeedEval, DoubleWordPathDeclinesWideComplexAndHighPrecisionBalls) {
   EXPECT_FALSE(s.eval_double_word(out, z, Speed::PieceSigns{}, true, 90));   // wide
   acb_clear(z);
   acb_clear(out);
+}
+
+namespace {
+
+// |p(h)| / sum |c_k| |h|^k: 0 at a root, up to 1 elsewhere (the relative
+// size of p at h against Horner's rounding scale).
+double relative_value(const Poly& p, std::complex<double> h) {
+  std::complex<double> v = 0;
+  double scale = 0;
+  for (long k = p.degree(); k >= 0; --k) {
+    const double c = fmpz_get_d(p.get()->coeffs + k);
+    v = v * h + c;
+    scale = scale * std::abs(h) + std::fabs(c);
+  }
+  return std::abs(v) / scale;
+}
+
+}  // namespace
+
+TEST(SpeedEval, SingularityHintsApproximateThePolesAndBranchPoints) {
+  // sigma^2's hints: the roots of D; sigma's: those and, where sigma has a
+  // square root (space curves, the parametric speed), the roots of sum K^2.
+  // Each hint must nearly be a root of its polynomial (an exact oracle:
+  // D and the K_k are exact), and there are as many as the degrees say.
+  std::mt19937_64 rng(20261123u);
+  const long n = uniparam::test_support::iterations(6);
+  for (long it = 0; it < n; ++it)
+    for (std::size_t dim : {2u, 3u})
+      for (SpeedKind kind : {SpeedKind::Angular, SpeedKind::Parametric}) {
+        const Curve c = random_bezier(rng, 3 + it % 4, dim, it % 2 == 1);
+        const Speed s(c, kind);
+        const bool root = !(kind == SpeedKind::Angular && dim == 2);
+        Poly sumK2(0);
+        for (const Poly& k : s.cofactors()) sumK2 = sumK2 + k * k;
+        const Poly& D = s.denominator();
+        SCOPED_TRACE(c.str() + (kind == SpeedKind::Angular ? " angular" : " parametric"));
+        const auto& sq = s.singularity_hints(true);
+        const auto& sg = s.singularity_hints(false);
+        ASSERT_EQ(static_cast<long>(sq.size()), D.degree());
+        ASSERT_EQ(static_cast<long>(sg.size()), D.degree() + (root ? sumK2.degree() : 0));
+        for (const auto& h : sq) EXPECT_LT(relative_value(D, h), 1e-8) << h;
+        for (const auto& h : sg) EXPECT_LT(std::min(relative_value(D, h), root ? relative_value(sumK2, h) : 1.0), 1e-8) << h;
+      }
 }

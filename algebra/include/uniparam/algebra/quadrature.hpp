@@ -5,12 +5,14 @@
 
 #include <acb.h>
 
+#include <complex>
 #include <functional>
 #include <string>
 #include <vector>
 
 #include "uniparam/algebra/algebraic.hpp"
 #include "uniparam/core/ball.hpp"
+#include "uniparam/core/dd_ball.hpp"
 
 namespace uniparam {
 
@@ -21,6 +23,19 @@ namespace uniparam {
 /// (acb_indeterminate) when it cannot (branch cut, pole, non-analytic
 /// point): this is acb_calc_integrate's order == 1 contract.
 using Integrand = std::function<void(acb_t out, const acb_t z, bool analytic, long prec)>;
+
+/// An optional fast path for the Gauss-Legendre nodes, in double-word balls
+/// (core/dd_ball.hpp): f(out, t, prec) for a real ball t (a node, radius
+/// about 2^-100 of it) either writes to out[0 .. count) balls that contain
+/// f_k(t') for every t' in t, each with a relative radius of at most
+/// 2^-(prec - 20), and returns true, or returns false (out unspecified) and
+/// the node goes to the Integrand. Asked only at prec <= kNodeFastMaxPrec;
+/// the weighted sum of the nodes it answers is then formed in double words
+/// too (a rigorous ball), with no Arb ball per node.
+using NodeIntegrand = std::function<bool(DDBall* out, const DDBall& t, long prec)>;
+/// The largest working precision at which NodeIntegrand is asked (double
+/// words carry about 100 bits).
+constexpr long kNodeFastMaxPrec = 110;
 
 struct QuadratureOptions {
   /// Goal: the result's radius <= 2^-rel_goal_bits * |value|, or, when
@@ -42,6 +57,18 @@ struct QuadratureOptions {
   long depth_limit = 0;
   /// Used in the BudgetExceeded message: what was being integrated.
   std::string what = "integral";
+  /// UNCERTIFIED approximations (e.g. approximate_complex_roots) of the
+  /// complex points near [a, b] where the integrand is not analytic or its
+  /// enclosures blow up (poles, branch points). They only steer the choice
+  /// of error bounds: a Bernstein ellipse whose bounding box (enlarged by a
+  /// margin) holds a hint is not evaluated, as its bound would not be
+  /// finite, and a subinterval whose smallest ellipse holds one is bisected
+  /// without evaluating f (down to a depth of 12 bisections; deeper, every
+  /// ellipse is tried as without hints). Wrong or missing hints cost time,
+  /// never correctness: every accepted bound is still Arb's.
+  std::vector<std::complex<double>> singularity_hints;
+  /// Optional (empty: every node goes to the Integrand); see NodeIntegrand.
+  NodeIntegrand node_fast;
 };
 
 /// Certified integral of f over [a, b] (a <= b, algebraic ends, refined as

@@ -4,6 +4,7 @@
 
 #include <acb.h>
 
+#include <complex>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -137,12 +138,28 @@ class Speed {
   ///         than 24 bits in Horner's rule on [0, 1]) or cannot reach that
   ///         accuracy at this point.
   bool eval_double_word(acb_t out, const acb_t z, const PieceSigns& p, bool squared, long prec) const;
+  /// eval_double_word on a double-word ball x (radius < 2^-30): the same
+  /// path, guarantees and refusals, without Arb balls at either end (the
+  /// quadrature's NodeIntegrand). \return false, out unspecified, where
+  /// eval_double_word would.
+  bool eval_dd(DDBall& out, const DDBall& x, const PieceSigns& p, bool squared, long prec) const;
+  /// UNCERTIFIED approximations (approximate_complex_roots) of the complex
+  /// points where sigma (squared = false) or sigma^2 (squared = true) is not
+  /// analytic: the zeros of D (poles) and, for sigma with a square root
+  /// (space curves' angular speed, the parametric speed), of sum K^2
+  /// (branch points). For QuadratureOptions::singularity_hints only.
+  /// Computed on the first call (thread-safe; copies share them); empty
+  /// when D or sum K^2 has degree above 128 (the hints would cost more
+  /// than they save) or the approximation failed.
+  const std::vector<std::complex<double>>& singularity_hints(bool squared) const;
 
  private:
   SpeedKind kind_;
   struct Lazy {
     std::once_flag once;
     RatFunc squared;
+    std::once_flag hints_once;
+    std::vector<std::complex<double>> hints_sigma, hints_squared;
   };
   std::shared_ptr<Lazy> lazy_;  // squared(), shared by copies
   bool zero_ = false;
