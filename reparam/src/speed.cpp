@@ -424,9 +424,9 @@ bool Speed::eval_dd(DDBall& out, const DDBall& x, const PieceSigns& p, bool squa
   return true;
 }
 
-void Speed::eval(acb_t out, const acb_t z, const PieceSigns& p, bool analytic, long prec) const {
+void Speed::eval(acb_t out, const acb_t z, const PieceSigns& p, bool analytic, long prec, bool double_word) const {
   if (zero_) { acb_zero(out); return; }
-  if (!analytic && eval_double_word(out, z, p, false, prec)) return;
+  if (!analytic && double_word && eval_double_word(out, z, p, false, prec)) return;
   // Space curves' angular speed on an ellipse (the quadrature's error
   // bounds): F = |p' x p''|^2 from the components reaches 0 there on >= 90%
   // of the benchmark curves' ellipses (any degree), so the factored form
@@ -503,9 +503,9 @@ bool Speed::eval_factored(acb_t out, const acb_t z, const PieceSigns& p, bool an
   return acb_is_finite(out);
 }
 
-void Speed::eval_squared(acb_t out, const acb_t z, long prec) const {
+void Speed::eval_squared(acb_t out, const acb_t z, long prec, bool double_word) const {
   if (zero_) { acb_zero(out); return; }
-  if (eval_double_word(out, z, PieceSigns{}, true, prec)) return;
+  if (double_word && eval_double_word(out, z, PieceSigns{}, true, prec)) return;
   acb_t S, F;
   acb_init(S);
   acb_init(F);

@@ -93,12 +93,16 @@ class Speed {
   /// components x_i = N_i / Q_i and their derivatives (low degree, small
   /// coefficients); where that cannot certify analyticity (the square root
   /// near a zero of sigma), from the factored form g * R. With analytic, out
-  /// is indeterminate unless holomorphy on z is certified.
-  void eval(acb_t out, const acb_t z, const PieceSigns& p, bool analytic, long prec) const;
+  /// is indeterminate unless holomorphy on z is certified. double_word =
+  /// false skips the double-word attempt on node balls (eval_double_word):
+  /// for the Integrand behind a QuadratureOptions::node_fast that already
+  /// tried it on the same node and refused.
+  void eval(acb_t out, const acb_t z, const PieceSigns& p, bool analytic, long prec, bool double_word = true) const;
   /// out = sigma(z)^2 (a rational function of the components' derivatives:
   /// analytic wherever the curve has no pole and, for the angular speed,
   /// p'(z) . p'(z) != 0).
-  void eval_squared(acb_t out, const acb_t z, long prec) const;
+  /// double_word as in eval.
+  void eval_squared(acb_t out, const acb_t z, long prec, bool double_word = true) const;
   /// UNCERTIFIED: sigma(t)^2 in IEEE double from the components' local
   /// expansions (LocalPoly::eval_double). For floating-point search only
   /// (the optimiser's breakpoints); NaN or inf where p'(t) = 0 (cusps).
