@@ -19,6 +19,8 @@ using C = std::complex<double>;
 // fraction of max(|z|, 1): hints need a few digits, not all 15.
 constexpr double kSettled = 0x1p-30;
 
+constexpr double kPi = 3.14159265358979323846;  // M_PI is POSIX, not C++
+
 // Plain complex products and quotients: std::complex's operators call
 // __muldc3 / __divdc3 (C99 Annex G's infinity and NaN recovery), several
 // times slower, and this iteration discards non-finite steps anyway.
@@ -81,7 +83,7 @@ std::vector<C> approximate_complex_roots(const Poly& p, bool* converged, int max
   const double r0 = std::pow(std::abs(c[0]) / std::abs(c[n]), 1.0 / static_cast<double>(n));
   std::vector<C> z(static_cast<std::size_t>(n));
   std::vector<char> done(static_cast<std::size_t>(n), 0);
-  for (long k = 0; k < n; ++k) z[k] = std::polar(r0, 0.4 + 2 * M_PI * static_cast<double>(k) / static_cast<double>(n));
+  for (long k = 0; k < n; ++k) z[k] = std::polar(r0, 0.4 + 2 * kPi * static_cast<double>(k) / static_cast<double>(n));
   bool all = false;
   for (int sweep = 0; sweep < max_sweeps && !all; ++sweep) {
     all = true;

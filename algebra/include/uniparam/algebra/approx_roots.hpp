@@ -18,8 +18,8 @@ namespace uniparam {
 /// returned exactly.
 /// \pre p is not the zero polynomial (InvalidArgument otherwise).
 /// \post out.size() == p.degree(), or out is empty when the scaled
-///       coefficients do not fit a double (a leading coefficient that
-///       underflows) or the iteration produced a non-finite number: the
+///       coefficients do not fit a double (the leading or the lowest nonzero
+///       coefficient underflows after scaling to the largest) or the iteration produced a non-finite number: the
 ///       caller must always accept having no approximations. *converged
 ///       (when given) is true when every root settled within max_sweeps
 ///       sweeps (its last correction below 2^-30 max(|z|, 1)). Settled,
