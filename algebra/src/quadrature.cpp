@@ -512,16 +512,39 @@ int adaptive_integrate(acb_ptr res, Context& ctx, const acb_t a, const acb_t b, 
   return status;
 }
 
+/// node_fast's values at the narrow real ball t, as Arb balls in
+/// out[0 .. count): true when there is a node_fast, prec <= kNodeFastMaxPrec
+/// and it answered finite balls (then they hold f_k on t, by its contract);
+/// false otherwise (out unspecified), and the caller asks f. Exceptions from
+/// node_fast propagate.
+bool fast_point(acb_ptr out, const NodeIntegrand& fast, std::size_t count, const arb_t t, long prec) {
+  if (!fast || prec > kNodeFastMaxPrec) return false;
+  DDBall x;
+  if (!dd_set_arb(x, t)) return false;
+  std::vector<DDBall> v(count);
+  if (!fast(v.data(), x, prec)) return false;
+  for (std::size_t k = 0; k < count; ++k)
+    if (!dd_is_finite(v[k])) return false;
+  for (std::size_t k = 0; k < count; ++k) {
+    dd_get_arb(acb_realref(out + k), v[k]);
+    arb_zero(acb_imagref(out + k));
+  }
+  return true;
+}
+
 /// Adds rad(end) * sup |f_k(end)| to the error of each res[k]: the integral
 /// over the piece between the true end and the midpoint of its enclosure
-/// `end`.
-void add_end_error(acb_ptr res, const Integrand& f, std::size_t count, const Ball& end, long prec) {
+/// `end`. The bound is node_fast's where it answers, else f's.
+void add_end_error(acb_ptr res, const Integrand& f, const NodeIntegrand& fast, std::size_t count, const Ball& end,
+                   long prec) {
   const mag_struct* rad = arb_radref(end.get());
   if (mag_is_zero(rad)) return;  // exact dyadic end: nothing to add, f not evaluated
   AcbVar z;
   AcbVec fz(count);
-  acb_set_arb(z.v, end.get());
-  f(fz.v, z.v, false, prec);  // exceptions propagate; the holders clean up
+  if (!fast_point(fz.v, fast, count, end.get(), prec)) {
+    acb_set_arb(z.v, end.get());
+    f(fz.v, z.v, false, prec);  // exceptions propagate; the holders clean up
+  }
   MagVar bound;
   for (std::size_t k = 0; k < count; ++k) {
     acb_get_mag(bound.v, fz.v + k);  // upper bound of |f_k| on the end ball (inf if not finite)
@@ -548,7 +571,13 @@ bool meets_goal(const Ball& r, const QuadratureOptions& opt) {
 /// |f_k| seen, the worst k. The first attempt then starts that much higher
 /// instead of failing and doubling. 0 when nothing can be measured; an
 /// exception from f propagates (as from the quadrature itself).
-long cancellation_bits(const Integrand& f, std::size_t count, const Ball& a, const Ball& b, long prec) {
+/// A point node_fast answers is asked of node_fast alone and counts as no
+/// loss: its answers meet the nodes' accuracy contract at this precision,
+/// and the nodes it answers never reach f. (Its accepted radius,
+/// 2^-(prec - 20), read as cancellation, raised the start precision by 20
+/// bits, often past kNodeFastMaxPrec, where every node then went to f.)
+long cancellation_bits(const Integrand& f, const NodeIntegrand& fast, std::size_t count, const Ball& a,
+                       const Ball& b, long prec) {
   long worst = 0;
   AcbVar z;
   AcbVec fz(count);
@@ -561,13 +590,15 @@ long cancellation_bits(const Integrand& f, std::size_t count, const Ball& a, con
     arb_add(acb_realref(z.v), acb_realref(z.v), a.get(), prec);
     mag_zero(arb_radref(acb_realref(z.v)));
     arb_zero(acb_imagref(z.v));
-    f(fz.v, z.v, false, prec);
+    const bool answered = fast_point(fz.v, fast, count, acb_realref(z.v), prec);
+    if (!answered) f(fz.v, z.v, false, prec);
     for (std::size_t k = 0; k < count; ++k) {
       if (!acb_is_finite(fz.v + k)) return prec;  // everything lost (or a true pole: the real run reports it)
       MagVar m;
       acb_get_mag(m.v, fz.v + k);
       if (mag_cmp(m.v, big[k].v) > 0) mag_set(big[k].v, m.v);
-      mag_hypot(rads[j * count + k].v, arb_radref(acb_realref(fz.v + k)), arb_radref(acb_imagref(fz.v + k)));
+      if (!answered)  // (zero: no loss)
+        mag_hypot(rads[j * count + k].v, arb_radref(acb_realref(fz.v + k)), arb_radref(acb_imagref(fz.v + k)));
     }
   }
   for (std::size_t k = 0; k < count; ++k) {
@@ -628,7 +659,7 @@ std::vector<Ball> integrate_many(const Integrand& f, std::size_t count, const Re
     const long base = start;
     for (int round = 0; round < 4 && start < opt.max_prec; ++round) {
       const EndBalls& e = ends_at(start);
-      const long lost = cancellation_bits(f, count, e.a, e.b, start);
+      const long lost = cancellation_bits(f, opt.node_fast, count, e.a, e.b, start);
       const long need = lost >= start ? 2 * start : base + lost;
       if (need <= start + 16) break;
       start = std::min(need, opt.max_prec);
@@ -673,8 +704,8 @@ std::vector<Ball> integrate_many(const Integrand& f, std::size_t count, const Re
     // means they may be wide, which the goal check below sees.
     converged = status == ARB_CALC_SUCCESS;
 
-    add_end_error(res.v, f, count, ea, prec);
-    add_end_error(res.v, f, count, eb, prec);
+    add_end_error(res.v, f, opt.node_fast, count, ea, prec);
+    add_end_error(res.v, f, opt.node_fast, count, eb, prec);
 
     bool met = true;
     for (std::size_t k = 0; k < count; ++k) {

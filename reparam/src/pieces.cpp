@@ -185,11 +185,7 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
   // f_k(t) = sigma^2 rho w_k(s~): k = 0, 1, 2 for (1-s~)^2, 2 s~(1-s~), s~^2,
   // the three in one quadrature (one evaluation of the speed per point).
   PieceEnds ends(a.t, b.t);
-  // true right after node_fast (below) refused a node because the
-  // double-word sigma^2 did: that node comes to f next (one thread per
-  // quadrature), where eval_squared's double-word attempt would refuse too.
-  bool refused = false;
-  Integrand f = [&s, &ends, &zero, side, mu, &refused](acb_ptr out, const acb_t z, bool, long prec) {
+  Integrand f = [&s, &ends, &zero, side, mu](acb_ptr out, const acb_t z, bool, long prec) {
     acb_t ta, dt, tt, st, w, v;
     acb_init(ta);
     acb_init(dt);
@@ -201,8 +197,9 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
     acb_sub(tt, z, ta, prec);
     acb_div(tt, tt, dt, prec);  // t~
     if (side == ZeroSide::None) {
-      s.eval_squared(v, z, prec, !refused);  // see node_fast below
-      refused = false;
+      // every narrow real point went to node_fast (below) first: where it
+      // refused, eval_squared's double-word attempt would refuse too
+      s.eval_squared(v, z, prec, false);
       acb_mul(v, v, dt, prec);  // rho = Delta t
       acb_set(st, tt);
     } else {
@@ -253,10 +250,10 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
   // The nodes of a piece without a zero at an end, in double words: the
   // same f_k as above (sigma^2 Delta t times the weights of t~).
   if (side == ZeroSide::None)
-    qo.node_fast = [&s, &ends, &refused](DDBall* out, const DDBall& t, long prec) {
+    qo.node_fast = [&s, &ends](DDBall* out, const DDBall& t, long prec) {
       DDBall ta, dt, v, tt;
       if (!ends.get_dd(ta, dt, prec)) return false;
-      if (!s.eval_dd(v, t, Speed::PieceSigns{}, true, prec)) return refused = true, false;
+      if (!s.eval_dd(v, t, Speed::PieceSigns{}, true, prec)) return false;
       v = dd_mul(v, dt);
       if (!dd_div(tt, dd_sub(t, ta), dt)) return false;
       const DDBall w = dd_sub(dd_from_double(1), tt);  // 1 - t~

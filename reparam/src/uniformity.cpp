@@ -30,15 +30,11 @@ namespace {
 std::vector<Ball> integrate_speed_piece(const Speed& s, const RealAlgebraic& a, const RealAlgebraic& b,
                                         long rel_goal_bits, long max_prec, bool square = false) {
   const Speed::PieceSigns sign = s.piece_signs(a, b);
-  // The nodes go to node_fast below first, and a node it refuses comes to f
-  // next (the quadrature runs on one thread): eval's double-word attempt
-  // would refuse it too, so f skips it there (and only there: f's other
-  // narrow points, the ends and the start's probes, keep it).
-  bool refused = false;
-  Integrand f = [&s, sign, square, &refused](acb_ptr out, const acb_t z, bool analytic, long prec) {
-    const bool double_word = !refused;
-    refused = false;
-    s.eval(out, z, sign, analytic, prec, double_word);
+  // Every narrow real point (nodes, the start's probes, the ends) goes to
+  // node_fast below first; f gets the points it refused and the wide balls,
+  // so eval's own double-word attempt is skipped (it would refuse too).
+  Integrand f = [&s, sign, square](acb_ptr out, const acb_t z, bool analytic, long prec) {
+    s.eval(out, z, sign, analytic, prec, false);
     if (square) acb_mul(out + 1, out, out, prec);
   };
   QuadratureOptions qo;
@@ -46,8 +42,8 @@ std::vector<Ball> integrate_speed_piece(const Speed& s, const RealAlgebraic& a, 
   qo.max_prec = max_prec;
   qo.what = "the integral of the " + to_string(s.kind()) + " speed" + (square ? " and of its square" : "");
   qo.singularity_hints = s.singularity_hints(false);
-  qo.node_fast = [&s, sign, square, &refused](DDBall* out, const DDBall& t, long prec) {
-    if (!s.eval_dd(out[0], t, sign, false, prec)) return refused = true, false;
+  qo.node_fast = [&s, sign, square](DDBall* out, const DDBall& t, long prec) {
+    if (!s.eval_dd(out[0], t, sign, false, prec)) return false;
     if (square) out[1] = dd_mul(out[0], out[0]);
     return true;
   };

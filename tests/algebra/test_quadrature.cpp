@@ -794,6 +794,52 @@ TEST(QuadratureNodes, DoubleWordNodesContainTheExactIntegral) {
   }
 }
 
+TEST(QuadratureNodes, TheProbeAndTheEndsAskTheNodePathFirst) {
+  // Every narrow real point (nodes, the start-precision probe's points, the
+  // enclosures of non-dyadic ends) goes to node_fast first. Here it answers
+  // all of them, at the contract's limit of accuracy (relative radius
+  // 2^-(prec - 21)): the Integrand must get no narrow ball, and the probe
+  // must not read that radius as cancellation (it would raise the start
+  // precision above rel_goal_bits + 32).
+  std::mt19937 rng(20261124u);
+  std::uniform_int_distribution<long> coef(-9, 9), num(0, 12), deg(0, 7);
+  const long n = iterations(20);
+  for (long it = 0; it < n; ++it) {
+    std::vector<long> c(static_cast<std::size_t>(deg(rng)) + 1);
+    long sum = 0;
+    for (long& x : c) sum += std::labs(x = coef(rng));
+    c[0] = sum + 1;  // p >= 1 on [0, 1]: every point can meet the contract
+    Rational a(num(rng), 13), b(num(rng), 13);
+    if (b < a) std::swap(a, b);
+    if (a == b) continue;
+    SCOPED_TRACE("iteration " + std::to_string(it) + " poly " + str(c) + " on [" + a.str() + ", " + b.str() + "]");
+    long answered = 0, narrow_calls = 0, lowest = 1L << 30, highest = 0;
+    const Integrand arb_f = poly_integrand(c);
+    Integrand f = [&](acb_t out, const acb_t z, bool analytic, long prec) {
+      if (!analytic && acb_is_real(z) && mag_cmp_2exp_si(arb_radref(acb_realref(z)), -30) < 0) ++narrow_calls;
+      arb_f(out, z, analytic, prec);
+    };
+    NodeIntegrand exact_nodes = poly_nodes(c, &answered);
+    QuadratureOptions opt;
+    opt.rel_goal_bits = 53;
+    opt.node_fast = [&](DDBall* out, const DDBall& t, long prec) {
+      if (!exact_nodes(out, t, prec)) return false;
+      lowest = std::min(lowest, prec);
+      highest = std::max(highest, prec);
+      out[0].rad = std::max(out[0].rad, std::fabs(out[0].hi) * std::ldexp(1.0, -static_cast<int>(prec - 21)));
+      return true;
+    };
+    const Ball r = integrate(f, a, b, opt);
+    const Rational exact = exact_poly_integral(c, a, b);
+    EXPECT_TRUE(r.contains(exact)) << r.str(30) << " exact " << exact.str();
+    EXPECT_TRUE(meets_rel(r, 53)) << r.str(30);
+    EXPECT_GT(answered, 0);
+    EXPECT_EQ(narrow_calls, 0);
+    EXPECT_EQ(lowest, 53 + 32);
+    EXPECT_EQ(highest, 53 + 32);
+  }
+}
+
 TEST(QuadratureNodes, AWrongNodePathIsCaughtByTheExactIntegral) {
   // The test above can fail: a node path that answers p + 2^-40 (a ball
   // that misses p(t)) gives an enclosure that misses the exact integral.

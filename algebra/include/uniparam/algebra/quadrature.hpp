@@ -24,14 +24,19 @@ namespace uniparam {
 /// point): this is acb_calc_integrate's order == 1 contract.
 using Integrand = std::function<void(acb_t out, const acb_t z, bool analytic, long prec)>;
 
-/// An optional fast path for the Gauss-Legendre nodes, in double-word balls
-/// (core/dd_ball.hpp): f(out, t, prec) for a real ball t (a node, radius
-/// about 2^-100 of it) either writes to out[0 .. count) balls that contain
-/// f_k(t') for every t' in t, each with a relative radius of at most
-/// 2^-(prec - 20), and returns true, or returns false (out unspecified) and
-/// the node goes to the Integrand. Asked only at prec <= kNodeFastMaxPrec;
-/// the weighted sum of the nodes it answers is then formed in double words
-/// too (a rigorous ball), with no Arb ball per node.
+/// An optional fast path for the narrow real points, in double-word balls
+/// (core/dd_ball.hpp): f(out, t, prec) for a real ball t of radius below
+/// 2^-30 either writes to out[0 .. count) balls that contain f_k(t') for
+/// every t' in t, each with a relative radius of at most 2^-(prec - 20),
+/// and returns true, or returns false (out unspecified) and the point goes
+/// to the Integrand. Asked only at prec <= kNodeFastMaxPrec, first at every
+/// narrow real point the quadrature evaluates: the Gauss-Legendre nodes
+/// (radius about 2^-100 of the node; the weighted sum of the ones it
+/// answers is formed in double words too, a rigorous ball with no Arb ball
+/// per node), the start-precision probe's points (an answered point counts
+/// as no loss to cancellation) and the ends' enclosures. So the Integrand
+/// gets only the points it refused and the wide balls (segments,
+/// ellipses), and need not try double words itself.
 using NodeIntegrand = std::function<bool(DDBall* out, const DDBall& t, long prec)>;
 /// The largest working precision at which NodeIntegrand is asked (double
 /// words carry about 100 bits).

@@ -94,9 +94,10 @@ class Speed {
   /// coefficients); where that cannot certify analyticity (the square root
   /// near a zero of sigma), from the factored form g * R. With analytic, out
   /// is indeterminate unless holomorphy on z is certified. double_word =
-  /// false skips the double-word attempt on node balls (eval_double_word):
-  /// for the Integrand behind a QuadratureOptions::node_fast that already
-  /// tried it on the same node and refused.
+  /// false skips the double-word attempt on narrow real balls
+  /// (eval_double_word): for the Integrand behind a
+  /// QuadratureOptions::node_fast, which the quadrature asks first at every
+  /// such point (so the Integrand gets only the points it refused).
   void eval(acb_t out, const acb_t z, const PieceSigns& p, bool analytic, long prec, bool double_word = true) const;
   /// out = sigma(z)^2 (a rational function of the components' derivatives:
   /// analytic wherever the curve has no pole and, for the angular speed,
