@@ -52,12 +52,20 @@ class PieceEnds {
     dt = e.dd_d;
     return e.dd_ok;
   }
+  /// The enclosure of the end b alone (at prec + 16, as a's), and as a
+  /// double-word ball (false when not representable).
+  const Ball& b(long prec) { return entry(prec).b; }
+  bool get_dd_b(DDBall& tb, long prec) {
+    const Entry& e = entry(prec);
+    tb = e.dd_b;
+    return e.dd_ok;
+  }
 
  private:
   struct Entry {
     long prec = 0;
-    Ball a, d;
-    DDBall dd_a, dd_d;  // a, d as double words (when dd_ok)
+    Ball a, b, d;
+    DDBall dd_a, dd_b, dd_d;  // a, b, d as double words (when dd_ok)
     bool dd_ok = false;
   };
   Entry& entry(long prec) {
@@ -66,9 +74,9 @@ class PieceEnds {
     Entry e;
     e.prec = prec;
     e.a = a_.to_ball(prec + 16);
-    const Ball bb = b_.to_ball(prec + 16);
-    arb_sub(e.d.get(), bb.get(), e.a.get(), prec + 16);
-    e.dd_ok = dd_set_arb(e.dd_a, e.a.get()) && dd_set_arb(e.dd_d, e.d.get());
+    e.b = b_.to_ball(prec + 16);
+    arb_sub(e.d.get(), e.b.get(), e.a.get(), prec + 16);
+    e.dd_ok = dd_set_arb(e.dd_a, e.a.get()) && dd_set_arb(e.dd_b, e.b.get()) && dd_set_arb(e.dd_d, e.d.get());
     entries_.push_back(std::move(e));
     return entries_.back();
   }
@@ -204,11 +212,16 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
       acb_set(st, tt);
     } else {
       // sigma^2 rho = Delta t^(mu+1) / (mu+1) * sigma^2 / (side (t - gamma))^mu
-      s.eval_squared_over_zero(v, z, zero, side == ZeroSide::Left ? 1 : -1, mu, prec);
-      // out[3] = sigma^2 = v (side (t - gamma))^mu, for piece_square_integral
-      const Ball gb = zero.t.to_ball(prec + 16);
-      acb_sub_arb(w, z, gb.get(), prec);
-      if (side == ZeroSide::Right) acb_neg(w, w);
+      // (double words skipped as above)
+      s.eval_squared_over_zero(v, z, zero, side == ZeroSide::Left ? 1 : -1, mu, prec, false);
+      // out[3] = sigma^2 = v (side (t - gamma))^mu, for piece_square_integral;
+      // gamma is the end a (Left) or b (Right), the cached enclosure
+      if (side == ZeroSide::Left) {
+        acb_sub(w, z, ta, prec);
+      } else {
+        acb_sub_arb(w, z, ends.b(prec).get(), prec);
+        acb_neg(w, w);
+      }
       acb_pow_ui(w, w, static_cast<ulong>(mu), prec);
       acb_mul(out + 3, v, w, prec);
       acb_pow_ui(w, dt, static_cast<ulong>(mu + 1), prec);
@@ -247,8 +260,40 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
   // next to a zero, the integral of sigma^2 too (u_before: not L / Delta t there)
   qo.what = side == ZeroSide::None ? "the piece integrals A, B, C" : "the piece integrals A, B, C and of sigma^2";
   qo.singularity_hints = s.singularity_hints(true);
-  // The nodes of a piece without a zero at an end, in double words: the
-  // same f_k as above (sigma^2 Delta t times the weights of t~).
+  // The narrow real points in double words: the same f_k as above. Next to
+  // a zero, sigma^2 / (side (t - gamma))^mu by division (the nodes are not
+  // at gamma; close to it, sigma^2's cancellation shows in its radius and
+  // the accuracy check below sends the node to f, which deflates).
+  if (side != ZeroSide::None)
+    qo.node_fast = [&s, &ends, side, mu](DDBall* out, const DDBall& t, long prec) {
+      DDBall ta, dt, tb, v, tt, st, w;
+      if (!ends.get_dd(ta, dt, prec) || !ends.get_dd_b(tb, prec)) return false;
+      if (!s.eval_dd(v, t, Speed::PieceSigns{}, true, prec)) return false;
+      out[3] = v;  // sigma^2
+      if (!dd_div(tt, dd_sub(t, ta), dt)) return false;  // t~
+      // w = side (t - gamma), gamma = a (Left) or b (Right)
+      const DDBall g = side == ZeroSide::Left ? dd_sub(t, ta) : dd_sub(tb, t);
+      DDBall gm = g, dm = dt;
+      for (int i = 1; i < mu; ++i) gm = dd_mul(gm, g);  // g^mu
+      for (int i = 0; i < mu; ++i) dm = dd_mul(dm, dt);  // dt^(mu+1)
+      if (!dd_div(v, v, gm)) return false;
+      if (!dd_div(v, dd_mul(v, dm), dd_from_double(mu + 1))) return false;
+      // s~ = t~^(mu+1) (Left) or 1 - (1 - t~)^(mu+1) (Right)
+      const DDBall one = dd_from_double(1);
+      const DDBall base = side == ZeroSide::Left ? tt : dd_sub(one, tt);
+      DDBall p = base;
+      for (int i = 0; i < mu; ++i) p = dd_mul(p, base);
+      st = side == ZeroSide::Left ? p : dd_sub(one, p);
+      w = dd_sub(one, st);  // 1 - s~
+      out[0] = dd_mul(dd_mul(w, w), v);
+      out[1] = dd_mul_2exp(dd_mul(dd_mul(w, st), v), 1);
+      out[2] = dd_mul(dd_mul(st, st), v);
+      const double goal = std::ldexp(1.0, -static_cast<int>(prec - 20));
+      for (int k = 0; k < 4; ++k)
+        if (!(dd_rel_rad(out[k]) <= goal)) return false;
+      return true;
+    };
+  // Without a zero at an end: sigma^2 Delta t times the weights of t~.
   if (side == ZeroSide::None)
     qo.node_fast = [&s, &ends](DDBall* out, const DDBall& t, long prec) {
       DDBall ta, dt, v, tt;

@@ -681,8 +681,8 @@ void Speed::eval_sumK2_over_D2(acb_t out, const acb_t z, long prec) const {
   acb_clear(d);
 }
 
-void Speed::eval_squared_over_zero(acb_t out, const acb_t z, const SpeedZero& zero, int side, int power,
-                                   long prec) const {
+void Speed::eval_squared_over_zero(acb_t out, const acb_t z, const SpeedZero& zero, int side, int power, long prec,
+                                   bool double_word) const {
   if (zero_) { acb_zero(out); return; }
   const std::size_t j = zero.factor;
   const int mu = zero.multiplicity;
@@ -708,7 +708,7 @@ void Speed::eval_squared_over_zero(acb_t out, const acb_t z, const SpeedZero& ze
   mag_clear(lo);
   mag_clear(rad);
   if (far) {
-    eval_squared(out, z, prec);
+    eval_squared(out, z, prec, double_word);
     acb_pow_ui(w, w, static_cast<ulong>(power), prec);
     acb_div(out, out, w, prec);
   } else {

@@ -116,8 +116,9 @@ class Speed {
   /// (LocalPoly::eval_deflated: no division by t - gamma), so
   ///     out = (side (z - gamma))^(2 mu - power) h_gamma(z)^(2 mu) c^2 g_1(z)^2 sum K^2 / D^2,
   /// analytic on the piece; no numerical cancellation near gamma.
-  void eval_squared_over_zero(acb_t out, const acb_t z, const SpeedZero& zero, int side, int power,
-                              long prec) const;
+  /// double_word as in eval (the far branch's eval_squared).
+  void eval_squared_over_zero(acb_t out, const acb_t z, const SpeedZero& zero, int side, int power, long prec,
+                              bool double_word = true) const;
   /// v = P(z) and, when d is non-null, d = P'(z) for the critical numerator
   ///     P = 2 g' Q D + g Q' D - 2 g Q D',  Q = sum K_k^2,
   /// so that (sigma^2)' = g P / D^3: its roots are the critical points of
