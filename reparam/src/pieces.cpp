@@ -264,14 +264,18 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
   // a zero, sigma^2 / (side (t - gamma))^mu by division (the nodes are not
   // at gamma; close to it, sigma^2's cancellation shows in its radius and
   // the accuracy check below sends the node to f, which deflates).
-  if (side != ZeroSide::None)
-    qo.node_fast = [&s, &ends, side, mu](DDBall* out, const DDBall& t, long prec) {
-      DDBall ta, dt, tb, v, tt, st, w;
-      if (!ends.get_dd(ta, dt, prec) || !ends.get_dd_b(tb, prec)) return false;
-      if (!s.eval_dd(v, t, Speed::PieceSigns{}, true, prec)) return false;
+  qo.node_fast = [&s, &ends, side, mu](DDBall* out, const DDBall& t, long prec) {
+    DDBall ta, dt, tb, v, tt, st;
+    if (!ends.get_dd(ta, dt, prec) || !ends.get_dd_b(tb, prec)) return false;
+    if (!s.eval_dd(v, t, Speed::PieceSigns{}, true, prec)) return false;
+    if (!dd_div(tt, dd_sub(t, ta), dt)) return false;  // t~
+    const DDBall one = dd_from_double(1);
+    if (side == ZeroSide::None) {
+      v = dd_mul(v, dt);  // rho = Delta t
+      st = tt;
+    } else {
       out[3] = v;  // sigma^2
-      if (!dd_div(tt, dd_sub(t, ta), dt)) return false;  // t~
-      // w = side (t - gamma), gamma = a (Left) or b (Right)
+      // g = side (t - gamma), gamma = a (Left) or b (Right)
       const DDBall g = side == ZeroSide::Left ? dd_sub(t, ta) : dd_sub(tb, t);
       DDBall gm = g, dm = dt;
       for (int i = 1; i < mu; ++i) gm = dd_mul(gm, g);  // g^mu
@@ -279,37 +283,20 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
       if (!dd_div(v, v, gm)) return false;
       if (!dd_div(v, dd_mul(v, dm), dd_from_double(mu + 1))) return false;
       // s~ = t~^(mu+1) (Left) or 1 - (1 - t~)^(mu+1) (Right)
-      const DDBall one = dd_from_double(1);
       const DDBall base = side == ZeroSide::Left ? tt : dd_sub(one, tt);
       DDBall p = base;
       for (int i = 0; i < mu; ++i) p = dd_mul(p, base);
       st = side == ZeroSide::Left ? p : dd_sub(one, p);
-      w = dd_sub(one, st);  // 1 - s~
-      out[0] = dd_mul(dd_mul(w, w), v);
-      out[1] = dd_mul_2exp(dd_mul(dd_mul(w, st), v), 1);
-      out[2] = dd_mul(dd_mul(st, st), v);
-      const double goal = std::ldexp(1.0, -static_cast<int>(prec - 20));
-      for (int k = 0; k < 4; ++k)
-        if (!(dd_rel_rad(out[k]) <= goal)) return false;
-      return true;
-    };
-  // Without a zero at an end: sigma^2 Delta t times the weights of t~.
-  if (side == ZeroSide::None)
-    qo.node_fast = [&s, &ends](DDBall* out, const DDBall& t, long prec) {
-      DDBall ta, dt, v, tt;
-      if (!ends.get_dd(ta, dt, prec)) return false;
-      if (!s.eval_dd(v, t, Speed::PieceSigns{}, true, prec)) return false;
-      v = dd_mul(v, dt);
-      if (!dd_div(tt, dd_sub(t, ta), dt)) return false;
-      const DDBall w = dd_sub(dd_from_double(1), tt);  // 1 - t~
-      out[0] = dd_mul(dd_mul(w, w), v);
-      out[1] = dd_mul_2exp(dd_mul(dd_mul(w, tt), v), 1);
-      out[2] = dd_mul(dd_mul(tt, tt), v);
-      const double goal = std::ldexp(1.0, -static_cast<int>(prec - 20));
-      for (int k = 0; k < 3; ++k)
-        if (!(dd_rel_rad(out[k]) <= goal)) return false;
-      return true;
-    };
+    }
+    const DDBall w = dd_sub(one, st);  // 1 - s~
+    out[0] = dd_mul(dd_mul(w, w), v);
+    out[1] = dd_mul_2exp(dd_mul(dd_mul(w, st), v), 1);
+    out[2] = dd_mul(dd_mul(st, st), v);
+    const double goal = std::ldexp(1.0, -static_cast<int>(prec - 20));
+    for (int k = 0; k < (side == ZeroSide::None ? 3 : 4); ++k)
+      if (!(dd_rel_rad(out[k]) <= goal)) return false;
+    return true;
+  };
   std::vector<Ball> abc = integrate_many(f, side == ZeroSide::None ? 3 : 4, a.t, b.t, qo);
   r.A = std::move(abc[0]);
   r.B = std::move(abc[1]);
