@@ -841,8 +841,9 @@ TEST(QuadratureNodes, TheProbeAndTheEndsAskTheNodePathFirst) {
 }
 
 TEST(QuadratureNodes, AWrongNodePathIsCaughtByTheExactIntegral) {
-  // The test above can fail: a node path that answers p + 2^-40 (a ball
-  // that misses p(t)) gives an enclosure that misses the exact integral.
+  // DoubleWordNodesContainTheExactIntegral can fail: a node path that
+  // answers p + 2^-40 (a ball that misses p(t)) gives an enclosure that
+  // misses the exact integral.
   const std::vector<long> c = {1, -3, 0, 5};  // integral 3/4 on [0, 1]
   long answered = 0;
   NodeIntegrand good = poly_nodes(c, &answered);
