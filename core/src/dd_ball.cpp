@@ -10,6 +10,12 @@
 // * Error-free transformations: TwoSum (Knuth), FastTwoSum (Dekker, when
 //   |a| >= |b|) and TwoProd (Dekker's splitting; |a|, |b| < 2^996) return
 //   s + e equal to the exact a + b (a * b) when nothing over- or underflows.
+//   Where the processor has a fused multiply-add, TwoProd is p = a * b,
+//   e = fma(a, b, -p) instead: exact under the same conditions, so e is the
+//   same double (the exact a * b - p, which is representable) and every
+//   result below is bit for bit the same on both paths (the FMA path is
+//   chosen at run time; -ffp-contract=off keeps every other operation
+//   unfused).
 // * Double-word operations on normalized pairs (|lo| <= ulp(hi) / 2): the
 //   accurate sum DWPlusDW and the product DWTimesDW1 of Joldes, Muller and
 //   Popescu (Tight and rigorous error bounds for basic building blocks of
@@ -34,6 +40,7 @@
 #include <mag.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -46,6 +53,29 @@ constexpr double kEpsX = 0x1p-100;   // ... relative to the exact result (Horner
 constexpr double kTiny = 0x1p-1000;  // absolute allowance for underflow
 constexpr double kBig = 0x1p900;     // factors above this give a non-finite product
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// The fused multiply-add path: functions marked UNIPARAM_FMA are compiled
+// for processors with FMA and called only where the processor has it
+// (cpu_has_fma, once); the templates they instantiate with F = true are
+// inlined into them (always_inline), so __builtin_fma is one instruction.
+// Elsewhere (other compilers or architectures) there is one path.
+#if (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__)
+#define UNIPARAM_FMA [[gnu::target("fma")]]
+constexpr bool kHaveFmaTarget = true;
+bool cpu_has_fma() {
+  static const bool has = [] {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("fma") != 0;
+  }();
+  return has;
+}
+#else
+#define UNIPARAM_FMA
+constexpr bool kHaveFmaTarget = false;
+bool cpu_has_fma() { return false; }
+#endif
+std::atomic<bool> fma_on{cpu_has_fma()};
+inline bool use_fma() { return fma_on.load(std::memory_order_relaxed); }
 
 struct DW {
   double hi, lo;
@@ -70,13 +100,20 @@ inline void split(double a, double& h, double& l) {
   l = a - h;
 }
 
-inline DW two_prod(double a, double b) {
+// F: the processor's fused multiply-add (only inside functions compiled for
+// it, see UNIPARAM_FMA below); otherwise Dekker's splitting.
+template <bool F>
+[[gnu::always_inline]] inline DW two_prod(double a, double b) {
   const double p = a * b;
-  double ah, al, bh, bl;
-  split(a, ah, al);
-  split(b, bh, bl);
-  const double e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
-  return {p, e};
+  if constexpr (F) {
+    return {p, __builtin_fma(a, b, -p)};
+  } else {
+    double ah, al, bh, bl;
+    split(a, ah, al);
+    split(b, bh, bl);
+    const double e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
+    return {p, e};
+  }
 }
 
 // JMP 2017, algorithm 6 (AccurateDWPlusDW)
@@ -90,8 +127,9 @@ inline DW dw_add(DW x, DW y) {
 }
 
 // JMP 2017, algorithm 10 (DWTimesDW1)
-inline DW dw_mul(DW x, DW y) {
-  const DW c = two_prod(x.hi, y.hi);
+template <bool F>
+[[gnu::always_inline]] inline DW dw_mul(DW x, DW y) {
+  const DW c = two_prod<F>(x.hi, y.hi);
   const double tl = x.hi * y.lo;
   const double tr = x.lo * y.hi;
   const double cl2 = tl + tr;
@@ -196,17 +234,28 @@ DDBall dd_add(const DDBall& a, const DDBall& b) {
 
 DDBall dd_sub(const DDBall& a, const DDBall& b) { return dd_add(a, dd_neg(b)); }
 
-DDBall dd_mul(const DDBall& a, const DDBall& b) {
+namespace {
+
+template <bool F>
+[[gnu::always_inline]] inline DDBall mul_impl(const DDBall& a, const DDBall& b) {
   if (!(std::fabs(a.hi) <= kBig && std::fabs(b.hi) <= kBig)) return nan_ball();
-  const DW m = dw_mul(mid(a), mid(b));
+  const DW m = dw_mul<F>(mid(a), mid(b));
   return ball(m, up(mag_up(a) * b.rad + mag_up(b) * a.rad + a.rad * b.rad + kEpsC * mag_up(m)));
 }
+UNIPARAM_FMA DDBall mul_fma(const DDBall& a, const DDBall& b) { return mul_impl<kHaveFmaTarget>(a, b); }
+
+}  // namespace
+
+DDBall dd_mul(const DDBall& a, const DDBall& b) { return use_fma() ? mul_fma(a, b) : mul_impl<false>(a, b); }
 
 DDBall dd_mul_2exp(const DDBall& a, int e) {
   return {std::ldexp(a.hi, e), std::ldexp(a.lo, e), std::ldexp(a.rad, e) + kTiny};
 }
 
-bool dd_div(DDBall& out, const DDBall& a_in, const DDBall& b_in) {
+namespace {
+
+template <bool F>
+[[gnu::always_inline]] inline bool div_impl(DDBall& out, const DDBall& a_in, const DDBall& b_in) {
   const DDBall a = a_in, b = b_in;  // out may alias either
   out = nan_ball();
   if (!dd_is_finite(a) || !dd_is_finite(b) || !(std::fabs(a.hi) <= kBig && std::fabs(b.hi) <= kBig)) return false;
@@ -214,11 +263,11 @@ bool dd_div(DDBall& out, const DDBall& a_in, const DDBall& b_in) {
   if (!(lb > 0)) return false;
   // q ~ a.m / b.m by one correction step; then a rigorous bound of its error
   const double q0 = a.hi / b.hi;
-  const DW r0 = dw_add(mid(a), dw_neg(dw_mul({q0, 0}, mid(b))));
+  const DW r0 = dw_add(mid(a), dw_neg(dw_mul<F>({q0, 0}, mid(b))));
   const DW q = fast_two_sum(q0, r0.hi / b.hi);
   if (!std::isfinite(q.hi) || !(std::fabs(q.hi) <= kBig)) return false;
   // |a.m - q b.m| <= |res| + 2^-99 (|res| + |q b.m|) for the computed res, q b.m
-  const DW qb = dw_mul(q, mid(b));
+  const DW qb = dw_mul<F>(q, mid(b));
   const DW res = dw_add(mid(a), dw_neg(qb));
   const double num = up(mag_up(res) + kEpsC * (mag_up(res) + mag_up(qb)));
   const double lbm = std::fabs(b.hi) * (1 - 0x1p-51);  // <= |b.m|
@@ -227,19 +276,21 @@ bool dd_div(DDBall& out, const DDBall& a_in, const DDBall& b_in) {
   out = ball(q, up(eq + up(a.rad + up(mag_up(q) + eq) * b.rad) / lb));
   return dd_is_finite(out);
 }
+UNIPARAM_FMA bool div_fma(DDBall& out, const DDBall& a, const DDBall& b) { return div_impl<kHaveFmaTarget>(out, a, b); }
 
-bool dd_sqrt(DDBall& out, const DDBall& a_in) {
+template <bool F>
+[[gnu::always_inline]] inline bool sqrt_impl(DDBall& out, const DDBall& a_in) {
   const DDBall a = a_in;  // out may alias a
   out = nan_ball();
   if (!dd_is_finite(a) || !(a.hi > 0) || !(a.hi <= kBig)) return false;
   const double la = lower_abs(a);  // <= every x in a
   if (!(la > 0)) return false;
   const double s0 = std::sqrt(a.hi);
-  const DW r0 = dw_add(mid(a), dw_neg(two_prod(s0, s0)));
+  const DW r0 = dw_add(mid(a), dw_neg(two_prod<F>(s0, s0)));
   const DW s = fast_two_sum(s0, r0.hi / (2 * s0));
   if (!(s.hi > 0)) return false;
   // |sqrt(a.m) - s| = |a.m - s^2| / (sqrt(a.m) + s) <= |a.m - s^2| / s
-  const DW ss = dw_mul(s, s);
+  const DW ss = dw_mul<F>(s, s);
   const DW res = dw_add(mid(a), dw_neg(ss));
   const double num = up(mag_up(res) + kEpsC * (mag_up(res) + mag_up(ss)));
   const double es = up(num / (s.hi * (1 - 0x1p-51)));
@@ -248,6 +299,15 @@ bool dd_sqrt(DDBall& out, const DDBall& a_in) {
   out = ball(s, up(es + a.rad / (2 * sl)));
   return dd_is_finite(out);
 }
+UNIPARAM_FMA bool sqrt_fma(DDBall& out, const DDBall& a) { return sqrt_impl<kHaveFmaTarget>(out, a); }
+
+}  // namespace
+
+bool dd_div(DDBall& out, const DDBall& a, const DDBall& b) {
+  return use_fma() ? div_fma(out, a, b) : div_impl<false>(out, a, b);
+}
+
+bool dd_sqrt(DDBall& out, const DDBall& a) { return use_fma() ? sqrt_fma(out, a) : sqrt_impl<false>(out, a); }
 
 double dd_rel_rad(const DDBall& x) {
   if (!dd_is_finite(x) || x.hi == 0) return std::numeric_limits<double>::infinity();
@@ -304,7 +364,13 @@ DDPoly::DDPoly(const Poly& p) {
   }
 }
 
-bool DDPoly::eval(DDBall* v, DDBall* d1, DDBall* d2, const DDBall& x) const {
+namespace {
+
+// DDPoly::eval's body (its members passed in).
+template <bool F>
+[[gnu::always_inline]] inline bool poly_eval(const std::vector<double>* hi_, const std::vector<double>* lo_,
+                                             const std::vector<double>* abs_, DDBall* v, DDBall* d1, DDBall* d2,
+                                             const DDBall& x) {
   DDBall* outs[3] = {v, d1, d2};
   const DW m = mid(x);
   const double mu = mag_up(x);        // >= |m|
@@ -319,7 +385,7 @@ bool DDPoly::eval(DDBall* v, DDBall* d1, DDBall* d2, const DDBall& x) const {
       continue;
     }
     DW acc{h.back(), l.back()};
-    for (std::size_t k = h.size() - 1; k-- > 0;) acc = dw_add(dw_mul(acc, m), {h[k], l[k]});
+    for (std::size_t k = h.size() - 1; k-- > 0;) acc = dw_add(dw_mul<F>(acc, m), {h[k], l[k]});
     // Horner with 2 n_j double-word operations of relative error <= kEpsX:
     // |acc - p^(j)(m)| <= gamma_{2 n_j} sum |c_k| |m|^k, and moving m over
     // the ball adds at most rad * sup |p^(j+1)| <= rad * sum |c'_k| mr^k.
@@ -330,6 +396,24 @@ bool DDPoly::eval(DDBall* v, DDBall* d1, DDBall* d2, const DDBall& x) const {
     ok = ok && dd_is_finite(*outs[j]);
   }
   return ok;
+}
+
+UNIPARAM_FMA bool poly_eval_fma(const std::vector<double>* hi, const std::vector<double>* lo,
+                                const std::vector<double>* abs, DDBall* v, DDBall* d1, DDBall* d2, const DDBall& x) {
+  return poly_eval<kHaveFmaTarget>(hi, lo, abs, v, d1, d2, x);
+}
+
+}  // namespace
+
+bool DDPoly::eval(DDBall* v, DDBall* d1, DDBall* d2, const DDBall& x) const {
+  return use_fma() ? poly_eval_fma(hi_, lo_, abs_, v, d1, d2, x) : poly_eval<false>(hi_, lo_, abs_, v, d1, d2, x);
+}
+
+bool dd_fma_available() { return cpu_has_fma(); }
+
+bool dd_set_fma(bool on) {
+  fma_on.store(on && cpu_has_fma(), std::memory_order_relaxed);
+  return use_fma();
 }
 
 }  // namespace uniparam

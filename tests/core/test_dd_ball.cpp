@@ -9,7 +9,9 @@
 #include <flint/fmpq.h>
 
 #include <cmath>
+#include <cstring>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "support/iterations.hpp"
@@ -208,6 +210,44 @@ TEST(DDPoly, CoefficientsThatAreNotDoubleWordsAreRefused) {
   EXPECT_FALSE(DDPoly(Poly(std::vector<Integer>{Integer(1), c})).usable());
   EXPECT_TRUE(DDPoly(Poly(std::vector<Integer>{Integer(1), big})).usable());
   EXPECT_TRUE(DDPoly(Poly(0)).usable());
+}
+
+TEST(DDBall, FusedAndPortableProductsGiveTheSameBits) {
+  // Where the processor has a fused multiply-add, the double-word products
+  // use it (TwoProd's error term by fma); elsewhere Dekker's splitting.
+  // Both TwoProds are exact, so every operation must give the same bits on
+  // both paths: the tests above, run on one path, then hold for the other.
+  if (!dd_fma_available()) GTEST_SKIP() << "no fused multiply-add on this processor: one path only";
+  std::mt19937_64 rng(20261125u);
+  std::uniform_int_distribution<long> coef(-999999, 999999), deg(0, 12);
+  auto same = [](const DDBall& x, const DDBall& y) {
+    return std::memcmp(&x.hi, &y.hi, sizeof(double)) == 0 && std::memcmp(&x.lo, &y.lo, sizeof(double)) == 0 &&
+           std::memcmp(&x.rad, &y.rad, sizeof(double)) == 0;
+  };
+  const long n = iterations(2000);
+  for (long it = 0; it < n; ++it) {
+    const DDBall a = random_ball(rng, it % 3 == 0), b = random_ball(rng, it % 5 == 0);
+    std::vector<long> c(static_cast<std::size_t>(deg(rng)) + 1);
+    for (long& x : c) x = coef(rng);
+    const DDPoly p{Poly(c)};
+    DDBall r[2][7];
+    bool ok[2][3];
+    for (int path = 0; path < 2; ++path) {
+      ASSERT_EQ(dd_set_fma(path == 1), path == 1);
+      r[path][0] = dd_mul(a, b);
+      r[path][1] = dd_add(a, b);
+      ok[path][0] = dd_div(r[path][2], a, b);
+      ok[path][1] = dd_sqrt(r[path][3], dd_mul(a, a));
+      ok[path][2] = p.eval(&r[path][4], &r[path][5], &r[path][6], a);
+    }
+    SCOPED_TRACE("iteration " + std::to_string(it));
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(ok[0][k], ok[1][k]) << k;
+    for (int k = 0; k < 7; ++k)
+      if (k < 2 || (k == 2 && ok[0][0]) || (k == 3 && ok[0][1]) || (k >= 4 && ok[0][2]))
+        EXPECT_TRUE(same(r[0][k], r[1][k])) << k << ": " << r[0][k].hi << " " << r[0][k].lo << " " << r[0][k].rad
+                                            << " vs " << r[1][k].hi << " " << r[1][k].lo << " " << r[1][k].rad;
+  }
+  dd_set_fma(true);
 }
 
 }  // namespace

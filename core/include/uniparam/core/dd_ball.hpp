@@ -53,6 +53,16 @@ bool dd_sqrt(DDBall& out, const DDBall& a);
 /// the ball not finite): the relative accuracy of x.
 double dd_rel_rad(const DDBall& x);
 
+/// Whether this processor has a fused multiply-add that the double-word
+/// products use (chosen once, at run time). Both paths give bit for bit the
+/// same results (their TwoProds are both exact); the FMA one is faster.
+bool dd_fma_available();
+/// For tests and benchmarks: use the FMA path when `on` and available, the
+/// portable one otherwise (the default is the FMA path where available).
+/// Returns whether the FMA path is now in use. Safe to call at any time
+/// (results do not change).
+bool dd_set_fma(bool on);
+
 /// A polynomial in Z[t] evaluated with its first two derivatives by Horner's
 /// rule in double-word arithmetic, with a priori rounding bounds
 /// (Higham, Accuracy and Stability of Numerical Algorithms, eq. 5.3).
