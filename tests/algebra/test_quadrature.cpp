@@ -954,5 +954,42 @@ TEST(QuadratureHints, WrongHintsCostTimeNotCorrectness) {
   arb_clear(ref);
 }
 
+TEST(QuadratureMany, EachIntegralGetsItsOwnErrorBound) {
+  // integrate_many bounds each integral's Gauss-Legendre error with its own
+  // bound M_k on the ellipse. Next to a tiny constant (M_0 ~ 2^-200), an
+  // integrand with poles near [0, 1] bounded with M_0 would get a radius far
+  // below its true error, and its ball would miss the true value. The
+  // working precision is set far above the goal, so that the nodes' own
+  // radii (2^-prec) cannot cover that error either.
+  for (long inv_a : {4L, 8L, 20L}) {
+    for (long goal : {20L, 40L, 53L}) {
+      const Rational a2(1, inv_a * inv_a);
+      PolePair p{a2};
+      const Integrand pole = p.f();
+      Integrand f = [&pole](acb_ptr out, const acb_t z, bool analytic, long prec) {
+        acb_one(out);
+        acb_mul_2exp_si(out, out, -200);
+        pole(out + 1, z, analytic, prec);
+      };
+      QuadratureOptions opt;
+      opt.rel_goal_bits = goal;
+      opt.initial_prec = 256;
+      const std::vector<Ball> r = integrate_many(f, 2, RealAlgebraic(0), RealAlgebraic(1), opt);
+      arb_t ref, tiny;
+      arb_init(ref);
+      arb_init(tiny);
+      pole_pair_reference(ref, a2);
+      arb_one(tiny);
+      arb_mul_2exp_si(tiny, tiny, -200);
+      SCOPED_TRACE("a = 1/" + std::to_string(inv_a) + ", goal " + std::to_string(goal) + " bits");
+      EXPECT_TRUE(overlaps(r[0], tiny)) << r[0].str(30);
+      EXPECT_TRUE(overlaps(r[1], ref)) << r[1].str(30);
+      EXPECT_TRUE(meets_rel(r[1], goal)) << r[1].str(30);
+      arb_clear(ref);
+      arb_clear(tiny);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace uniparam
