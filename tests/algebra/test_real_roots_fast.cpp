@@ -458,6 +458,60 @@ TEST(RealRootsFast, ScaledEvaluatorRefinesLikeTheExactPath) {
   }
 }
 
+TEST(RealRootsFast, LowDegreeNewtonStepsBoundTheDerivativeFromThePowerBasis) {
+  // Up to degree 64 of f', an interval Newton step bounds f' on the interval
+  // from the power basis, not from the evaluator: the refinement must give
+  // the exact path's enclosures (to_ball depends on the number alone) and
+  // still isolate the root, with the evaluator called for the ends' check
+  // at construction only.
+  std::mt19937_64 rng(4243);
+  for (long it = 0; it < iterations(6); ++it) {
+    std::vector<Poly> factors;
+    for (long cc : {2L, 3L, 5L, 7L}) {  // sqrt(cc / dd) in (0, 1)
+      const long dd = cc + 1 + static_cast<long>(rng() % 60);
+      factors.push_back(Poly(std::vector<Integer>{Integer(-cc), Integer(0), Integer(dd)}));
+    }
+    factors.push_back(Poly(std::vector<long>{-1, 0, 0, 3}));  // 3 t^3 - 1
+    for (int j = 0; j < 3; ++j) {  // complex roots near [0, 1]
+      const long D = 1000, C = static_cast<long>(rng() % 1001), E = 1 + static_cast<long>(rng() % 5);
+      factors.push_back(Poly(std::vector<Integer>{Integer(C * C + E * E), Integer(-2 * C * D), Integer(D * D)}));
+    }
+    Poly p(1);
+    for (const Poly& f : factors) p = p * f;
+    ASSERT_LE(p.degree() - 1, 64);
+    long calls = 0;
+    ScaledEvaluator sev;
+    sev.ev = centred_product_evaluator(factors, Rational(1), &calls);
+    const Poly f = p.primitive();
+    sev.lambda = Rational(p.leading()) / Rational(f.leading());
+    const auto shared = std::make_shared<const ScaledEvaluator>(sev);
+    for (const IsolatedRoot& r0 : isolate_real_roots(p, Rational(0), Rational(1))) {
+      const RealAlgebraic x0(r0);
+      x0.refine(20);
+      const double mid = std::ldexp(fmpq_get_d(x0.lo().get()) + fmpq_get_d(x0.hi().get()), 11);  // 2^12 x
+      const Rational lo(static_cast<long>(std::floor(mid)), 4096), hi = lo + Rational(1, 4096);
+      if (!(p.sign_at(lo) * p.sign_at(hi) < 0 && count_real_roots(p, lo, hi) == 1)) continue;
+      const IsolatedRoot r{lo, hi, f, 1};
+      const RealAlgebraic fast(r, shared), exact(r);
+      const long after_construction = calls;
+      for (long bits : {40L, 130L, 400L}) {
+        SCOPED_TRACE("iteration " + std::to_string(it) + ", root in " + r.lo.str() + ".., bits " +
+                     std::to_string(bits));
+        fast.refine(bits);
+        ASSERT_TRUE(fast.lo() < fast.hi());
+        Rational width(1);
+        fmpq_div_2exp(width.get(), width.get(), static_cast<flint_bitcnt_t>(bits));  // 2^-bits
+        EXPECT_TRUE(fast.hi() - fast.lo() <= width);
+        EXPECT_EQ(p.sign_at(fast.lo()) * p.sign_at(fast.hi()), -1);
+        EXPECT_TRUE(r.lo <= fast.lo() && fast.hi() <= r.hi);
+        const Ball bf = fast.to_ball(bits), be = exact.to_ball(bits);
+        EXPECT_TRUE(arb_equal(bf.get(), be.get())) << bf.str(20) << " vs " << be.str(20);
+      }
+      EXPECT_EQ(calls, after_construction);
+    }
+  }
+}
+
 // The ends' signs by the evaluator must hold for the exact end, even where
 // its 64-bit ball is rounded by more than the evaluator's 2^-23 radius:
 // lo = 2^50 + 2/3 rounds ~2^-14 below itself, and the only root of f lies
