@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <random>
 #include <string>
 #include <utility>
@@ -357,6 +358,50 @@ PolyEvaluator centred_product_evaluator(const std::vector<Poly>& factors, const 
   };
 }
 
+// The grid cell [k, k + 1] 2^-12 holding the root r0 of p, as a root of f
+// (p's primitive part), when it isolates that root; nothing otherwise (a
+// root sharing its cell).
+std::optional<IsolatedRoot> grid_cell_root(const Poly& p, const Poly& f, const IsolatedRoot& r0) {
+  const RealAlgebraic x0(r0);
+  x0.refine(20);
+  const double mid = std::ldexp(fmpq_get_d(x0.lo().get()) + fmpq_get_d(x0.hi().get()), 11);  // 2^12 x
+  const Rational lo(static_cast<long>(std::floor(mid)), 4096), hi = lo + Rational(1, 4096);
+  if (!(p.sign_at(lo) * p.sign_at(hi) < 0 && count_real_roots(p, lo, hi) == 1)) return std::nullopt;
+  return IsolatedRoot{lo, hi, f, 1};
+}
+
+// After fast.refine(bits): fast still isolates p's root inside r, is at most
+// 2^-bits wide, and its enclosure is the exact path's (to_ball depends on
+// the number alone).
+void expect_refined_like_exact(const Poly& p, const IsolatedRoot& r, const RealAlgebraic& fast,
+                               const RealAlgebraic& exact, long bits) {
+  ASSERT_TRUE(fast.lo() < fast.hi());
+  Rational width(1);
+  fmpq_div_2exp(width.get(), width.get(), static_cast<flint_bitcnt_t>(bits));  // 2^-bits
+  EXPECT_TRUE(fast.hi() - fast.lo() <= width);
+  EXPECT_EQ(p.sign_at(fast.lo()) * p.sign_at(fast.hi()), -1);
+  EXPECT_TRUE(r.lo <= fast.lo() && fast.hi() <= r.hi);
+  const Ball bf = fast.to_ball(bits), be = exact.to_ball(bits);
+  EXPECT_TRUE(arb_equal(bf.get(), be.get())) << bf.str(20) << " vs " << be.str(20);
+}
+
+// Factors with five real roots in (0, 1) (sqrt(cc / dd) for cc = 2, 3, 5, 7
+// and the cube root of 1/3) and `pairs` quadratics (D t - C)^2 + E^2 with
+// complex roots C/D +- i E/D near [0, 1].
+std::vector<Poly> five_real_roots_and_complex_pairs(std::mt19937_64& rng, int pairs) {
+  std::vector<Poly> factors;
+  for (long cc : {2L, 3L, 5L, 7L}) {
+    const long dd = cc + 1 + static_cast<long>(rng() % 60);
+    factors.push_back(Poly(std::vector<Integer>{Integer(-cc), Integer(0), Integer(dd)}));
+  }
+  factors.push_back(Poly(std::vector<long>{-1, 0, 0, 3}));  // 3 t^3 - 1
+  for (int j = 0; j < pairs; ++j) {
+    const long D = 1000, C = static_cast<long>(rng() % 1001), E = 1 + static_cast<long>(rng() % 5);
+    factors.push_back(Poly(std::vector<Integer>{Integer(C * C + E * E), Integer(-2 * C * D), Integer(D * D)}));
+  }
+  return factors;
+}
+
 /// Refinement with a ScaledEvaluator (interval Newton steps, derivative from
 /// the factors, no exact sign) against the exact refinement of the same
 /// root: at every precision the interval is narrow enough, still brackets
@@ -373,16 +418,7 @@ PolyEvaluator centred_product_evaluator(const std::vector<Poly>& factors, const 
 TEST(RealRootsFast, ScaledEvaluatorRefinesLikeTheExactPath) {
   std::mt19937_64 rng(4242);
   for (long it = 0; it < iterations(3); ++it) {
-    std::vector<Poly> factors;
-    for (long cc : {2L, 3L, 5L, 7L}) {  // sqrt(cc / dd) in (0, 1)
-      const long dd = cc + 1 + static_cast<long>(rng() % 60);
-      factors.push_back(Poly(std::vector<Integer>{Integer(-cc), Integer(0), Integer(dd)}));
-    }
-    factors.push_back(Poly(std::vector<long>{-1, 0, 0, 3}));  // 3 t^3 - 1
-    for (int j = 0; j < 5; ++j) {  // (D t - C)^2 + E^2: complex roots C/D +- i E/D
-      const long D = 1000, C = static_cast<long>(rng() % 1001), E = 1 + static_cast<long>(rng() % 5);
-      factors.push_back(Poly(std::vector<Integer>{Integer(C * C + E * E), Integer(-2 * C * D), Integer(D * D)}));
-    }
+    std::vector<Poly> factors = five_real_roots_and_complex_pairs(rng, 5);
     // a positive Bernstein polynomial of degree 80: no root in [0, 1]
     factors.push_back(bernstein(positive_bernstein(rng, 80, 1000)));
     Poly p(1);
@@ -402,12 +438,9 @@ TEST(RealRootsFast, ScaledEvaluatorRefinesLikeTheExactPath) {
       ASSERT_FALSE(r0.is_exact());
       // start from the grid interval of width 2^-12 around the root (the
       // isolator's intervals may already be far narrower)
-      const RealAlgebraic x0(r0);
-      x0.refine(20);
-      const double mid = std::ldexp(fmpq_get_d(x0.lo().get()) + fmpq_get_d(x0.hi().get()), 11);  // 2^12 x
-      const Rational lo(static_cast<long>(std::floor(mid)), 4096), hi = lo + Rational(1, 4096);
-      if (!(p.sign_at(lo) * p.sign_at(hi) < 0 && count_real_roots(p, lo, hi) == 1)) continue;
-      const IsolatedRoot r{lo, hi, f, 1};
+      const std::optional<IsolatedRoot> cell = grid_cell_root(p, f, r0);
+      if (!cell) continue;
+      const IsolatedRoot& r = *cell;
       const RealAlgebraic fast(r, shared), exact(r);
       ++checked;
       for (long bits : {40L, 130L, 400L}) {
@@ -418,14 +451,7 @@ TEST(RealRootsFast, ScaledEvaluatorRefinesLikeTheExactPath) {
         // Interval Newton steps succeeded: a failing one stops the loop, so
         // the first refinement (from 2^-12, several steps) makes >= 2 calls.
         EXPECT_GE(calls - before, bits == 40 ? 2 : 1);
-        ASSERT_TRUE(fast.lo() < fast.hi());
-        Rational width(1);
-        fmpq_div_2exp(width.get(), width.get(), static_cast<flint_bitcnt_t>(bits));  // 2^-bits
-        EXPECT_TRUE(fast.hi() - fast.lo() <= width);
-        EXPECT_EQ(p.sign_at(fast.lo()) * p.sign_at(fast.hi()), -1);
-        EXPECT_TRUE(r.lo <= fast.lo() && fast.hi() <= r.hi);
-        const Ball bf = fast.to_ball(bits), be = exact.to_ball(bits);
-        EXPECT_TRUE(arb_equal(bf.get(), be.get())) << bf.str(20) << " vs " << be.str(20);
+        expect_refined_like_exact(p, r, fast, exact, bits);
       }
     }
     EXPECT_GE(checked, 3);  // a root sharing its 2^-12 cell is skipped: most must be checked
@@ -466,16 +492,7 @@ TEST(RealRootsFast, LowDegreeNewtonStepsBoundTheDerivativeFromThePowerBasis) {
   // at construction only.
   std::mt19937_64 rng(4243);
   for (long it = 0; it < iterations(6); ++it) {
-    std::vector<Poly> factors;
-    for (long cc : {2L, 3L, 5L, 7L}) {  // sqrt(cc / dd) in (0, 1)
-      const long dd = cc + 1 + static_cast<long>(rng() % 60);
-      factors.push_back(Poly(std::vector<Integer>{Integer(-cc), Integer(0), Integer(dd)}));
-    }
-    factors.push_back(Poly(std::vector<long>{-1, 0, 0, 3}));  // 3 t^3 - 1
-    for (int j = 0; j < 3; ++j) {  // complex roots near [0, 1]
-      const long D = 1000, C = static_cast<long>(rng() % 1001), E = 1 + static_cast<long>(rng() % 5);
-      factors.push_back(Poly(std::vector<Integer>{Integer(C * C + E * E), Integer(-2 * C * D), Integer(D * D)}));
-    }
+    std::vector<Poly> factors = five_real_roots_and_complex_pairs(rng, 3);
     Poly p(1);
     for (const Poly& f : factors) p = p * f;
     ASSERT_LE(p.degree() - 1, 64);
@@ -486,26 +503,18 @@ TEST(RealRootsFast, LowDegreeNewtonStepsBoundTheDerivativeFromThePowerBasis) {
     sev.lambda = Rational(p.leading()) / Rational(f.leading());
     const auto shared = std::make_shared<const ScaledEvaluator>(sev);
     for (const IsolatedRoot& r0 : isolate_real_roots(p, Rational(0), Rational(1))) {
-      const RealAlgebraic x0(r0);
-      x0.refine(20);
-      const double mid = std::ldexp(fmpq_get_d(x0.lo().get()) + fmpq_get_d(x0.hi().get()), 11);  // 2^12 x
-      const Rational lo(static_cast<long>(std::floor(mid)), 4096), hi = lo + Rational(1, 4096);
-      if (!(p.sign_at(lo) * p.sign_at(hi) < 0 && count_real_roots(p, lo, hi) == 1)) continue;
-      const IsolatedRoot r{lo, hi, f, 1};
+      // start from the grid interval of width 2^-12 around the root (the
+      // isolator's intervals may already be far narrower)
+      const std::optional<IsolatedRoot> cell = grid_cell_root(p, f, r0);
+      if (!cell) continue;
+      const IsolatedRoot& r = *cell;
       const RealAlgebraic fast(r, shared), exact(r);
       const long after_construction = calls;
       for (long bits : {40L, 130L, 400L}) {
         SCOPED_TRACE("iteration " + std::to_string(it) + ", root in " + r.lo.str() + ".., bits " +
                      std::to_string(bits));
         fast.refine(bits);
-        ASSERT_TRUE(fast.lo() < fast.hi());
-        Rational width(1);
-        fmpq_div_2exp(width.get(), width.get(), static_cast<flint_bitcnt_t>(bits));  // 2^-bits
-        EXPECT_TRUE(fast.hi() - fast.lo() <= width);
-        EXPECT_EQ(p.sign_at(fast.lo()) * p.sign_at(fast.hi()), -1);
-        EXPECT_TRUE(r.lo <= fast.lo() && fast.hi() <= r.hi);
-        const Ball bf = fast.to_ball(bits), be = exact.to_ball(bits);
-        EXPECT_TRUE(arb_equal(bf.get(), be.get())) << bf.str(20) << " vs " << be.str(20);
+        expect_refined_like_exact(p, r, fast, exact, bits);
       }
       EXPECT_EQ(calls, after_construction);
     }
