@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "uniparam/algebra/deflation.hpp"
+#include "uniparam/algebra/double_centred.hpp"
 #include "uniparam/core/error.hpp"
 
 namespace uniparam {
@@ -76,8 +77,9 @@ void centred_shift(acb_poly_t c, const BallPoly& p, const acb_t z, const mag_t r
 }
 
 // Outputs of the centred form from the coefficients c at the midpoint of a
-// ball of radius r.
-void centred_outputs(acb_ptr outs[3], const acb_poly_t c, const mag_t r, long prec) {
+// ball of radius r; `real`: the ball is real (then so are c and the values,
+// and the error widens the real parts only).
+void centred_outputs(acb_ptr outs[3], const acb_poly_t c, const mag_t r, bool real, long prec) {
   const slong n = acb_poly_length(c);
   mag_t err;
   mag_init(err);
@@ -87,7 +89,12 @@ void centred_outputs(acb_ptr outs[3], const acb_poly_t c, const mag_t r, long pr
     centred_error(err, c, j, r);
     if (n > j) acb_mul_ui(out, acb_poly_get_coeff_ptr(c, j), static_cast<ulong>(j == 2 ? 2 : 1), prec);
     else acb_zero(out);
-    acb_add_error_mag(out, err);
+    if (real) {
+      arb_zero(acb_imagref(out));
+      arb_add_error_mag(acb_realref(out), err);
+    } else {
+      acb_add_error_mag(out, err);
+    }
   }
   mag_clear(err);
 }
@@ -157,7 +164,7 @@ void centred_eval(acb_t v, acb_t d1, acb_t d2, const BallPoly& p, const BallPoly
   acb_poly_init(c);
   centred_shift(c, p, z, r, prec);
   acb_ptr outs[3] = {v, d1, d2};
-  centred_outputs(outs, c, r, prec);
+  centred_outputs(outs, c, r, acb_is_real(z), prec);
   acb_poly_clear(c);
   mag_clear(r);
 }
@@ -409,45 +416,77 @@ struct LocalPoly::Cache {
   CellStore store;  // store.mu also guards `deflated`
   // fallback for p / (t - roots[i]): the deflated power basis, per (i, prec)
   std::map<std::pair<int, long>, std::shared_ptr<const BallPoly>> deflated;
-  // eval_double may take Horner's rule on the power basis (set once, at
-  // construction: see horner_is_accurate)
+  // Set once, at construction (see horner_loss_bits):
+  // eval_double may take Horner's rule on the power basis
   bool double_horner = false;
+  // wide real-centred balls take the centred form in double (when usable)
+  DoubleCentredForm centred;
 };
 
 namespace {
 
-// Whether Horner's rule in double on the power basis is about as accurate as
-// the cells for eval_double (an uncertified path): degree <= 16 and, for p,
-// p' and p'', sum |c_k| at most 2^8 times the largest |value| on 33 points
-// of [0, 1] (an estimate of the bits lost to cancellation: the Bezier
-// curves' power bases lose ~10 bits from degree 12, dense random
-// coefficients ~2). There the cells cost more than they save: their builds
-// are 16% of dense-plane d=6 `--pieces 3`, for an optimiser's steering.
-bool horner_is_accurate(const Poly& p) {
-  if (p.degree() > 16) return false;
-  Poly q = p;
-  for (int j = 0; j < 3 && q.degree() >= 0; ++j, q = q.derivative()) {
-    const fmpz* c = q.get()->coeffs;
-    const long n = q.degree();
+// UNCERTIFIED estimate (it only chooses a path): the bits that Horner's rule
+// in double on the power basis loses on [0, 1], log2 of sum |c_k| over the
+// largest |value| on 33 points of [0, 1], the most of p, p' and p'' (the
+// Bezier curves' power bases lose ~10 bits from degree 12, dense random
+// coefficients ~2). Infinite for a polynomial that vanishes on the grid, or
+// whose coefficients overflow a double.
+double horner_loss_bits(const Poly& p) {
+  const long n = p.degree();
+  std::vector<double> c(static_cast<std::size_t>(std::max(n + 1, 0L)));
+  for (long k = 0; k <= n; ++k) c[static_cast<std::size_t>(k)] = fmpz_get_d(p.get()->coeffs + k);
+  double loss = 0;
+  std::size_t len = c.size();  // c[0 .. len): the coefficients of p^(j)
+  for (int j = 0; j < 3 && len > 0; ++j) {
+    if (j > 0) {  // the derivative (in double: this is an estimate anyway)
+      for (std::size_t k = 1; k < len; ++k) c[k - 1] = c[k] * static_cast<double>(k);
+      if (--len == 0) break;
+    }
     double sum = 0, big = 0;
-    for (long k = 0; k <= n; ++k) sum += std::fabs(fmpz_get_d(c + k));
+    for (std::size_t k = 0; k < len; ++k) sum += std::fabs(c[k]);
     for (int i = 0; i <= 32; ++i) {
       const double t = i / 32.0;
       double v = 0;
-      for (long k = n; k >= 0; --k) v = v * t + fmpz_get_d(c + k);
+      for (std::size_t k = len; k-- > 0;) v = v * t + c[k];
       big = std::max(big, std::fabs(v));
     }
-    if (!std::isfinite(big) || !(sum <= 256 * big)) return false;  // (overflow: the cells)
+    if (!std::isfinite(sum) || !std::isfinite(big) || !(big > 0)) return HUGE_VAL;
+    loss = std::max(loss, std::log2(sum / big));
   }
-  return true;
+  return loss;
 }
+
+// eval_double takes Horner's rule on the power basis up to this degree and
+// loss (horner_loss_bits): there the cells cost more than they save (their
+// builds were 16% of dense-plane d=6 `--pieces 3`, for an optimiser's
+// steering).
+constexpr long kDoubleHornerMaxDegree = 16;
+constexpr double kDoubleHornerMaxLoss = 8;
+
+// Wide balls take the centred form in double (DoubleCentredForm) up to
+// this loss: its rounding errors are about 2n 2^-53 of the Taylor
+// coefficients of |p| at the centre, so past ~52 bits they reach p's values
+// on [0, 1] and it could never be used.
+constexpr double kDoubleCentredMaxLoss = 52;
+// A wide ball's centred form in double whose rounding part exceeds this
+// fraction of its value and variation is refused, for the cells: there p is
+// small against its coefficients (near its zeros), where the cells' local
+// expansions do better. The quadrature's ellipses need no more accuracy
+// than that, and stricter costs: bez-rat-space d=12 uniformity 50 M
+// instructions at 2^-20, 44 M at 2^-10, 43 M without the check (callgrind,
+// one thread).
+constexpr double kDoubleCentredMaxError = 0x1p-10;
 
 }  // namespace
 
 LocalPoly::LocalPoly() : cache_(std::make_shared<Cache>()) {}
 LocalPoly::LocalPoly(const Poly& p)
     : p_(p), b_(p), b1_(p.derivative()), b2_(p.derivative().derivative()), cache_(std::make_shared<Cache>()) {
-  cache_->double_horner = horner_is_accurate(p);
+  const long n = p.degree();
+  if (n < 0 || n > std::max(kDoubleHornerMaxDegree, DoubleCentredForm::kMaxDegree)) return;
+  const double loss = horner_loss_bits(p);
+  cache_->double_horner = n <= kDoubleHornerMaxDegree && loss <= kDoubleHornerMaxLoss;
+  if (n + 1 > kMinLength && loss <= kDoubleCentredMaxLoss) cache_->centred = DoubleCentredForm(p);
 }
 LocalPoly::LocalPoly(const LocalPoly& o) = default;
 LocalPoly& LocalPoly::operator=(const LocalPoly& o) = default;
@@ -804,8 +843,15 @@ void LocalPoly::eval_double_taylor(double t, int order, double* b) const {
 }
 
 void LocalPoly::eval(acb_t v, acb_t d1, acb_t d2, const acb_t z, long prec) const {
-  if (p_.degree() + 1 <= kMinLength || !acb_is_finite(z) || !eval_cells(-1, v, d1, d2, z, prec))
+  if (p_.degree() + 1 <= kMinLength || !acb_is_finite(z)) {
     centred_eval(v, d1, d2, b_, b1_, b2_, z, prec);
+    return;
+  }
+  // Wide balls of low degree: the centred form in double, cheaper than a
+  // cell's build and centred at the ball's own midpoint.
+  if (cache_->centred.usable() && is_wide_ball(z) && cache_->centred.eval(v, d1, d2, z, kDoubleCentredMaxError))
+    return;
+  if (!eval_cells(-1, v, d1, d2, z, prec)) centred_eval(v, d1, d2, b_, b1_, b2_, z, prec);
 }
 
 void LocalPoly::eval_deflated(acb_t v, const acb_t z, const RealAlgebraic& gamma, long prec) const {

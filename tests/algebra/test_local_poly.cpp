@@ -16,6 +16,7 @@
 #include <thread>
 #include <vector>
 
+#include "support/balls.hpp"
 #include "support/curves.hpp"
 #include "support/iterations.hpp"
 #include "uniparam/algebra/local_poly.hpp"
@@ -24,7 +25,12 @@
 namespace uniparam {
 namespace {
 
+using test_support::expect_encloses_at_points;
 using test_support::iterations;
+using test_support::offsets;
+using test_support::point_of;
+using test_support::pure_power;
+using test_support::pure_power_radius;
 using test_support::random_poly;
 
 constexpr long kRefPrec = 4000;
@@ -96,32 +102,6 @@ void random_ball(acb_t z, std::mt19937_64& rng) {
                         : -std::uniform_int_distribution<long>(3, 20)(rng);
   mag_set_ui_2exp_si(arb_radref(acb_realref(z)), 1 + std::uniform_int_distribution<ulong>(0, 7)(rng), e - 3);
   if (pick(rng) != 0) mag_set_ui_2exp_si(arb_radref(acb_imagref(z)), 1 + std::uniform_int_distribution<ulong>(0, 7)(rng), e - 3);
-}
-
-/// Exact points of the ball z: its midpoint, corners and random points.
-std::vector<std::pair<double, double>> offsets(std::mt19937_64& rng) {
-  std::uniform_real_distribution<double> u(-1, 1);
-  std::vector<std::pair<double, double>> o{{0, 0}, {1, 1}, {-1, 1}, {1, -1}, {-1, -1}};
-  for (int i = 0; i < 4; ++i) o.emplace_back(u(rng), u(rng));
-  return o;
-}
-void point_of(acb_t t, const acb_t z, double a, double b) {
-  acb_zero(t);
-  arb_set_arf(acb_realref(t), arb_midref(acb_realref(z)));
-  arb_set_arf(acb_imagref(t), arb_midref(acb_imagref(z)));
-  arf_t d, f;
-  arf_init(d);
-  arf_init(f);
-  arf_set_mag(d, arb_radref(acb_realref(z)));
-  arf_set_d(f, a);
-  arf_mul(d, d, f, 53, ARF_RND_DOWN);  // |d| <= rad: rounding toward zero
-  arb_add_arf(acb_realref(t), acb_realref(t), d, ARF_PREC_EXACT);
-  arf_set_mag(d, arb_radref(acb_imagref(z)));
-  arf_set_d(f, b);
-  arf_mul(d, d, f, 53, ARF_RND_DOWN);
-  arb_add_arf(acb_imagref(t), acb_imagref(t), d, ARF_PREC_EXACT);
-  arf_clear(d);
-  arf_clear(f);
 }
 
 TEST(LocalPoly, EnclosesValueAndDerivativesOnRandomBalls) {
@@ -457,6 +437,51 @@ TEST(LocalPoly, RealBallsGiveRealEnclosures) {
       for (acb_srcptr x : {v, d1, d2}) ASSERT_TRUE(acb_is_real(x)) << "ball " << b << " of polynomial " << it;
       for (acb_ptr x : {z, v, d1, d2}) acb_clear(x);
     }
+  }
+}
+
+// Wide balls with a real midpoint, of polynomials of degree <= 64 whose
+// power basis loses few bits, are bounded by the centred form in double at
+// their midpoint (DoubleCentredForm, tested on its own): on
+// K (2^b t - a)^n around a 2^-b that bound is exact up to rounding, which
+// the cells (a disc about twice the radius) are not. Balls where the form
+// is refused (radius 2^-24 at the zero: rounding; radius up to 256:
+// overflow) still get finite enclosures of the exact values.
+TEST(LocalPoly, WideBallsOfLowDegreeGetTheCentredFormAtTheirMidpoint) {
+  std::mt19937_64 rng(112327);
+  std::uniform_int_distribution<long> deg(3, 8), bits(1, 8), scale(1, 1000);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (long it = 0; it < iterations(60); ++it) {
+    const long n = deg(rng), b = bits(rng), K = scale(rng);
+    const long a = std::uniform_int_distribution<long>(1, (1L << b) - 1)(rng);
+    const Poly p = pure_power(K, a, b, n);
+    const LocalPoly lp(p);
+    const double m = std::ldexp(static_cast<double>(a), static_cast<int>(-b));
+    const double rx = m * (0.25 + 1.75 * unit(rng)), ry = rx * unit(rng);
+    acb_t z, v, d1, d2;
+    for (acb_ptr x : {z, v, d1, d2}) acb_init(x);
+    acb_zero(z);
+    arb_set_d(acb_realref(z), m);
+    mag_set_d(arb_radref(acb_realref(z)), rx);
+    mag_set_d(arb_radref(acb_imagref(z)), ry);
+    const acb_struct* outs[3] = {v, d1, d2};
+    lp.eval(v, d1, d2, z, 64);
+    const std::string what = "of K (2^b t - a)^n, n = " + std::to_string(n);
+    expect_encloses_at_points(p, outs, z, rng, what);
+    const double r = std::hypot(mag_get_d(arb_radref(acb_realref(z))), mag_get_d(arb_radref(acb_imagref(z))));
+    for (int j = 0; j <= 2; ++j) {
+      const double rad = std::max(mag_get_d(arb_radref(acb_realref(outs[j]))), mag_get_d(arb_radref(acb_imagref(outs[j]))));
+      EXPECT_LE(rad, pure_power_radius(K, a, b, n, j, r)) << "derivative " << j << " " << what;
+    }
+    // refused: rounding near the zero, overflow at radius up to 256
+    for (const double rr : {0x1p-24, 64 + 192 * unit(rng)}) {
+      mag_set_d(arb_radref(acb_realref(z)), rr);
+      mag_set_d(arb_radref(acb_imagref(z)), rr * unit(rng));
+      lp.eval(v, d1, d2, z, 64);
+      expect_encloses_at_points(p, outs, z, rng, "(refused) " + what);
+      for (acb_srcptr o : {v, d1, d2}) EXPECT_TRUE(acb_is_finite(o)) << what;
+    }
+    for (acb_ptr x : {z, v, d1, d2}) acb_clear(x);
   }
 }
 

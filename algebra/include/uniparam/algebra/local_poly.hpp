@@ -26,6 +26,11 @@
 //     on them), so they use coarse cells: truncated at 2^-24 of p's scale on
 //     the cell instead of 2^-wp, a few terms instead of hundreds at high
 //     degree (cheap shifts from the coarse parent, cheap evaluations).
+// Wide balls with a real midpoint, of polynomials of degree <= 64 whose
+// power basis loses at most ~52 bits on [0, 1], take the centred form in
+// double at their own midpoint first (DoubleCentredForm: O(n^2) flops, no
+// cell), unless its rounding part exceeds 2^-10 of the enclosure (near p's
+// zeros), where the cells do better.
 // Balls that no cell's disc contains (far from [0, 1]) fall back to the
 // power basis (Horner on narrow balls, a centred form on wide ones).
 #pragma once

@@ -1,0 +1,57 @@
+// uniparam/algebra/double_centred.hpp -- certified bounds of a low-degree
+// integer polynomial and its first two derivatives on a wide complex ball,
+// by the centred form at the ball's midpoint computed in IEEE double with a
+// rigorous bound of its rounding errors.
+//
+// Why: the quadrature bounds a speed on ellipses around each subinterval
+// (wide balls). At low degree a LocalPoly cell's build (Taylor shifts in
+// Arb) costs far more than the O(n^2) flops of a shift in double, and the
+// centred form at the ball's own midpoint is at least as tight as a cell's
+// expansion at a nearby dyadic centre. Its rounding errors are about
+// 2n 2^-53 of the Taylor coefficients of |p| (the polynomial of the
+// |coefficients|) at the centre, so it suits degrees <= 64 whose power basis
+// loses few bits; where p is small against its coefficients the rounding
+// dominates, and the caller may refuse such bounds (max_error).
+#pragma once
+
+#include <acb.h>
+
+#include <vector>
+
+#include "uniparam/core/poly.hpp"
+
+namespace uniparam {
+
+/// The centred form in double of a fixed integer polynomial p.
+class DoubleCentredForm {
+ public:
+  /// Largest degree, and the bound 2^kMaxBits of the coefficients' size
+  /// (so that no intermediate overflows before the radii).
+  static constexpr long kMaxDegree = 64;
+  static constexpr long kMaxBits = 800;
+
+  DoubleCentredForm() = default;
+  /// \post usable() iff 0 <= deg p <= kMaxDegree and every coefficient is
+  ///       below 2^kMaxBits in magnitude.
+  explicit DoubleCentredForm(const Poly& p);
+  bool usable() const { return !a_.empty(); }
+
+  /// Enclosures of p(z), p'(z), p''(z) (outputs may be null, and may not
+  /// alias z) on a complex ball z with a real midpoint m:
+  ///     p^(j)(t) in j! c_j +- (j! E_j + sum_{k>j} k!/(k-j)! (|c_k| + E_k) r^(k-j))
+  /// for every t in z, with c_k the Taylor coefficients at m rounded to a
+  /// double, computed in double, E_k rigorous bounds of their errors, and
+  /// r >= |t - m| the hypot of z's radii (a disc holding the box). A real z
+  /// (zero imaginary radius) gives real enclosures.
+  /// \pre usable().
+  /// \return true with the enclosures; false (outputs unspecified) when the
+  ///       midpoint is not real or |m| > 2, r > 2^8, a bound is not finite,
+  ///       or, for some output, the rounding part (the terms in E) exceeds
+  ///       max_error times |centre| + variation (the terms in |c_k|).
+  bool eval(acb_t v, acb_t d1, acb_t d2, const acb_t z, double max_error) const;
+
+ private:
+  std::vector<double> a_, abs_a_;  // p's coefficients rounded towards zero, and |.|
+};
+
+}  // namespace uniparam

@@ -1,0 +1,166 @@
+// Tests of uniparam/algebra/double_centred.hpp: the centred form in double
+// contains the exact values of p, p', p'' at exact points of wide balls
+// (checked at 4000 bits), is as tight as the exact centred form up to its
+// documented rounding part, keeps its rounding bound where the rounding
+// dominates (near a zero of p after cancellation), gives real enclosures on
+// real balls, and refuses what its contract excludes.
+#include <acb.h>
+#include <flint/fmpz_poly.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <string>
+
+#include "support/balls.hpp"
+#include "support/curves.hpp"
+#include "support/iterations.hpp"
+#include "uniparam/algebra/double_centred.hpp"
+
+namespace uniparam {
+namespace {
+
+using test_support::expect_encloses_at_points;
+using test_support::iterations;
+using test_support::pure_power;
+using test_support::pure_power_radius;
+
+struct Balls {
+  acb_t z, v, d1, d2;
+  Balls() {
+    for (acb_ptr x : {z, v, d1, d2}) acb_init(x);
+  }
+  ~Balls() {
+    for (acb_ptr x : {z, v, d1, d2}) acb_clear(x);
+  }
+  Balls(const Balls&) = delete;
+  Balls& operator=(const Balls&) = delete;
+  void set(double mid, double rx, double ry) {
+    acb_zero(z);
+    arb_set_d(acb_realref(z), mid);
+    mag_set_d(arb_radref(acb_realref(z)), rx);
+    mag_set_d(arb_radref(acb_imagref(z)), ry);
+  }
+};
+
+// On K (2^b t - a)^n around a 2^-b the bound is the exact centred form up to
+// its rounding part (pure_power_radius), and holds at the corners, where it
+// is attained: a looser form, a missing hypot of the radii or a wrong
+// derivative factor fails.
+TEST(DoubleCentredForm, IsTheExactCentredFormUpToRoundingOnPurePowers) {
+  std::mt19937_64 rng(112326);
+  std::uniform_int_distribution<long> deg(3, 8), bits(1, 8), scale(1, 1000);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (long it = 0; it < iterations(200); ++it) {
+    const long n = deg(rng), b = bits(rng), K = scale(rng);
+    const long a = std::uniform_int_distribution<long>(1, (1L << b) - 1)(rng);
+    const Poly p = pure_power(K, a, b, n);
+    const DoubleCentredForm form(p);
+    ASSERT_TRUE(form.usable());
+    const double m = std::ldexp(static_cast<double>(a), static_cast<int>(-b));
+    Balls x;
+    const double rx = m * (0.25 + 1.75 * unit(rng));
+    x.set(m, rx, it % 3 == 0 ? 0 : rx * unit(rng));
+    ASSERT_TRUE(form.eval(x.v, x.d1, x.d2, x.z, HUGE_VAL));
+    const acb_struct* outs[3] = {x.v, x.d1, x.d2};
+    const std::string what = "of K (2^b t - a)^n, n = " + std::to_string(n);
+    expect_encloses_at_points(p, outs, x.z, rng, what);
+    const double r = std::hypot(mag_get_d(arb_radref(acb_realref(x.z))), mag_get_d(arb_radref(acb_imagref(x.z))));
+    for (int j = 0; j <= 2; ++j) {
+      const double rad =
+          std::max(mag_get_d(arb_radref(acb_realref(outs[j]))), mag_get_d(arb_radref(acb_imagref(outs[j]))));
+      EXPECT_LE(rad, pure_power_radius(K, a, b, n, j, r)) << "derivative " << j << " " << what;
+      if (it % 3 == 0) EXPECT_TRUE(acb_is_real(outs[j])) << "a real ball " << what;
+    }
+  }
+}
+
+// Near the zero a 2^-b of K (2^b t - a)^n, with radii 2^-24 .. 2^-20, the
+// value 0 comes out of heavy cancellation: the rounding part must cover it
+// (forced with max_error = infinity). Without it, or with a wrong bound of
+// the Taylor coefficients of |p|, the midpoint's value escapes. With
+// max_error = 2^-10 such bounds are refused.
+TEST(DoubleCentredForm, TheRoundingBoundCoversCancellationNearAZero) {
+  std::mt19937_64 rng(2311);
+  std::uniform_int_distribution<long> deg(3, 12), bits(2, 20), scale(1, 1000);
+  long refused = 0, total = 0;
+  for (long it = 0; it < iterations(300); ++it) {
+    const long n = deg(rng), b = bits(rng), K = scale(rng);
+    const long a = std::uniform_int_distribution<long>(1, (1L << b) - 1)(rng) | 1;
+    const Poly p = pure_power(K, a, b, n);
+    const DoubleCentredForm form(p);
+    ASSERT_TRUE(form.usable());
+    Balls x;
+    x.set(std::ldexp(static_cast<double>(a), static_cast<int>(-b)),
+          std::ldexp(1.0, -std::uniform_int_distribution<int>(20, 24)(rng)),
+          it % 2 ? 0 : std::ldexp(1.0, -std::uniform_int_distribution<int>(20, 30)(rng)));
+    ASSERT_TRUE(form.eval(x.v, x.d1, x.d2, x.z, HUGE_VAL));
+    const acb_struct* outs[3] = {x.v, x.d1, x.d2};
+    expect_encloses_at_points(p, outs, x.z, rng, "near the zero of K (2^b t - a)^n, n = " + std::to_string(n));
+    refused += !form.eval(x.v, x.d1, x.d2, x.z, 0x1p-10);
+    ++total;
+  }
+  EXPECT_EQ(refused, total) << "the rounding dominates every one of these enclosures";
+}
+
+// Dense polynomials up to degree 64, coefficients up to 2^780, real and
+// complex balls of radius 2^-24 .. 256 around points of [-0.25, 1.25]:
+// every enclosure given holds at the exact points and is finite; the large
+// radii overflow and are refused.
+TEST(DoubleCentredForm, EnclosesDensePolynomialsAndRefusesOverflow) {
+  std::mt19937_64 rng(6402);
+  std::uniform_real_distribution<double> unit(0, 1);
+  long refused = 0;
+  for (long it = 0; it < iterations(40); ++it) {
+    Poly p = test_support::random_poly(rng, std::uniform_int_distribution<long>(3, 64)(rng), 1000);
+    if (it % 4 == 0) fmpz_poly_scalar_mul_2exp(p.get(), p.get(), 780);
+    const DoubleCentredForm form(p);
+    ASSERT_TRUE(form.usable());
+    for (int k = 0; k < 10; ++k) {
+      Balls x;
+      const double rx = std::ldexp(1.0 + unit(rng), -std::uniform_int_distribution<int>(-7, 23)(rng));
+      x.set(-0.25 + 1.5 * unit(rng), rx, k % 2 ? rx * unit(rng) : 0);
+      if (!form.eval(x.v, x.d1, x.d2, x.z, HUGE_VAL)) {
+        ++refused;
+        continue;
+      }
+      const acb_struct* outs[3] = {x.v, x.d1, x.d2};
+      expect_encloses_at_points(p, outs, x.z, rng, "of a dense polynomial of degree " + std::to_string(p.degree()));
+      for (acb_srcptr o : {x.v, x.d1, x.d2}) {
+        EXPECT_TRUE(acb_is_finite(o));
+        if (k % 2 == 0) EXPECT_TRUE(acb_is_real(o)) << "a real ball";
+      }
+    }
+  }
+  EXPECT_GT(refused, 0) << "some radii must overflow";
+}
+
+// What the contract excludes is refused: a non-real midpoint, |m| > 2,
+// r > 2^8; and polynomials of degree > 64 or coefficients of 800 bits are
+// not usable.
+TEST(DoubleCentredForm, RefusesWhatItsContractExcludes) {
+  const Poly p = pure_power(3, 1, 2, 5);
+  const DoubleCentredForm form(p);
+  Balls x;
+  x.set(0.5, 0.1, 0.1);
+  EXPECT_TRUE(form.eval(x.v, nullptr, nullptr, x.z, HUGE_VAL));
+  arb_set_d(acb_imagref(x.z), 0x1p-30);
+  EXPECT_FALSE(form.eval(x.v, nullptr, nullptr, x.z, HUGE_VAL)) << "a non-real midpoint";
+  x.set(2.5, 0.1, 0);
+  EXPECT_FALSE(form.eval(x.v, nullptr, nullptr, x.z, HUGE_VAL)) << "|m| > 2";
+  x.set(0.5, 300, 0);
+  EXPECT_FALSE(form.eval(x.v, nullptr, nullptr, x.z, HUGE_VAL)) << "r > 2^8";
+  EXPECT_FALSE(DoubleCentredForm(pure_power(1, 1, 1, 65)).usable());
+  EXPECT_TRUE(DoubleCentredForm(pure_power(1, 1, 1, 64)).usable());
+  for (long a : {1L, -1L}) {  // (2t -+ 1)^3 2^796: 800 bits (8 t^3), of either sign pattern
+    Poly big = pure_power(1, a, 1, 3);
+    fmpz_poly_scalar_mul_2exp(big.get(), big.get(), 796);
+    EXPECT_FALSE(DoubleCentredForm(big).usable()) << a;
+    fmpz_poly_scalar_fdiv_2exp(big.get(), big.get(), 1);
+    EXPECT_TRUE(DoubleCentredForm(big).usable()) << a;
+  }
+  EXPECT_FALSE(DoubleCentredForm(Poly()).usable());
+}
+
+}  // namespace
+}  // namespace uniparam
