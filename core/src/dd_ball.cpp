@@ -20,7 +20,8 @@
 //   accurate sum DWPlusDW and the product DWTimesDW1 of Joldes, Muller and
 //   Popescu (Tight and rigorous error bounds for basic building blocks of
 //   double-word arithmetic, ACM TOMS 44(2), 2017; algorithms 6 and 10) have
-//   relative errors below 3u^2 + 13u^3 and 7u^2 (< 2^-103). We use
+//   relative errors below 3u^2 + 13u^3 and 7u^2 (< 2^-103); their sum of a
+//   double word and a double, DWPlusFP (algorithm 4), below 2u^2. We use
 //   kEps = 2^-100 for the error relative to the exact result and 2^-99
 //   relative to the computed one, a margin of 8x, plus an absolute 2^-1000
 //   per operation for underflow (an underflowing operation errs by at most a
@@ -41,6 +42,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstdint>
+#include <cstring>
 #include <cmath>
 #include <limits>
 
@@ -137,6 +140,13 @@ template <bool F>
   return fast_two_sum(c.hi, cl3);
 }
 
+// JMP 2017, algorithm 4 (DWPlusFP): a double word plus a double
+inline DW dw_add_fp(DW x, double y) {
+  const DW s = two_sum(x.hi, y);
+  const double v = x.lo + s.lo;
+  return fast_two_sum(s.hi, v);
+}
+
 inline DW dw_neg(DW x) { return {-x.hi, -x.lo}; }
 
 inline double up(double x) { return x * (1 + 0x1p-48) + kTiny; }
@@ -189,8 +199,6 @@ double fmpz_abs_up(const fmpz_t c) {
 }
 
 }  // namespace
-
-bool dd_is_finite(const DDBall& x) { return std::isfinite(x.hi) && std::isfinite(x.lo) && std::isfinite(x.rad); }
 
 DDBall dd_from_double(double v) { return {v, 0, 0}; }
 
@@ -249,6 +257,12 @@ UNIPARAM_FMA DDBall mul_fma(const DDBall& a, const DDBall& b) { return mul_impl<
 DDBall dd_mul(const DDBall& a, const DDBall& b) { return use_fma() ? mul_fma(a, b) : mul_impl<false>(a, b); }
 
 DDBall dd_mul_2exp(const DDBall& a, int e) {
+  if (e >= -64 && e <= 64) {  // by the exact double 2^e: the same roundings as ldexp, no call
+    const std::uint64_t bits = static_cast<std::uint64_t>(1023 + e) << 52;
+    double f;
+    std::memcpy(&f, &bits, sizeof f);
+    return {a.hi * f, a.lo * f, a.rad * f + kTiny};
+  }
   return {std::ldexp(a.hi, e), std::ldexp(a.lo, e), std::ldexp(a.rad, e) + kTiny};
 }
 
@@ -347,6 +361,7 @@ DDPoly::DDPoly(const Poly& p) {
   }
   fmpz_clear(c);
   usable_ = ok;
+  for (int j = 0; j < 3; ++j) single_[j] = std::all_of(lo_[j].begin(), lo_[j].end(), [](double l) { return l == 0; });
   // UNCERTIFIED estimate of Horner's loss on [0, 1] (a choice of path only)
   loss_ = 0;
   for (int j = 0; j < 3 && ok; ++j) {
@@ -369,8 +384,8 @@ namespace {
 // DDPoly::eval's body (its members passed in).
 template <bool F>
 [[gnu::always_inline]] inline bool poly_eval(const std::vector<double>* hi_, const std::vector<double>* lo_,
-                                             const std::vector<double>* abs_, DDBall* v, DDBall* d1, DDBall* d2,
-                                             const DDBall& x) {
+                                             const std::vector<double>* abs_, const bool* single, DDBall* v,
+                                             DDBall* d1, DDBall* d2, const DDBall& x) {
   DDBall* outs[3] = {v, d1, d2};
   const DW m = mid(x);
   const double mu = mag_up(x);        // >= |m|
@@ -385,7 +400,10 @@ template <bool F>
       continue;
     }
     DW acc{h.back(), l.back()};
-    for (std::size_t k = h.size() - 1; k-- > 0;) acc = dw_add(dw_mul<F>(acc, m), {h[k], l[k]});
+    if (single[j])  // every coefficient is a double: DWPlusFP, more accurate and cheaper
+      for (std::size_t k = h.size() - 1; k-- > 0;) acc = dw_add_fp(dw_mul<F>(acc, m), h[k]);
+    else
+      for (std::size_t k = h.size() - 1; k-- > 0;) acc = dw_add(dw_mul<F>(acc, m), {h[k], l[k]});
     // Horner with 2 n_j double-word operations of relative error <= kEpsX:
     // |acc - p^(j)(m)| <= gamma_{2 n_j} sum |c_k| |m|^k, and moving m over
     // the ball adds at most rad * sup |p^(j+1)| <= rad * sum |c'_k| mr^k.
@@ -399,14 +417,16 @@ template <bool F>
 }
 
 UNIPARAM_FMA bool poly_eval_fma(const std::vector<double>* hi, const std::vector<double>* lo,
-                                const std::vector<double>* abs, DDBall* v, DDBall* d1, DDBall* d2, const DDBall& x) {
-  return poly_eval<kHaveFmaTarget>(hi, lo, abs, v, d1, d2, x);
+                                const std::vector<double>* abs, const bool* single, DDBall* v, DDBall* d1,
+                                DDBall* d2, const DDBall& x) {
+  return poly_eval<kHaveFmaTarget>(hi, lo, abs, single, v, d1, d2, x);
 }
 
 }  // namespace
 
 bool DDPoly::eval(DDBall* v, DDBall* d1, DDBall* d2, const DDBall& x) const {
-  return use_fma() ? poly_eval_fma(hi_, lo_, abs_, v, d1, d2, x) : poly_eval<false>(hi_, lo_, abs_, v, d1, d2, x);
+  return use_fma() ? poly_eval_fma(hi_, lo_, abs_, single_, v, d1, d2, x)
+                   : poly_eval<false>(hi_, lo_, abs_, single_, v, d1, d2, x);
 }
 
 bool dd_fma_available() { return cpu_has_fma(); }

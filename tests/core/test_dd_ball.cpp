@@ -73,6 +73,11 @@ TEST(DDBall, ArithmeticContainsEveryExactResult) {
     const bool exact = it % 3 == 0;
     const DDBall a = random_ball(rng, exact), b = random_ball(rng, exact);
     const DDBall s = dd_add(a, b), d = dd_sub(a, b), p = dd_mul(a, b);
+    // scaling by 2^e, within and beyond the exponents of the fast path
+    const int e = std::uniform_int_distribution<int>(-80, 80)(rng);
+    const DDBall sc = dd_mul_2exp(a, e);
+    Rational two_e(1);
+    for (int i = 0; i < std::abs(e); ++i) two_e = e > 0 ? two_e * Rational(2) : two_e / Rational(2);
     DDBall q;
     const bool divided = dd_div(q, a, b);
     ASSERT_TRUE(dd_is_finite(s) && dd_is_finite(d) && dd_is_finite(p));
@@ -81,6 +86,7 @@ TEST(DDBall, ArithmeticContainsEveryExactResult) {
       for (double fb : kFractions) {
         const Rational x = point(a, fa), y = point(b, fb);
         ASSERT_TRUE(contains(s, x + y)) << it;
+        ASSERT_TRUE(contains(sc, x * two_e)) << it << ", 2^" << e;
         ASSERT_TRUE(contains(d, x - y)) << it;
         ASSERT_TRUE(contains(p, x * y)) << it;
         ASSERT_TRUE(contains(q, x / y)) << it;

@@ -5,6 +5,7 @@
 
 #include <arb.h>
 
+#include <cmath>
 #include <vector>
 
 #include "uniparam/core/poly.hpp"
@@ -27,7 +28,9 @@ struct DDBall {
 };
 
 /// True if hi, lo and rad are finite.
-bool dd_is_finite(const DDBall& x);
+inline bool dd_is_finite(const DDBall& x) {
+  return std::isfinite(x.hi) && std::isfinite(x.lo) && std::isfinite(x.rad);
+}
 /// x as a DDBall. False (out unspecified) if x is not finite or its midpoint
 /// or radius is outside 2^+-900. The midpoint is split into hi + lo and
 /// what is left of it (for midpoints of more than 106 bits) goes to rad.
@@ -92,6 +95,8 @@ class DDPoly {
   long n_ = -1;
   // coefficients (low to high) of p, p', p'' as double words
   std::vector<double> hi_[3], lo_[3];
+  // single_[j]: every lo_[j] is 0 (Horner adds doubles, not double words)
+  bool single_[3] = {false, false, false};
   // upper bounds of |coefficients| of p, p', p'', p'''
   std::vector<double> abs_[4];
   double loss_ = 0;
