@@ -532,6 +532,10 @@ bool fast_point(acb_ptr out, const NodeIntegrand& fast, std::size_t count, const
   return true;
 }
 
+/// add_end_error first bounds f on the ball of radius 2^kEndWideExp around
+/// the end (see there).
+constexpr long kEndWideExp = -12;
+
 /// Adds rad(end) * sup |f_k(end)| to the error of each res[k]: the integral
 /// over the piece between the true end and the midpoint of its enclosure
 /// `end`. The bound is node_fast's where it answers, else f's.
@@ -542,8 +546,21 @@ void add_end_error(acb_ptr res, const Integrand& f, const NodeIntegrand& fast, s
   AcbVar z;
   AcbVec fz(count);
   if (!fast_point(fz.v, fast, count, end.get(), prec)) {
+    // First on a wider ball around the end (a superset: its bound holds on
+    // the end ball too): wide balls take cheap coarse evaluations, while a
+    // narrow one needs accurate local expansions there, built for this one
+    // point (integrands next to a zero of the speed, where node_fast refuses
+    // the end). Where that bound is not finite, the end ball itself.
     acb_set_arb(z.v, end.get());
-    f(fz.v, z.v, false, prec);  // exceptions propagate; the holders clean up
+    if (mag_cmp_2exp_si(rad, kEndWideExp) < 0) {
+      AcbVar w;
+      acb_set(w.v, z.v);
+      mag_set_ui_2exp_si(arb_radref(acb_realref(w.v)), 1, kEndWideExp);
+      f(fz.v, w.v, false, prec);  // exceptions propagate; the holders clean up
+    }
+    bool finite = mag_cmp_2exp_si(rad, kEndWideExp) < 0;
+    for (std::size_t k = 0; k < count && finite; ++k) finite = acb_is_finite(fz.v + k);
+    if (!finite) f(fz.v, z.v, false, prec);
   }
   MagVar bound;
   for (std::size_t k = 0; k < count; ++k) {

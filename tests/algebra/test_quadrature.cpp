@@ -508,15 +508,59 @@ TEST(Quadrature, IntegrandExceptionsCrossTheCCallback) {
   EXPECT_EQ(calls_after_throw, 0);
 
   // An exception from the end-point bound (non-dyadic end) propagates too.
-  // g throws only on a thin real ball around 1/3: the end-point enclosure.
+  // g throws only on small real balls around 1/3: the end-point enclosure
+  // (or the wider ball the bound tries first).
   Integrand g = [](acb_t out, const acb_t z, bool analytic, long prec) {
     const Rational third(1, 3);
     if (!analytic && arb_is_zero(acb_imagref(z)) && arb_contains_fmpq(acb_realref(z), third.get()) &&
-        mag_cmp_2exp_si(arb_radref(acb_realref(z)), -20) < 0)
+        mag_cmp_2exp_si(arb_radref(acb_realref(z)), -8) < 0)
       throw InvalidArgument("end point evaluation");
     one_over_one_plus_square(out, z, analytic, prec);
   };
   EXPECT_THROW(integrate(g, Rational(0), Rational(1, 3)), InvalidArgument);
+}
+
+// The end error of a non-dyadic end (an algebraic end's enclosure) is
+// bounded on a small ball around the end first, where the integrand is
+// cheap to bound, and on the end's own enclosure only where that bound is
+// not finite: here 1/(t - c) with its pole c at 2^-(k+1) below the end 1/3
+// for k = 20, 14, 8 (the ball of radius 2^-12 holds the pole for k >= 11).
+// Every result holds log((b - c)/(a - c)); the narrow end evaluations
+// happen exactly where the small ball holds the pole.
+TEST(Quadrature, EndErrorsAreBoundedOnASmallBallAroundTheEndFirst) {
+  for (long k : {20L, 14L, 8L}) {
+    const Rational a(1, 3), b(1, 2);
+    arb_t c;
+    arb_init(c);
+    arb_set_d(c, std::ldexp(1.0, static_cast<int>(-k - 1)));
+    arb_t third;
+    arb_init(third);
+    arb_set_fmpq(third, a.get(), 300);
+    arb_sub(c, third, c, 300);  // c = 1/3 - 2^-(k+1), at 300 bits
+    long narrow_end_calls = 0;
+    Integrand f = [&](acb_t out, const acb_t z, bool analytic, long prec) {
+      if (!analytic && acb_is_real(z) && mag_cmp_2exp_si(arb_radref(acb_realref(z)), -30) < 0 &&
+          arb_contains_fmpq(acb_realref(z), a.get()))
+        ++narrow_end_calls;
+      acb_sub_arb(out, z, c, prec + 30);
+      acb_inv(out, out, prec);
+    };
+    const Ball r = integrate(f, RealAlgebraic(a), RealAlgebraic(b), QuadratureOptions{});  // 1/3: not dyadic
+    arb_t exact, den;
+    arb_init(exact);
+    arb_init(den);
+    arb_set_fmpq(exact, b.get(), 300);
+    arb_sub(exact, exact, c, 300);
+    arb_sub(den, third, c, 300);
+    arb_div(exact, exact, den, 300);
+    arb_log(exact, exact, 300);
+    EXPECT_TRUE(arb_overlaps(r.get(), exact)) << "k = " << k << ": " << r.str(30);
+    EXPECT_TRUE(r.is_finite()) << "k = " << k;
+    EXPECT_GT(arb_rel_accuracy_bits(r.get()), 50) << "k = " << k;
+    if (k >= 11) EXPECT_GT(narrow_end_calls, 0) << "k = " << k;
+    else EXPECT_EQ(narrow_end_calls, 0) << "k = " << k;
+    for (arb_ptr x : {c, third, exact, den}) arb_clear(x);
+  }
 }
 
 TEST(Quadrature, NonRealIntegrandIsDomainError) {
@@ -766,8 +810,18 @@ TEST(QuadratureNodes, DoubleWordNodesContainTheExactIntegral) {
                    "] refusing every " + std::to_string(refuse));
       long answered = 0, narrow_calls = 0;
       const Integrand arb_f = poly_integrand(c);
+      // A point: a narrow real ball, or the small ball around an end that
+      // the end's bound tries first (radius <= 2^-10; the quadrature's own
+      // segments are far wider here).
+      auto is_point = [&](const acb_t z, bool analytic) {
+        if (analytic || !acb_is_real(z)) return false;
+        const mag_struct* rad = arb_radref(acb_realref(z));
+        return mag_cmp_2exp_si(rad, -30) < 0 ||
+               (mag_cmp_2exp_si(rad, -10) <= 0 &&
+                (arb_contains_fmpq(acb_realref(z), a.get()) || arb_contains_fmpq(acb_realref(z), b.get())));
+      };
       Integrand f = [&](acb_t out, const acb_t z, bool analytic, long prec) {
-        if (!analytic && acb_is_real(z) && mag_cmp_2exp_si(arb_radref(acb_realref(z)), -30) < 0) ++narrow_calls;
+        if (is_point(z, analytic)) ++narrow_calls;
         arb_f(out, z, analytic, prec);
       };
       QuadratureOptions opt;
@@ -781,7 +835,7 @@ TEST(QuadratureNodes, DoubleWordNodesContainTheExactIntegral) {
       // as without the node path, less the nodes it answered.
       long plain_calls = 0;
       Integrand g = [&](acb_t out, const acb_t z, bool analytic, long prec) {
-        if (!analytic && acb_is_real(z) && mag_cmp_2exp_si(arb_radref(acb_realref(z)), -30) < 0) ++plain_calls;
+        if (is_point(z, analytic)) ++plain_calls;
         arb_f(out, z, analytic, prec);
       };
       QuadratureOptions plain_opt;

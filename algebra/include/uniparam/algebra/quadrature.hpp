@@ -79,7 +79,11 @@ struct QuadratureOptions {
 /// Certified integral of f over [a, b] (a <= b, algebraic ends, refined as
 /// needed). The ends are handled rigorously: the integral over the exact
 /// dyadic midpoints of the end enclosures is computed, and the radius of each
-/// end enclosure times a bound of |f| on it is added.
+/// end enclosure times a bound of |f| on it is added. That bound comes from
+/// node_fast where it answers, else from f on the real ball of radius 2^-12
+/// around the end (a superset: wide balls are cheap to bound, a narrow one
+/// may need accurate local expansions built for this one point), else, where
+/// that is not finite, from f on the end's enclosure.
 /// f must be real on [a, b]; a == b gives exactly 0 without calling f.
 /// \post the true integral lies in the returned ball, which meets the goal.
 /// \throws BudgetExceeded when the goal is not met at max_prec ("could not
