@@ -52,25 +52,51 @@ DoubleCentredForm::DoubleCentredForm(const Poly& p) {
 //     1 - gamma_{3n} > 1 - 2^-44; their sum is multiplied by 1 + 2^-40.
 //   * No overflow before the radii: |a_k| < 2^800, so D_k < 2^(800+7+128);
 //     the radii's sums are checked for finiteness.
-bool DoubleCentredForm::eval(acb_t v, acb_t d1, acb_t d2, const acb_t z, double max_error) const {
+bool DoubleCentredForm::shift(const acb_t z, Shift& sh) const {
   if (!arf_is_zero(arb_midref(acb_imagref(z)))) return false;
-  const double m = arf_get_d(arb_midref(acb_realref(z)), ARF_RND_NEAR);
-  if (!(std::fabs(m) <= 2)) return false;
+  sh.m = arf_get_d(arb_midref(acb_realref(z)), ARF_RND_NEAR);
+  if (!(std::fabs(sh.m) <= 2)) return false;
   const double ry = mag_get_d(arb_radref(acb_imagref(z)));  // upper bounds
   const double rx = mag_get_d(arb_radref(acb_realref(z)));
-  const double r = (std::hypot(rx, ry) + std::fabs(m) * 0x1p-52 + 0x1p-1000) * (1 + 0x1p-50);
-  if (!(r <= 256)) return false;
+  sh.real = ry == 0;
+  sh.r = (std::hypot(rx, ry) + std::fabs(sh.m) * 0x1p-52 + 0x1p-1000) * (1 + 0x1p-50);
+  if (!(sh.r <= 256)) return false;
   const std::size_t n = a_.size() - 1;
   thread_local std::vector<double> c, D;
   c = a_;
   D = abs_a_;
-  const double am = std::fabs(m);
+  const double am = std::fabs(sh.m), m = sh.m;
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t k = n; k-- > i;) {
       c[k] += m * c[k + 1];
       D[k] += am * D[k + 1];
     }
-  const double eps = 1.01 * static_cast<double>(2 * n + 3) * 0x1p-53;
+  sh.c = &c;
+  sh.D = &D;
+  sh.eps = 1.01 * static_cast<double>(2 * n + 3) * 0x1p-53;
+  return true;
+}
+
+namespace {
+
+// out = centre +- rad, real (zero imaginary part) or with the same
+// imaginary radius.
+void set_out(acb_t out, double centre, double rad, bool real) {
+  arf_set_d(arb_midref(acb_realref(out)), centre);
+  mag_set_d(arb_radref(acb_realref(out)), rad);
+  arb_zero(acb_imagref(out));
+  if (!real) mag_set_d(arb_radref(acb_imagref(out)), rad);
+}
+
+}  // namespace
+
+bool DoubleCentredForm::eval(acb_t v, acb_t d1, acb_t d2, const acb_t z, double max_error) const {
+  Shift sh;
+  if (!shift(z, sh)) return false;
+  const std::vector<double>& c = *sh.c;
+  const std::vector<double>& D = *sh.D;
+  const double r = sh.r, eps = sh.eps;
+  const std::size_t n = a_.size() - 1;
   acb_ptr outs[3] = {v, d1, d2};
   for (std::size_t j = 0; j <= 2; ++j) {
     acb_ptr out = outs[j];
@@ -89,11 +115,64 @@ bool DoubleCentredForm::eval(acb_t v, acb_t d1, acb_t d2, const acb_t z, double 
     const double rad = (var + err) * (1 + 0x1p-40) + kUnderflowSlack;
     if (!std::isfinite(rad) || !std::isfinite(centre)) return false;
     if (err > max_error * (std::fabs(centre) + var)) return false;
-    arf_set_d(arb_midref(acb_realref(out)), centre);
-    mag_set_d(arb_radref(acb_realref(out)), rad);
-    arb_zero(acb_imagref(out));
-    if (ry != 0) mag_set_d(arb_radref(acb_imagref(out)), rad);
+    set_out(out, centre, rad, sh.real);
   }
+  return true;
+}
+
+// The quotient's proof, on top of eval's (same u, c_k, E_k = eps D_k + slack
+// >= |c_k - d_k|, r): with g = gamma - m, the exact quotient
+// p(m + w) / (w - g) = sum b_k w^k has b_{n-1} = d_n and
+// b_{k-1} = d_k + g b_k (synthetic division from the top; exact, as
+// p(gamma) = 0). It is computed from c and h = gamma_mid - m rounded, with
+// |g - h| <= e = (gamma_rad + 2^-52 |h| + 2^-1070) (1 + 2^-50). With
+// G >= |h| + e >= max(|g|, |h|) and the majorants (recurrences of positive
+// terms from the top)
+//     B_{k-1} = (|c_k| + E_k) + G B_k      >= the b_k of any d, g in range,
+//     C_{k-1} = E_k + G C_k                >= sum_{j>k} |c_j - d_j| G^(j-k-1),
+//     P_{k-1} = B_k + G P_k                >= |d b_{k-1} / d g| over g in range,
+// the computed coefficients err from the exact ones by at most
+//     C_k (the c's errors) + e P_k (h for g: mean value theorem)
+//     + 1.01 (2n + 1) u B_k (at most 2n roundings per coefficient),
+// plus the underflow slack per step; the positive recurrences, computed in
+// double, lose at most a factor 1 - gamma_{3n} (covered by 1 + 2^-40 on the
+// radius). Then the centred form of the quotient as in eval.
+bool DoubleCentredForm::eval_deflated(acb_t v, const acb_t z, double gamma_mid, double gamma_rad,
+                                      double max_error) const {
+  if (!(std::fabs(gamma_mid) <= 4) || !(gamma_rad >= 0 && gamma_rad <= 1)) return false;
+  Shift sh;
+  if (!shift(z, sh)) return false;
+  const std::vector<double>& c = *sh.c;
+  const std::vector<double>& D = *sh.D;
+  const std::size_t n = a_.size() - 1;  // >= 1: the quotient has n coefficients
+  const double h = gamma_mid - sh.m;
+  const double e = (gamma_rad + std::fabs(h) * 0x1p-52 + 0x1p-1070) * (1 + 0x1p-50);
+  const double G = (std::fabs(h) + e) * (1 + 0x1p-50);
+  const double eps2 = 1.01 * static_cast<double>(2 * n + 1) * 0x1p-53;
+  thread_local std::vector<double> b, err;
+  b.assign(n, 0);
+  err.assign(n, 0);
+  double B = 0, C = 0, P = 0;  // the majorants of the coefficient being formed
+  double bk = 0;
+  for (std::size_t k = n; k >= 1; --k) {  // b[k-1] from c[k] and b[k]
+    const double Ek = sh.eps * D[k] + kUnderflowSlack;
+    P = B + G * P;
+    C = Ek + G * C;
+    B = (std::fabs(c[k]) + Ek) + G * B;
+    bk = c[k] + h * bk;
+    b[k - 1] = bk;
+    err[k - 1] = C + e * P + eps2 * B + kUnderflowSlack;
+  }
+  double var = 0, rerr = 0;
+  for (std::size_t k = n - 1; k >= 1; --k) {
+    var = (var + std::fabs(b[k])) * sh.r;
+    rerr = (rerr + err[k]) * sh.r;
+  }
+  rerr += err[0];
+  const double rad = (var + rerr) * (1 + 0x1p-40) + kUnderflowSlack;
+  if (!std::isfinite(rad) || !std::isfinite(b[0])) return false;
+  if (rerr > max_error * (std::fabs(b[0]) + var)) return false;
+  set_out(v, b[0], rad, sh.real);
   return true;
 }
 

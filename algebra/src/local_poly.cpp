@@ -407,6 +407,9 @@ struct CellStore {
   CellMap cells;
   std::unordered_map<CellKey, std::shared_future<CellPtr>, CellKeyHash> building;
   std::vector<RealAlgebraic> roots;  // variant i >= 0 expands p / (t - roots[i])
+  // roots[i] lies in [root_mid[i] - root_rad[i], root_mid[i] + root_rad[i]]
+  // (doubles, for DoubleCentredForm::eval_deflated)
+  std::vector<double> root_mid, root_rad;
   std::size_t builds = 0;            // builds started (LocalPoly::builds)
 };
 
@@ -857,22 +860,39 @@ void LocalPoly::eval(acb_t v, acb_t d1, acb_t d2, const acb_t z, long prec) cons
 void LocalPoly::eval_deflated(acb_t v, const acb_t z, const RealAlgebraic& gamma, long prec) const {
   Cache& cache = *cache_;
   int variant = -1;
+  double g_mid = 0, g_rad = 0;
   {
     std::lock_guard<std::mutex> lock(cache.store.mu);
     for (std::size_t i = 0; i < cache.store.roots.size(); ++i)
       if (cache.store.roots[i] == gamma) variant = static_cast<int>(i);
+    if (variant >= 0) {
+      g_mid = cache.store.root_mid[static_cast<std::size_t>(variant)];
+      g_rad = cache.store.root_rad[static_cast<std::size_t>(variant)];
+    }
   }
   if (variant < 0) {
     if (p_.is_zero() || root_multiplicity(p_, gamma) < 1)
       throw DomainError("eval_deflated: " + gamma.str() + " is not a root of " + p_.str());
+    // gamma's enclosure in doubles: the nearest double to an 80-bit ball's
+    // midpoint, and a radius covering the ball and that rounding
+    const Ball g = gamma.to_ball(80);
+    g_mid = arf_get_d(arb_midref(g.get()), ARF_RND_NEAR);
+    g_rad = (mag_get_d(arb_radref(g.get())) + std::fabs(g_mid) * 0x1p-52 + 0x1p-1070) * (1 + 0x1p-50);
+    if (!std::isfinite(g_mid) || !std::isfinite(g_rad)) g_rad = HUGE_VAL;  // (never used then)
     std::lock_guard<std::mutex> lock(cache.store.mu);
     for (std::size_t i = 0; i < cache.store.roots.size() && variant < 0; ++i)  // another thread may have added it
       if (cache.store.roots[i] == gamma) variant = static_cast<int>(i);
     if (variant < 0) {
       cache.store.roots.push_back(gamma);
+      cache.store.root_mid.push_back(g_mid);
+      cache.store.root_rad.push_back(g_rad);
       variant = static_cast<int>(cache.store.roots.size()) - 1;
     }
   }
+  // Wide balls of low degree: the centred form of the quotient in double.
+  if (cache.centred.usable() && is_wide_ball(z) && acb_is_finite(z) &&
+      cache.centred.eval_deflated(v, z, g_mid, g_rad, kDoubleCentredMaxError))
+    return;
   if (p_.degree() + 1 > kMinLength && acb_is_finite(z) && eval_cells(variant, v, nullptr, nullptr, z, prec)) return;
   // Low degree, or far from [0, 1]: the deflated power basis (exact
   // synthetic division in Z[gamma], see deflate), centred form.

@@ -5,12 +5,14 @@
 // dominates (near a zero of p after cancellation), gives real enclosures on
 // real balls, and refuses what its contract excludes.
 #include <acb.h>
+#include <arb_poly.h>
 #include <flint/fmpz_poly.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "support/balls.hpp"
 #include "support/curves.hpp"
@@ -133,6 +135,59 @@ TEST(DoubleCentredForm, EnclosesDensePolynomialsAndRefusesOverflow) {
     }
   }
   EXPECT_GT(refused, 0) << "some radii must overflow";
+}
+
+// p = (2t^2 - 1) q with gamma = 1/sqrt(2) known only to [mid +- rad] (mid
+// off by up to 2^-25): the quotient's enclosure on wide balls around gamma
+// holds p(t) / (t - gamma) = 2 (t + gamma) q(t) at the exact points, against
+// gamma at 4000 bits. Without the bound of gamma's uncertainty or of p's
+// coefficients' errors, points escape (the division's own rounding is
+// smaller than the latter and not seen separately).
+TEST(DoubleCentredForm, DeflatedEnclosesTheQuotientForARootKnownToAnyAccuracy) {
+  std::mt19937_64 rng(5151);
+  std::uniform_real_distribution<double> unit(0, 1);
+  arb_t g;
+  arb_init(g);
+  arb_set_ui(g, 2);
+  arb_rsqrt(g, g, 4000);  // gamma = 1/sqrt(2)
+  const double g_double = arf_get_d(arb_midref(g), ARF_RND_NEAR);
+  acb_t t, exact, qv;
+  acb_init(t);
+  acb_init(exact);
+  acb_init(qv);
+  long escaped_points = 0, checked = 0;
+  for (long it = 0; it < iterations(150); ++it) {
+    const Poly q = test_support::random_poly(rng, std::uniform_int_distribution<long>(1, 20)(rng), 50);
+    const Poly p = Poly(std::vector<long>{-1, 0, 2}) * q;
+    const DoubleCentredForm form(p);
+    ASSERT_TRUE(form.usable());
+    const int off = static_cast<int>(it % 3);  // gamma's midpoint: nearest, or off by ~2^-40 or ~2^-25
+    const double delta = off == 0 ? 0 : std::ldexp(unit(rng) - 0.5, off == 1 ? -40 : -25);
+    const double g_mid = g_double + delta, g_rad = std::fabs(delta) + 0x1p-50;
+    Balls x;
+    const double rx = std::ldexp(1.0 + unit(rng), -std::uniform_int_distribution<int>(3, 24)(rng));
+    const double mid = std::ldexp(std::round(std::ldexp(g_double + rx * (unit(rng) - 0.5), 30)), -30);
+    x.set(mid, rx, it % 2 ? rx * unit(rng) : 0);
+    if (!form.eval_deflated(x.v, x.z, g_mid, g_rad, HUGE_VAL)) continue;
+    ++checked;
+    arb_poly_t qp;
+    arb_poly_init(qp);
+    arb_poly_set_fmpz_poly(qp, q.get(), ARF_PREC_EXACT);
+    for (const auto& [a, c] : test_support::offsets(rng)) {
+      test_support::point_of(t, x.z, a, c);
+      arb_poly_evaluate_acb(qv, qp, t, 4000);
+      acb_add_arb(exact, t, g, 4000);
+      acb_mul(exact, exact, qv, 4000);
+      acb_mul_2exp_si(exact, exact, 1);
+      if (!acb_contains(x.v, exact)) ++escaped_points;
+    }
+    if (it % 2 == 0) EXPECT_TRUE(acb_is_real(x.v));
+    arb_poly_clear(qp);
+  }
+  EXPECT_EQ(escaped_points, 0);
+  EXPECT_GT(checked, iterations(150) / 2);
+  for (acb_ptr y : {t, exact, qv}) acb_clear(y);
+  arb_clear(g);
 }
 
 // What the contract excludes is refused: a non-real midpoint, |m| > 2,

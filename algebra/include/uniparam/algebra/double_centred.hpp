@@ -50,7 +50,25 @@ class DoubleCentredForm {
   ///       max_error times |centre| + variation (the terms in |c_k|).
   bool eval(acb_t v, acb_t d1, acb_t d2, const acb_t z, double max_error) const;
 
+  /// Enclosure of p(t) / (t - gamma) for every t in z, for a real root gamma
+  /// of p in [gamma_mid - gamma_rad, gamma_mid + gamma_rad]: the centred form
+  /// of the quotient, whose Taylor coefficients at m come from p's by
+  /// synthetic division by (w - (gamma - m)), with rigorous bounds of the
+  /// rounding, of p's coefficients' errors and of gamma's uncertainty (no
+  /// division by t - gamma, so no cancellation near gamma).
+  /// \pre usable(), deg p >= 1 and p(gamma) = 0 exactly (not checked here).
+  /// \return as eval (false also when |gamma_mid| > 4 or gamma_rad > 1).
+  bool eval_deflated(acb_t v, const acb_t z, double gamma_mid, double gamma_rad, double max_error) const;
+
  private:
+  struct Shift {
+    double m = 0, r = 0, eps = 0;  // centre, radius, E_k / D_k
+    bool real = false;
+    const std::vector<double>*c = nullptr, *D = nullptr;  // c_k and D_k (thread-local)
+  };
+  // The Taylor coefficients at z's midpoint (see eval); false as eval.
+  bool shift(const acb_t z, Shift& sh) const;
+
   std::vector<double> a_, abs_a_;  // p's coefficients rounded towards zero, and |.|
 };
 

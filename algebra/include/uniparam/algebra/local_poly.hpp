@@ -30,7 +30,8 @@
 // power basis loses at most ~52 bits on [0, 1], take the centred form in
 // double at their own midpoint first (DoubleCentredForm: O(n^2) flops, no
 // cell), unless its rounding part exceeds 2^-10 of the enclosure (near p's
-// zeros), where the cells do better.
+// zeros), where the cells do better; p / (t - gamma) likewise
+// (DoubleCentredForm::eval_deflated).
 // Balls that no cell's disc contains (far from [0, 1]) fall back to the
 // power basis (Horner on narrow balls, a centred form on wide ones).
 #pragma once
