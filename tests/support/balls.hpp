@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
 #include <random>
 #include <string>
 #include <utility>
@@ -104,6 +105,38 @@ inline double pure_power_radius(long K, long a, long b, long n, int j, double r)
   const double majorant = fall * static_cast<double>(K) *
                           std::ldexp(std::pow(2.0 * static_cast<double>(a) + rb, static_cast<double>(n - j)), static_cast<int>(b * j));
   return var * (1 + 0x1p-25) + 0x1p-40 * majorant;
+}
+
+/// A random pure_power(K, a, b, n): n in [3, 8], b in [1, 8], K in
+/// [1, 1000], 0 < a < 2^b; its zero m = a 2^-b.
+struct PurePower {
+  long n, b, K, a;
+  double m;
+  Poly p;
+};
+inline PurePower random_pure_power(std::mt19937_64& rng) {
+  PurePower c{};
+  c.n = std::uniform_int_distribution<long>(3, 8)(rng);
+  c.b = std::uniform_int_distribution<long>(1, 8)(rng);
+  c.K = std::uniform_int_distribution<long>(1, 1000)(rng);
+  c.a = std::uniform_int_distribution<long>(1, (1L << c.b) - 1)(rng);
+  c.m = std::ldexp(static_cast<double>(c.a), static_cast<int>(-c.b));
+  c.p = pure_power(c.K, c.a, c.b, c.n);
+  return c;
+}
+
+/// Checks enclosures of a pure power's p, p', p'' on a ball z centred at its
+/// zero: they contain the exact values at z's points (expect_encloses_at_points)
+/// and their radii are within pure_power_radius (the exact centred form up
+/// to rounding).
+inline void expect_pure_power_bounds(const PurePower& c, const acb_struct* const outs[3], const acb_t z,
+                                     std::mt19937_64& rng, const std::string& what) {
+  expect_encloses_at_points(c.p, outs, z, rng, what);
+  const double r = std::hypot(mag_get_d(arb_radref(acb_realref(z))), mag_get_d(arb_radref(acb_imagref(z))));
+  for (int j = 0; j <= 2; ++j) {
+    const double rad = std::max(mag_get_d(arb_radref(acb_realref(outs[j]))), mag_get_d(arb_radref(acb_imagref(outs[j]))));
+    EXPECT_LE(rad, pure_power_radius(c.K, c.a, c.b, c.n, j, r)) << "derivative " << j << " " << what;
+  }
 }
 
 }  // namespace uniparam::test_support
