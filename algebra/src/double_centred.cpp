@@ -139,7 +139,7 @@ bool DoubleCentredForm::eval(acb_t v, acb_t d1, acb_t d2, const acb_t z, double 
 // radius). Then the centred form of the quotient as in eval.
 bool DoubleCentredForm::eval_deflated(acb_t v, const acb_t z, double gamma_mid, double gamma_rad,
                                       double max_error) const {
-  if (!(std::fabs(gamma_mid) <= 4) || !(gamma_rad >= 0 && gamma_rad <= 1)) return false;
+  if (a_.size() < 2 || !(std::fabs(gamma_mid) <= 4) || !(gamma_rad >= 0 && gamma_rad <= 1)) return false;
   Shift sh;
   if (!shift(z, sh)) return false;
   const std::vector<double>& c = *sh.c;

@@ -181,8 +181,9 @@ TEST(DoubleCentredForm, DeflatedEnclosesTheQuotientForARootKnownToAnyAccuracy) {
 }
 
 // What the contract excludes is refused: a non-real midpoint, |m| > 2,
-// r > 2^8; and polynomials of degree > 64 or coefficients of 800 bits are
-// not usable.
+// r > 2^8; for the quotient, a constant p, |gamma_mid| > 4 or
+// gamma_rad > 1; and polynomials of degree > 64 or coefficients of 800 bits
+// are not usable.
 TEST(DoubleCentredForm, RefusesWhatItsContractExcludes) {
   const Poly p = pure_power(3, 1, 2, 5);
   const DoubleCentredForm form(p);
@@ -205,6 +206,12 @@ TEST(DoubleCentredForm, RefusesWhatItsContractExcludes) {
     EXPECT_TRUE(DoubleCentredForm(big).usable()) << a;
   }
   EXPECT_FALSE(DoubleCentredForm(Poly()).usable());
+  // a constant has no quotient; gamma far away or too uncertain is refused
+  EXPECT_FALSE(DoubleCentredForm(Poly(std::vector<long>{3})).eval_deflated(x.v, x.z, 0.5, 0x1p-60, HUGE_VAL));
+  x.set(0.25, 0.1, 0);
+  EXPECT_TRUE(form.eval_deflated(x.v, x.z, 0.25, 0x1p-60, HUGE_VAL));  // 1/4: the root of 3 (4t - 1)^5
+  EXPECT_FALSE(form.eval_deflated(x.v, x.z, 4.5, 0x1p-60, HUGE_VAL));
+  EXPECT_FALSE(form.eval_deflated(x.v, x.z, 0.25, 2, HUGE_VAL));
 }
 
 }  // namespace

@@ -56,8 +56,9 @@ class DoubleCentredForm {
   /// synthetic division by (w - (gamma - m)), with rigorous bounds of the
   /// rounding, of p's coefficients' errors and of gamma's uncertainty (no
   /// division by t - gamma, so no cancellation near gamma).
-  /// \pre usable(), deg p >= 1 and p(gamma) = 0 exactly (not checked here).
-  /// \return as eval (false also when |gamma_mid| > 4 or gamma_rad > 1).
+  /// \pre usable() and p(gamma) = 0 exactly (not checked here).
+  /// \return as eval (false also for a constant p, |gamma_mid| > 4 or
+  ///       gamma_rad > 1).
   bool eval_deflated(acb_t v, const acb_t z, double gamma_mid, double gamma_rad, double max_error) const;
 
  private:
