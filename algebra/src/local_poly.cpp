@@ -406,10 +406,13 @@ struct CellStore {
   std::mutex mu;
   CellMap cells;
   std::unordered_map<CellKey, std::shared_future<CellPtr>, CellKeyHash> building;
-  std::vector<RealAlgebraic> roots;  // variant i >= 0 expands p / (t - roots[i])
-  // roots[i] lies in [root_mid[i] - root_rad[i], root_mid[i] + root_rad[i]]
-  // (doubles, for DoubleCentredForm::eval_deflated)
-  std::vector<double> root_mid, root_rad;
+  // variant i >= 0 expands p / (t - roots[i].value); value lies in
+  // [mid - rad, mid + rad] (doubles, for DoubleCentredForm::eval_deflated)
+  struct Root {
+    RealAlgebraic value;
+    double mid, rad;
+  };
+  std::vector<Root> roots;
   std::size_t builds = 0;            // builds started (LocalPoly::builds)
 };
 
@@ -574,7 +577,7 @@ CellPtr build_cell(CellStore& store, const Poly& p, const CellKey& key) {
   if (!built) {
     if (variant >= 0) {
       std::lock_guard<std::mutex> lock(store.mu);
-      root = std::make_unique<RealAlgebraic>(store.roots[static_cast<std::size_t>(variant)]);
+      root = std::make_unique<RealAlgebraic>(store.roots[static_cast<std::size_t>(variant)].value);
     }
     const long n = p.degree();
     // p(c + w) = 2^(-L n) q(J + 2^L w) with q(x) = 2^(L n) p(x / 2^L),
@@ -864,10 +867,10 @@ void LocalPoly::eval_deflated(acb_t v, const acb_t z, const RealAlgebraic& gamma
   {
     std::lock_guard<std::mutex> lock(cache.store.mu);
     for (std::size_t i = 0; i < cache.store.roots.size(); ++i)
-      if (cache.store.roots[i] == gamma) variant = static_cast<int>(i);
+      if (cache.store.roots[i].value == gamma) variant = static_cast<int>(i);
     if (variant >= 0) {
-      g_mid = cache.store.root_mid[static_cast<std::size_t>(variant)];
-      g_rad = cache.store.root_rad[static_cast<std::size_t>(variant)];
+      g_mid = cache.store.roots[static_cast<std::size_t>(variant)].mid;
+      g_rad = cache.store.roots[static_cast<std::size_t>(variant)].rad;
     }
   }
   if (variant < 0) {
@@ -881,11 +884,9 @@ void LocalPoly::eval_deflated(acb_t v, const acb_t z, const RealAlgebraic& gamma
     if (!std::isfinite(g_mid) || !std::isfinite(g_rad)) g_rad = HUGE_VAL;  // (never used then)
     std::lock_guard<std::mutex> lock(cache.store.mu);
     for (std::size_t i = 0; i < cache.store.roots.size() && variant < 0; ++i)  // another thread may have added it
-      if (cache.store.roots[i] == gamma) variant = static_cast<int>(i);
+      if (cache.store.roots[i].value == gamma) variant = static_cast<int>(i);
     if (variant < 0) {
-      cache.store.roots.push_back(gamma);
-      cache.store.root_mid.push_back(g_mid);
-      cache.store.root_rad.push_back(g_rad);
+      cache.store.roots.push_back({gamma, g_mid, g_rad});
       variant = static_cast<int>(cache.store.roots.size()) - 1;
     }
   }
