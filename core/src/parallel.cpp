@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <cstdlib>
@@ -61,6 +62,28 @@ struct Job {
 
 thread_local bool t_in_pool = false;  // true on the pool's threads
 
+/// How long a pool thread that finished its items, and a caller waiting for
+/// the pool threads, poll before they block on a condition variable. A
+/// blocked thread takes a futex wake-up and a reschedule to start (tens of
+/// microseconds on a VM), which is the whole run time of a low-degree job;
+/// the jobs of one operation follow each other within far less than this.
+/// The poll yields the processor every 64 rounds, so an oversubscribed
+/// machine loses little to it.
+constexpr std::chrono::microseconds kSpin{500};
+
+/// Polls ready() for at most kSpin; true as soon as it holds.
+template <class Ready>
+bool spin_until(Ready ready) {
+  const auto until = std::chrono::steady_clock::now() + kSpin;
+  for (unsigned round = 0;; ++round) {
+    if (ready()) return true;
+    if ((round & 63) == 63) {
+      if (std::chrono::steady_clock::now() >= until) return false;
+      std::this_thread::yield();
+    }
+  }
+}
+
 /// Persistent worker threads, started on first use and kept until the
 /// process exits. Their FLINT/Arb thread-local caches (Gauss-Legendre nodes
 /// above all: computing them costs more than a low-degree quadrature) then
@@ -93,10 +116,12 @@ class Pool {
       }
       job_ = &job;
       pending_ = job.workers - 1;
-      ++generation_;
+      pending_count_.store(pending_, std::memory_order_release);
+      generation_.fetch_add(1, std::memory_order_release);
     }
     wake_.notify_all();
     job.work(0);
+    spin_until([this] { return pending_count_.load(std::memory_order_acquire) == 0; });
     std::unique_lock<std::mutex> lock(m_);
     done_.wait(lock, [this] { return pending_ == 0; });
     job_ = nullptr;
@@ -107,6 +132,7 @@ class Pool {
     {
       std::lock_guard<std::mutex> lock(m_);
       stop_ = true;
+      stop_flag_.store(true);
     }
     wake_.notify_all();
     for (auto& t : threads_) t.join();
@@ -120,11 +146,12 @@ class Pool {
     std::uint64_t seen = 0;
     for (;;) {
       Job* job = nullptr;
+      spin_until([&] { return generation_.load(std::memory_order_acquire) != seen || stop_flag_.load(); });
       {
         std::unique_lock<std::mutex> lock(m_);
-        wake_.wait(lock, [&] { return stop_ || generation_ != seen; });
+        wake_.wait(lock, [&] { return stop_ || generation_.load() != seen; });
         if (stop_) break;
-        seen = generation_;
+        seen = generation_.load();
         if (job_ && k < job_->workers) job = job_;  // null: a job this thread sat out ended
       }
       if (!job) continue;
@@ -136,6 +163,7 @@ class Pool {
       {
         std::lock_guard<std::mutex> lock(m_);
         last = --pending_ == 0;
+        pending_count_.store(pending_, std::memory_order_release);
       }
       if (last) done_.notify_one();
     }
@@ -148,8 +176,11 @@ class Pool {
   std::vector<std::thread> threads_;
   Job* job_ = nullptr;
   std::size_t pending_ = 0;  // pool threads of the current job still working
-  std::uint64_t generation_ = 0;
+  std::atomic<std::uint64_t> generation_{0};  // written under m_; read by the spinning threads
   bool stop_ = false;
+  // Copies of pending_ and stop_ for the spinning threads (written under m_).
+  std::atomic<std::size_t> pending_count_{0};
+  std::atomic<bool> stop_flag_{false};
 };
 
 /// The pool is busy: threads of this call's own, released when it returns.

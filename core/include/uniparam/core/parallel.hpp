@@ -22,7 +22,11 @@ std::size_t worker_count();
 /// deadline, see budget.hpp). Workers 1.. are persistent pool threads,
 /// started on first use and kept until the process exits (when they release
 /// FLINT/Arb's thread-local caches), so those caches (Gauss-Legendre nodes)
-/// serve every later call as the calling thread's do. The pool runs one call
+/// serve every later call as the calling thread's do. A pool thread that
+/// has finished, and the caller waiting for the pool threads, poll for up to
+/// 0.5 ms before they sleep, so that the calls of one operation (each a
+/// fraction of a millisecond at low degree) do not wait for a thread to be
+/// woken and rescheduled. The pool runs one call
 /// at a time: a call made while it is busy (from another thread, or nested
 /// inside a task) runs on threads of its own, started for the call and
 /// released (caches included) when it returns. Which thread runs which item
