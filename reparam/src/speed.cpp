@@ -10,6 +10,7 @@
 #include "uniparam/algebra/approx_roots.hpp"
 #include "uniparam/algebra/local_poly.hpp"
 #include "uniparam/algebra/real_roots.hpp"
+#include "uniparam/core/dd_inline.hpp"
 #include "uniparam/core/error.hpp"
 #include "uniparam/core/parallel.hpp"
 
@@ -61,6 +62,15 @@ void poly_eval(acb_t out, const LocalPoly& p, const acb_t z, long prec) { p.eval
 
 }  // namespace
 
+namespace detail {
+// Speed::eval_dd's components over one common denominator, x_i = M_i / L.
+struct SpeedDD {
+  std::vector<DDPoly> M;
+  DDPoly L;
+  bool unit_den = false;  // L == 1 (a polynomial curve)
+};
+}  // namespace detail
+
 Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
   // The exact x', x'' fix the sign of a plane curve's angular speed
   // (piece_signs); elsewhere they are not needed (and cost two exact
@@ -91,18 +101,28 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
     // The double-word path for the nodes (eval_double_word): only where
     // Horner's rule on the power basis keeps enough bits on [0, 1] (high
     // degree Bezier curves lose more than 24; the local expansions serve
-    // them).
-    auto dd = std::make_shared<DDComponents>();
-    bool ok = c.components().size() <= 3;  // eval_double_word's bound
-    for (const auto& x : c.components())
-      ok = ok && x.num().degree() <= kDDMaxDegree && x.den().degree() <= kDDMaxDegree;
+    // them). The components over one common denominator L (the lcm of the
+    // Q_i; L = 1 for a polynomial curve): x_i = M_i / L, M_i = N_i L / Q_i.
+    auto dd = std::make_shared<detail::SpeedDD>();
+    bool ok = c.components().size() <= 3;  // eval_dd's bound
+    Poly L(1);
     for (const auto& x : c.components()) {
       if (!ok) break;
-      dd->N.emplace_back(x.num());
-      dd->Q.emplace_back(x.den());
-      for (const DDPoly* q : {&dd->N.back(), &dd->Q.back()})
-        ok = ok && q->usable() && q->cancellation_bits() <= kDDMaxLoss;
+      L = divexact(L * x.den(), gcd(L, x.den()));
+      ok = L.degree() <= kDDMaxDegree;
     }
+    for (const auto& x : c.components()) {
+      if (!ok) break;
+      const Poly M = x.num() * divexact(L, x.den());
+      ok = M.degree() <= kDDMaxDegree;
+      if (ok) dd->M.emplace_back(M);
+    }
+    if (ok) {
+      dd->unit_den = L == Poly(1);
+      dd->L = DDPoly(L);
+      ok = dd->L.usable() && dd->L.cancellation_bits() <= kDDMaxLoss;
+    }
+    for (const DDPoly& m : dd->M) ok = ok && m.usable() && m.cancellation_bits() <= kDDMaxLoss;
     if (ok) dd_ = std::move(dd);
   }
   const auto& X = c.derivative_numerators();
@@ -368,58 +388,86 @@ bool Speed::eval_double_word(acb_t out, const acb_t z, const PieceSigns& p, bool
   return true;
 }
 
-bool Speed::eval_dd(DDBall& out, const DDBall& x, const PieceSigns& p, bool squared, long prec) const {
-  if (!dd_ || zero_ || prec > kDDMaxPrec || !dd_is_finite(x) || !(x.rad < 0x1p-30)) return false;
-  const std::size_t n = comp_.size();
-  const bool angular = kind_ == SpeedKind::Angular;
-  DDBall d1[3], d2[3];  // curves of up to 3 components take this path
-  if (n > 3) return false;
-  DDBall q, q1, q2, v, w;
-  std::size_t q_done = n;
+namespace {
+
+using namespace dd_detail;
+
+// The angular (angular = true) or parametric speed, or its square, at the
+// double-word ball x: Speed::eval_dd's arithmetic, with the operations of
+// core/dd_inline.hpp inlined (F: the processor's FMA).
+//
+// With x_i = M_i / L: x_i' = A_i / L^2 and x_i'' = (B_i L - 2 L' A_i) / L^3
+// for A_i = M_i' L - M_i L', B_i = A_i' = M_i'' L - M_i L''. So
+//   sum x_i'^2 = S / L^4,                         S = sum A_i^2,
+//   x_i' x_j'' - x_i'' x_j' = C_ij / L^4,         C_ij = A_i B_j - A_j B_i,
+// and L cancels from the angular speed: sigma = sqrt(sum C_ij^2) / S
+// (plane: C_12 / S, times the piece's sign); the parametric one is
+// sqrt(S) / L^2. A polynomial curve (L = 1) has A_i = M_i', B_i = M_i''.
+// False where a ball is not finite, a divisor's ball holds 0 or a square
+// root's holds a non-positive number.
+template <bool F>
+[[gnu::always_inline]] inline bool speed_dd(DDBall& out, const detail::SpeedDD& dd, bool angular, int sign,
+                                            bool squared, const DDBall& x) {
+  const std::size_t n = dd.M.size();
+  DDBall A[3], B[3];  // curves of up to 3 components take this path
+  DDBall q, q1, q2;
+  if (!dd.unit_den && !dd.L.eval_t<F>(&q, &q1, angular ? &q2 : nullptr, x)) return false;
   for (std::size_t i = 0; i < n; ++i) {
-    const Component& k = comp_[i];
-    if (k.unit_den) {
-      if (!dd_->N[i].eval(nullptr, d1 + i, angular ? d2 + i : nullptr, x)) return false;
+    if (dd.unit_den) {
+      if (!dd.M[i].eval_t<F>(nullptr, A + i, angular ? B + i : nullptr, x)) return false;
       continue;
     }
-    DDBall nv, n1, n2;
-    if (!dd_->N[i].eval(&nv, &n1, angular ? &n2 : nullptr, x)) return false;
-    if (k.q_index != q_done) {
-      if (!dd_->Q[i].eval(&q, &q1, angular ? &q2 : nullptr, x)) return false;
-      if (!dd_div(v, dd_from_double(1), q)) return false;
-      w = dd_mul(v, v);
-      q_done = k.q_index;
-    }
-    // x' = (N'Q - NQ') / Q^2, x'' = (N''Q - NQ'') / Q^2 - 2 Q' (N'Q - NQ') / Q^3
-    const DDBall a = dd_sub(dd_mul(n1, q), dd_mul(nv, q1));
-    d1[i] = dd_mul(a, w);
-    if (angular)
-      d2[i] = dd_sub(dd_mul(dd_sub(dd_mul(n2, q), dd_mul(nv, q2)), w), dd_mul_2exp(dd_mul(dd_mul(dd_mul(q1, a), w), v), 1));
+    DDBall m, m1, m2;
+    if (!dd.M[i].eval_t<F>(&m, &m1, angular ? &m2 : nullptr, x)) return false;
+    A[i] = ball_sub(ball_mul<F>(m1, q), ball_mul<F>(m, q1));
+    if (angular) B[i] = ball_sub(ball_mul<F>(m2, q), ball_mul<F>(m, q2));
   }
-  DDBall S{0, 0, 0}, F{0, 0, 0}, r;
-  for (std::size_t i = 0; i < n; ++i) S = dd_add(S, dd_mul(d1[i], d1[i]));
+  DDBall S{0, 0, 0}, r;
+  for (std::size_t i = 0; i < n; ++i) S = ball_add(S, ball_mul<F>(A[i], A[i]));
   if (!angular) {
     if (squared) r = S;
-    else if (!dd_sqrt(r, S)) return false;
+    else if (!ball_sqrt<F>(r, S)) return false;
+    if (!dd.unit_den) {
+      const DDBall l2 = ball_mul<F>(q, q);  // L^2
+      if (!ball_div<F>(r, r, squared ? ball_mul<F>(l2, l2) : l2)) return false;
+    }
   } else if (n == 2) {
-    const DDBall e = dd_sub(dd_mul(d1[0], d2[1]), dd_mul(d2[0], d1[1]));
-    if (!dd_div(r, e, S)) return false;  // E / S
-    if (squared) r = dd_mul(r, r);
-    else if (p.component < 0) r = dd_neg(r);
+    const DDBall C = ball_sub(ball_mul<F>(A[0], B[1]), ball_mul<F>(A[1], B[0]));
+    if (!ball_div<F>(r, C, S)) return false;
+    if (squared) r = ball_mul<F>(r, r);
+    else if (sign < 0) r = ball_neg(r);
   } else {
+    DDBall Fs{0, 0, 0};
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = i + 1; j < n; ++j) {
-        const DDBall e = dd_sub(dd_mul(d1[i], d2[j]), dd_mul(d2[i], d1[j]));
-        F = dd_add(F, dd_mul(e, e));
+        const DDBall C = ball_sub(ball_mul<F>(A[i], B[j]), ball_mul<F>(A[j], B[i]));
+        Fs = ball_add(Fs, ball_mul<F>(C, C));
       }
     if (squared) {
-      if (!dd_div(r, F, S) || !dd_div(r, r, S)) return false;
+      if (!ball_div<F>(r, Fs, ball_mul<F>(S, S))) return false;
     } else {
       DDBall f;
-      if (!dd_sqrt(f, F) || !dd_div(r, f, S)) return false;
+      if (!ball_sqrt<F>(f, Fs) || !ball_div<F>(r, f, S)) return false;
     }
   }
-  if (!dd_is_finite(r) || !(dd_rel_rad(r) <= std::ldexp(1.0, -static_cast<int>(prec - 20)))) return false;
+  out = r;
+  return dd_is_finite(r);
+}
+
+UNIPARAM_DD_FMA bool speed_dd_fma(DDBall& out, const detail::SpeedDD& dd, bool angular, int sign, bool squared,
+                                  const DDBall& x) {
+  return speed_dd<kHaveFmaTarget>(out, dd, angular, sign, squared, x);
+}
+
+}  // namespace
+
+bool Speed::eval_dd(DDBall& out, const DDBall& x, const PieceSigns& p, bool squared, long prec) const {
+  if (!dd_ || zero_ || prec > kDDMaxPrec || !dd_is_finite(x) || !(x.rad < 0x1p-30)) return false;
+  const bool angular = kind_ == SpeedKind::Angular;
+  DDBall r;
+  const bool ok = dd_fma_in_use() ? speed_dd_fma(r, *dd_, angular, p.component, squared, x)
+                                  : speed_dd<false>(r, *dd_, angular, p.component, squared, x);
+  if (!ok || !(dd_rel_rad(r) <= std::ldexp(1.0, -static_cast<int>(prec - 20)))) return false;
   out = r;
   return true;
 }

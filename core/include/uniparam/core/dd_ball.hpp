@@ -84,6 +84,11 @@ class DDPoly {
   /// contain the values at every point of x. \pre usable().
   /// \return false if a bound is not finite (x too large).
   bool eval(DDBall* v, DDBall* d1, DDBall* d2, const DDBall& x) const;
+  /// eval's body, inlined into a caller's loop (core/dd_inline.hpp, which
+  /// defines it): F = true only inside a function compiled for FMA
+  /// (UNIPARAM_DD_FMA) and called where dd_fma_in_use().
+  template <bool F>
+  bool eval_t(DDBall* v, DDBall* d1, DDBall* d2, const DDBall& x) const;
   /// UNCERTIFIED estimate, for choosing a path only: log2 of
   /// sum |c_k| / max |p(t)| over t = 0, 1/16, ..., 1 for p, p' and p''
   /// (the bits that Horner's rule loses on [0, 1]); large for a
@@ -99,6 +104,8 @@ class DDPoly {
   bool single_[3] = {false, false, false};
   // upper bounds of |coefficients| of p, p', p'', p'''
   std::vector<double> abs_[4];
+  // horner_abs(abs_[j], 1): bounds of |p^(j)| on [-1, 1]
+  double abs1_[4] = {0, 0, 0, 0};
   double loss_ = 0;
 };
 

@@ -22,6 +22,10 @@
 
 namespace uniparam {
 
+namespace detail {
+struct SpeedDD;  // Speed::eval_dd's double-word components (speed.cpp)
+}  // namespace detail
+
 enum class SpeedKind { Angular, Parametric };
 /// "angular" / "parametric".
 std::string to_string(SpeedKind k);
@@ -131,18 +135,20 @@ class Speed {
   void eval_critical(acb_t v, acb_t d, const acb_t z, long prec) const;
   /// The double-word path that eval (squared = false, with signs p) and
   /// eval_squared (squared = true; p unused) take first on the quadrature's
-  /// nodes: the components' N, Q and their derivatives by Horner's rule in
-  /// double-word ball arithmetic (core/dd_ball.hpp), ~100 bits, several
-  /// times cheaper than Arb's balls at low degree.
+  /// nodes: the components over their common denominator, x_i = M_i / L,
+  /// and their derivatives by Horner's rule in double-word ball arithmetic
+  /// (core/dd_ball.hpp, inlined from core/dd_inline.hpp), ~100 bits,
+  /// several times cheaper than Arb's balls at low degree; L cancels from
+  /// the angular speed (speed.cpp, speed_dd).
   /// \return true and out = a real ball that contains sigma(t) (sigma(t)^2)
   ///         for every t in z, with a relative radius of at most
   ///         2^-(prec - 20) (the quadrature's own relative goal at its
   ///         start precision: rel_goal + 12 guard bits at prec = rel_goal +
   ///         32); false, out untouched, when the path does not apply (z
-  ///         not a real ball of radius < 2^-30; prec > 110; components that
-  ///         are not double words, of degree above 64, or that lose more
-  ///         than 24 bits in Horner's rule on [0, 1]) or cannot reach that
-  ///         accuracy at this point.
+  ///         not a real ball of radius < 2^-30; prec > 110; more than 3
+  ///         components; M_i or L not double words, of degree above 64, or
+  ///         losing more than 24 bits in Horner's rule on [0, 1]) or cannot
+  ///         reach that accuracy at this point.
   bool eval_double_word(acb_t out, const acb_t z, const PieceSigns& p, bool squared, long prec) const;
   /// eval_double_word on a double-word ball x (radius < 2^-30): the same
   /// path, guarantees and refusals, without Arb balls at either end (the
@@ -196,12 +202,9 @@ class Speed {
     std::size_t q_index = 0;        // first component with this Q (evaluated once per ball)
   };
   std::vector<Component> comp_;
-  // eval_double_word's components (N_i, Q_i), shared by copies; null where
-  // that path does not apply to this curve
-  struct DDComponents {
-    std::vector<DDPoly> N, Q;
-  };
-  std::shared_ptr<const DDComponents> dd_;
+  // eval_dd's components (speed.cpp), shared by copies; null where that
+  // path does not apply to this curve
+  std::shared_ptr<const detail::SpeedDD> dd_;
   // ball versions for evaluation
   LocalPoly g_b_;               // g itself (eval_critical: g, g', g'')
   Integer g_content_;          // g = content * prod h^m; content is 1 here but kept general
