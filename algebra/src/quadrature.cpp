@@ -610,8 +610,9 @@ bool meets_goal(const Ball& r, const QuadratureOptions& opt) {
 /// A point node_fast answers is asked of node_fast alone and counts as no
 /// loss: its answers meet the nodes' accuracy contract at this precision,
 /// and the nodes it answers never reach f. (Its accepted radius,
-/// 2^-(prec - 20), read as cancellation, raised the start precision by 20
-/// bits, often past kNodeFastMaxPrec, where every node then went to f.)
+/// 2^-(prec - kNodeFastSlackBits), read as cancellation, would raise the
+/// start precision by that much, often past kNodeFastMaxPrec, where every
+/// node then went to f.)
 long cancellation_bits(const Integrand& f, const NodeIntegrand& fast, std::size_t count, const Ball& a,
                        const Ball& b, long prec) {
   long worst = 0;

@@ -292,7 +292,7 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
     out[0] = dd_mul(dd_mul(w, w), v);
     out[1] = dd_mul_2exp(dd_mul(dd_mul(w, st), v), 1);
     out[2] = dd_mul(dd_mul(st, st), v);
-    const double goal = std::ldexp(1.0, -static_cast<int>(prec - 20));
+    const double goal = std::ldexp(1.0, -static_cast<int>(prec - kNodeFastSlackBits));
     for (int k = 0; k < (side == ZeroSide::None ? 3 : 4); ++k)
       if (!(dd_rel_rad(out[k]) <= goal)) return false;
     return true;

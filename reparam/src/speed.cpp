@@ -9,6 +9,7 @@
 
 #include "uniparam/algebra/approx_roots.hpp"
 #include "uniparam/algebra/local_poly.hpp"
+#include "uniparam/algebra/quadrature.hpp"
 #include "uniparam/algebra/real_roots.hpp"
 #include "uniparam/core/dd_inline.hpp"
 #include "uniparam/core/error.hpp"
@@ -467,7 +468,7 @@ bool Speed::eval_dd(DDBall& out, const DDBall& x, const PieceSigns& p, bool squa
   DDBall r;
   const bool ok = dd_fma_in_use() ? speed_dd_fma(r, *dd_, angular, p.component, squared, x)
                                   : speed_dd<false>(r, *dd_, angular, p.component, squared, x);
-  if (!ok || !(dd_rel_rad(r) <= std::ldexp(1.0, -static_cast<int>(prec - 20)))) return false;
+  if (!ok || !(dd_rel_rad(r) <= std::ldexp(1.0, -static_cast<int>(prec - kNodeFastSlackBits)))) return false;
   out = r;
   return true;
 }

@@ -782,7 +782,7 @@ NodeIntegrand poly_nodes(const std::vector<long>& c, long* answered, long refuse
   return [dp, answered, refuse_every, calls](DDBall* out, const DDBall& t, long prec) {
     if (refuse_every > 0 && (*calls)++ % refuse_every == 0) return false;
     if (!dp->eval(out, nullptr, nullptr, t)) return false;
-    if (!(dd_rel_rad(out[0]) <= std::ldexp(1.0, -static_cast<int>(prec - 20)))) return false;
+    if (!(dd_rel_rad(out[0]) <= std::ldexp(1.0, -static_cast<int>(prec - kNodeFastSlackBits)))) return false;
     ++*answered;
     return true;
   };

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "support/iterations.hpp"
+#include "uniparam/algebra/quadrature.hpp"
 #include "uniparam/uniparam.hpp"
 
 using namespace uniparam;
@@ -454,11 +455,11 @@ TEST(SpeedEval, DoubleWordPathContainsTheExactSpeedAtNodeBalls) {
         ++answered;
         ASSERT_TRUE(arb_is_zero(acb_imagref(dw)));
         ASSERT_LE(mag_cmp_2exp_si(arb_radref(acb_realref(dw)), 0), 0);
-        {  // the promised accuracy: relative radius <= 2^-(wp - 20)
+        {  // the promised accuracy: relative radius <= 2^-(wp - kNodeFastSlackBits)
           mag_t m;
           mag_init(m);
           arf_get_mag(m, arb_midref(acb_realref(dw)));
-          mag_mul_2exp_si(m, m, -(wp - 20));
+          mag_mul_2exp_si(m, m, -(wp - kNodeFastSlackBits));
           EXPECT_LE(mag_cmp(arb_radref(acb_realref(dw)), m), 0) << c.str() << " at " << t.str() << ", wp " << wp;
           mag_clear(m);
         }

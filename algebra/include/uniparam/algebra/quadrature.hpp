@@ -27,9 +27,13 @@ using Integrand = std::function<void(acb_t out, const acb_t z, bool analytic, lo
 /// An optional fast path for the narrow real points, in double-word balls
 /// (core/dd_ball.hpp): f(out, t, prec) for a real ball t of radius below
 /// 2^-30 either writes to out[0 .. count) balls that contain f_k(t') for
-/// every t' in t, each with a relative radius of at most 2^-(prec - 20),
-/// and returns true, or returns false (out unspecified) and the point goes
-/// to the Integrand. Asked only at prec <= kNodeFastMaxPrec, first at every
+/// every t' in t, each with a relative radius of at most
+/// 2^-(prec - kNodeFastSlackBits), and returns true, or returns false (out
+/// unspecified) and the point goes to the Integrand. At the first attempt's
+/// precision, rel_goal_bits + 32, that is 2^-(rel_goal_bits + 4): for an
+/// f_k of one sign the nodes' radii add at most 1/16 of the goal to the
+/// integral's radius. (Only the radii depend on it: every answer is a
+/// rigorous ball whatever its width.) Asked only at prec <= kNodeFastMaxPrec, first at every
 /// narrow real point the quadrature evaluates: the Gauss-Legendre nodes
 /// (radius about 2^-100 of the node; the weighted sum of the ones it
 /// answers is formed in double words too, a rigorous ball with no Arb ball
@@ -38,6 +42,8 @@ using Integrand = std::function<void(acb_t out, const acb_t z, bool analytic, lo
 /// gets only the points it refused and the wide balls (segments,
 /// ellipses), and need not try double words itself.
 using NodeIntegrand = std::function<bool(DDBall* out, const DDBall& t, long prec)>;
+/// NodeIntegrand's accuracy: relative radii up to 2^-(prec - kNodeFastSlackBits).
+constexpr long kNodeFastSlackBits = 28;
 /// The largest working precision at which NodeIntegrand is asked (double
 /// words carry about 100 bits).
 constexpr long kNodeFastMaxPrec = 110;

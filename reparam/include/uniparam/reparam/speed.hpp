@@ -142,9 +142,9 @@ class Speed {
   /// the angular speed (speed.cpp, speed_dd).
   /// \return true and out = a real ball that contains sigma(t) (sigma(t)^2)
   ///         for every t in z, with a relative radius of at most
-  ///         2^-(prec - 20) (the quadrature's own relative goal at its
-  ///         start precision: rel_goal + 12 guard bits at prec = rel_goal +
-  ///         32); false, out untouched, when the path does not apply (z
+  ///         2^-(prec - kNodeFastSlackBits) (quadrature.hpp's
+  ///         NodeIntegrand contract: rel_goal + 4 bits at the start
+  ///         precision rel_goal + 32); false, out untouched, when the path does not apply (z
   ///         not a real ball of radius < 2^-30; prec > 110; more than 3
   ///         components; M_i or L not double words, of degree above 64, or
   ///         losing more than 24 bits in Horner's rule on [0, 1]) or cannot
