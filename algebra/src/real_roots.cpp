@@ -144,6 +144,12 @@ constexpr long kQuadraticNewtonBits = 24;
 /// d = 50, the power basis was 2% slower).
 constexpr long kDirectDerivativeDegree = 64;
 
+/// Bisections refine_isolating_interval makes between failed interval
+/// Newton steps before it leaves them for the exact steps (the interval
+/// then lost a factor 2^8 of its width; a root where f' is tiny stays
+/// with the exact steps).
+constexpr int kNewtonBisections = 8;
+
 /// One interval Newton step on the isolating interval (lo, hi) of a simple
 /// root r of f (see refine_isolating_interval): for a dyadic c in (lo, hi),
 /// f(c) = f'(xi) (c - r) with xi in (lo, hi), so r lies in N = c - f(c) / F,
@@ -293,15 +299,33 @@ bool refine_isolating_interval(const Poly& f, Rational& lo, Rational& hi, long b
   if (w <= target) return false;
   const long mag = magnitude_bits(lo, hi);
   const Poly df = f.derivative();
+  int s_lo = 0;  // the sign of f at lo, once asked
   if (sev && sev->ev) {
+    // Where a step fails (f' on a wide isolating interval holds 0: the
+    // interval may hold a zero of f', or the bound is loose there), a
+    // bisection by the sign at a short dyadic midpoint (cheap: few bits)
+    // narrows it, and the interval Newton steps resume; after
+    // kNewtonBisections bisections the exact steps below take over. Not at
+    // low degree, where f' comes from Horner's rule on the ball and holds 0
+    // until the interval is narrow, which the exact steps reach sooner.
+    const int max_bisections = df.degree() > kDirectDerivativeDegree ? kNewtonBisections : 0;
+    int bisections = 0;
     while (w > target) {
       check_time_budget();
-      if (!interval_newton_step(f, df, *sev, lo, hi, bits, mag)) break;
+      if (!interval_newton_step(f, df, *sev, lo, hi, bits, mag)) {
+        if (++bisections > max_bisections) break;
+        if (s_lo == 0) s_lo = exact_sign(f, lo);
+        if (s_lo == 0) throw InvalidArgument("refine: the lower end " + lo.str() + " is a root of " + f.str());
+        const Rational m = grid_floor((lo + hi) * Rational(1, 2), floor_log2(w) - 2);
+        const int sm = exact_sign(f, m);
+        if (sm == 0) { lo = hi = m; return true; }
+        if (sm == s_lo) lo = m; else hi = m;
+      }
       w = hi - lo;
     }
     if (w <= target) return false;
   }
-  const int s_lo = exact_sign(f, lo);
+  if (s_lo == 0) s_lo = exact_sign(f, lo);
   if (s_lo == 0) throw InvalidArgument("refine: the lower end " + lo.str() + " is a root of " + f.str());
   const long start = floor_log2(w);
   // Every accepted Newton bracket or bisection at least halves the width;

@@ -38,7 +38,11 @@ int exact_sign(const Poly& f, const Rational& x);
 /// c is the middle (one power-basis evaluation a step, a gain of ~10-20
 /// bits) while the width is above 2^-24, then the power-basis Newton guess
 /// (three evaluations, the width roughly squared). Where a step does not
-/// halve the width the exact steps above take over. Same postconditions.
+/// halve the width, a bisection by the sign of f at a short dyadic midpoint
+/// comes next and the steps resume (F holds 0 on a wide interval that holds
+/// a zero of f' or where its bound is loose); after 8 such bisections, or at
+/// once where deg f' <= 64 (F from the power basis), the exact steps above
+/// take over. Same postconditions.
 bool refine_isolating_interval(const Poly& f, Rational& lo, Rational& hi, long bits, long* newton_log = nullptr,
                                const ScaledEvaluator* sev = nullptr);
 

@@ -484,6 +484,41 @@ TEST(RealRootsFast, ScaledEvaluatorRefinesLikeTheExactPath) {
   }
 }
 
+TEST(RealRootsFast, ScaledEvaluatorRefinesAcrossZerosOfTheDerivative) {
+  // f = (2 t^2 - 1) (10^6 (5 t - 3)^2 + 25) B(t), B a positive Bernstein
+  // polynomial of degree 80: one root, 1/sqrt(2), in (1/2, 1), and f' has
+  // two zeros there too (near 0.600004 and 0.83: the sharp dip of the
+  // quadratic at 3/5). On such an interval the interval Newton step's f'
+  // bound holds 0; refinement bisects by signs until it does not, then
+  // continues with Newton steps. The result must be the exact path's.
+  std::mt19937_64 rng(777);
+  for (long it = 0; it < iterations(3); ++it) {
+    const long big = 1000000 * (1 + it);
+    std::vector<Poly> factors = {Poly(std::vector<long>{-1, 0, 2}),
+                                 Poly(std::vector<long>{9 * big + 25, -30 * big, 25 * big}),
+                                 bernstein(positive_bernstein(rng, 80, 1000))};
+    Poly p(1);
+    for (const Poly& g : factors) p = p * g;
+    const Poly f = p.primitive();
+    long calls = 0;
+    ScaledEvaluator sev;
+    const Rational c(1 + static_cast<long>(rng() % 50), 1 + static_cast<long>(rng() % 50));
+    sev.ev = centred_product_evaluator(factors, c, &calls);
+    sev.lambda = c * Rational(p.leading()) / Rational(f.leading());
+    const auto shared = std::make_shared<const ScaledEvaluator>(sev);
+    const IsolatedRoot r{Rational(1, 2), Rational(1), f, 1};
+    ASSERT_EQ(count_real_roots(p, r.lo, r.hi), 1);
+    const RealAlgebraic fast(r, shared), exact(r);
+    for (long bits : {40L, 130L}) {
+      SCOPED_TRACE("iteration " + std::to_string(it) + ", bits " + std::to_string(bits));
+      const long before = calls;
+      fast.refine(bits);
+      EXPECT_GE(calls - before, 1);  // the Newton steps ran (with the evaluator's f')
+      expect_refined_like_exact(p, r, fast, exact, bits);
+    }
+  }
+}
+
 TEST(RealRootsFast, LowDegreeNewtonStepsBoundTheDerivativeFromThePowerBasis) {
   // Up to degree 64 of f', an interval Newton step bounds f' on the interval
   // from the power basis, not from the evaluator: the refinement must give
