@@ -193,7 +193,10 @@ class Speed {
   // x_i'(z) (and x_i''(z) when d2 is non-null) from the components
   void eval_derivatives(acb_ptr d1, acb_ptr d2, const acb_t z, long prec) const;
   // sum x_i'^2 and, for the angular speed, F = sum_{i<j} (x_i' x_j'' - x_i'' x_j')^2
-  // (plane: F is returned unsquared as E = x_1' x_2'' - x_1'' x_2')
+  // (plane: F is returned unsquared as E = x_1' x_2'' - x_1'' x_2'); for the
+  // angular speed of a curve with one denominator Q, both times Q^4 and Q^8
+  // (E times Q^4), without dividing by Q: the ratios sigma is made of are
+  // the same
   void eval_components(acb_t S, acb_t F, const acb_t z, long prec) const;
   struct Component {
     LocalPoly N, Q;                 // numerator, denominator (with p', p'')
