@@ -52,40 +52,71 @@ DoubleCentredForm::DoubleCentredForm(const Poly& p) {
 //     1 - gamma_{3n} > 1 - 2^-44; their sum is multiplied by 1 + 2^-40.
 //   * No overflow before the radii: |a_k| < 2^800, so D_k < 2^(800+7+128);
 //     the radii's sums are checked for finiteness.
+//
+// A complex midpoint m = mr + i mi (the quadrature's boxes above the real
+// axis): the same synthetic division in complex double, (cr + i ci) +=
+// m (cr' + i ci') with the product by the textbook formula. A complex sum
+// is (x + y)(1 + d), |d| <= u (each part rounded on its own), and a product
+// m c (1 + d) with |d| <= sqrt(5) u (Brent, Percival and Zimmermann, 2007;
+// 2u with a fused multiply-add), so each of the j - k moves counts 3 + 1
+// units of u, the k + 1 passes 1 each and the rounding of a_j 2:
+// L = 4n + 3. D_k is formed as before with |m| rounded upward (hypot is
+// within an ulp, times 1 + 2^-51), so it bounds the exact
+// sum_j C(j, k) |a_j| |m|^(j-k) up to the same factor 1 - gamma_{2n+1};
+// E_k = 1.01 L u D_k covers both. |c_k| (hypot, within an ulp) enters only
+// sums of positive terms, whose factor 1 + 2^-40 covers it.
 bool DoubleCentredForm::shift(const acb_t z, Shift& sh) const {
-  if (!arf_is_zero(arb_midref(acb_imagref(z)))) return false;
   sh.m = arf_get_d(arb_midref(acb_realref(z)), ARF_RND_NEAR);
-  if (!(std::fabs(sh.m) <= 2)) return false;
+  sh.mi = arf_get_d(arb_midref(acb_imagref(z)), ARF_RND_NEAR);
+  const double am = sh.mi == 0 ? std::fabs(sh.m) : std::hypot(sh.m, sh.mi) * (1 + 0x1p-51);  // >= |m|
+  if (!(am <= 2)) return false;
   const double ry = mag_get_d(arb_radref(acb_imagref(z)));  // upper bounds
   const double rx = mag_get_d(arb_radref(acb_realref(z)));
-  sh.real = ry == 0;
-  sh.r = (std::hypot(rx, ry) + std::fabs(sh.m) * 0x1p-52 + 0x1p-1000) * (1 + 0x1p-50);
+  sh.real = ry == 0 && sh.mi == 0;
+  // |mid(z) - m| <= 2^-53 |m| in each part (+ 2^-1075 if subnormal)
+  sh.r = (std::hypot(rx, ry) + am * 0x1p-52 + 0x1p-1000) * (1 + 0x1p-50);
   if (!(sh.r <= 256)) return false;
   const std::size_t n = a_.size() - 1;
-  thread_local std::vector<double> c, D;
+  thread_local std::vector<double> c, ci, D;
   c = a_;
   D = abs_a_;
-  const double am = std::fabs(sh.m), m = sh.m;
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t k = n; k-- > i;) {
-      c[k] += m * c[k + 1];
-      D[k] += am * D[k + 1];
-    }
+  const double m = sh.m, mi = sh.mi;
+  if (mi == 0) {
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t k = n; k-- > i;) {
+        c[k] += m * c[k + 1];
+        D[k] += am * D[k + 1];
+      }
+    sh.eps = 1.01 * static_cast<double>(2 * n + 3) * 0x1p-53;
+  } else {
+    ci.assign(n + 1, 0.0);
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t k = n; k-- > i;) {
+        const double pr = m * c[k + 1] - mi * ci[k + 1], pi = m * ci[k + 1] + mi * c[k + 1];
+        c[k] += pr;
+        ci[k] += pi;
+        D[k] += am * D[k + 1];
+      }
+    sh.eps = 1.01 * static_cast<double>(4 * n + 3) * 0x1p-53;
+  }
   sh.c = &c;
+  sh.ci = mi == 0 ? nullptr : &ci;
   sh.D = &D;
-  sh.eps = 1.01 * static_cast<double>(2 * n + 3) * 0x1p-53;
   return true;
 }
 
 namespace {
 
-// out = centre +- rad, real (zero imaginary part) or with the same
-// imaginary radius.
-void set_out(acb_t out, double centre, double rad, bool real) {
+// out = centre + i centre_im +- rad, real (zero imaginary part) or with the
+// same imaginary radius (a box holding the disc of radius rad).
+void set_out(acb_t out, double centre, double centre_im, double rad, bool real) {
   arf_set_d(arb_midref(acb_realref(out)), centre);
   mag_set_d(arb_radref(acb_realref(out)), rad);
   arb_zero(acb_imagref(out));
-  if (!real) mag_set_d(arb_radref(acb_imagref(out)), rad);
+  if (!real) {
+    arf_set_d(arb_midref(acb_imagref(out)), centre_im);
+    mag_set_d(arb_radref(acb_imagref(out)), rad);
+  }
 }
 
 }  // namespace
@@ -94,9 +125,11 @@ bool DoubleCentredForm::eval(acb_t v, acb_t d1, acb_t d2, const acb_t z, double 
   Shift sh;
   if (!shift(z, sh)) return false;
   const std::vector<double>& c = *sh.c;
+  const std::vector<double>* ci = sh.ci;  // null: a real midpoint
   const std::vector<double>& D = *sh.D;
   const double r = sh.r, eps = sh.eps;
   const std::size_t n = a_.size() - 1;
+  auto abs_c = [&](std::size_t k) { return ci ? std::hypot(c[k], (*ci)[k]) : std::fabs(c[k]); };
   acb_ptr outs[3] = {v, d1, d2};
   for (std::size_t j = 0; j <= 2; ++j) {
     acb_ptr out = outs[j];
@@ -106,16 +139,16 @@ bool DoubleCentredForm::eval(acb_t v, acb_t d1, acb_t d2, const acb_t z, double 
     double var = 0, err = 0;
     for (std::size_t k = n; k > j; --k) {
       const double f = j == 0 ? 1.0 : j == 1 ? static_cast<double>(k) : static_cast<double>(k * (k - 1));
-      var = (var + f * std::fabs(c[k])) * r;
+      var = (var + f * abs_c(k)) * r;
       err = (err + f * (eps * D[k] + kUnderflowSlack)) * r;
     }
     const double fj = j == 2 ? 2 : 1;
-    const double centre = j <= n ? fj * c[j] : 0;
+    const double centre = j <= n ? fj * c[j] : 0, centre_im = j <= n && ci ? fj * (*ci)[j] : 0;
     if (j <= n) err += fj * (eps * D[j] + kUnderflowSlack);
     const double rad = (var + err) * (1 + 0x1p-40) + kUnderflowSlack;
-    if (!std::isfinite(rad) || !std::isfinite(centre)) return false;
-    if (err > max_error * (std::fabs(centre) + var)) return false;
-    set_out(out, centre, rad, sh.real);
+    if (!std::isfinite(rad) || !std::isfinite(centre) || !std::isfinite(centre_im)) return false;
+    if (err > max_error * (std::hypot(centre, centre_im) + var)) return false;
+    set_out(out, centre, centre_im, rad, sh.real);
   }
   return true;
 }
@@ -136,43 +169,57 @@ bool DoubleCentredForm::eval(acb_t v, acb_t d1, acb_t d2, const acb_t z, double 
 //     + 1.01 (2n + 1) u B_k (at most 2n roundings per coefficient),
 // plus the underflow slack per step; the positive recurrences, computed in
 // double, lose at most a factor 1 - gamma_{3n} (covered by 1 + 2^-40 on the
-// radius). Then the centred form of the quotient as in eval.
+// radius). Then the centred form of the quotient as in eval. A complex
+// midpoint (shift's note): h = gamma_mid - m is complex (its imaginary part
+// exact), the majorants take |h| rounded upward and |c_k| by hypot (within
+// an ulp, in sums of positive terms: the factor 1 + 2^-40), the mean value
+// bound holds along the segment from h to g in the disc |g - h| <= e, and
+// each product h b_k counts 3 units of u: 4n + 1 roundings per coefficient.
 bool DoubleCentredForm::eval_deflated(acb_t v, const acb_t z, double gamma_mid, double gamma_rad,
                                       double max_error) const {
   if (a_.size() < 2 || !(std::fabs(gamma_mid) <= 4) || !(gamma_rad >= 0 && gamma_rad <= 1)) return false;
   Shift sh;
   if (!shift(z, sh)) return false;
   const std::vector<double>& c = *sh.c;
+  const std::vector<double>* ci = sh.ci;  // null: a real midpoint
   const std::vector<double>& D = *sh.D;
   const std::size_t n = a_.size() - 1;  // >= 1: the quotient has n coefficients
-  const double h = gamma_mid - sh.m;
-  const double e = (gamma_rad + std::fabs(h) * 0x1p-52 + 0x1p-1070) * (1 + 0x1p-50);
-  const double G = (std::fabs(h) + e) * (1 + 0x1p-50);
-  const double eps2 = 1.01 * static_cast<double>(2 * n + 1) * 0x1p-53;
-  thread_local std::vector<double> b, err;
+  // h = gamma_mid - m: its real part rounded once, its imaginary part exact
+  const double h = gamma_mid - sh.m, hi = -sh.mi;
+  const double ah = hi == 0 ? std::fabs(h) : std::hypot(h, hi) * (1 + 0x1p-51);  // >= |h|
+  const double e = (gamma_rad + ah * 0x1p-52 + 0x1p-1070) * (1 + 0x1p-50);
+  const double G = (ah + e) * (1 + 0x1p-50);
+  // roundings per coefficient: 2n (real), or 4n (complex: 3 units of u a
+  // product, see shift), each step a product and a sum
+  const double eps2 = 1.01 * static_cast<double>((ci ? 4 : 2) * n + 1) * 0x1p-53;
+  thread_local std::vector<double> b, bi, err;
   b.assign(n, 0);
+  bi.assign(n, 0);
   err.assign(n, 0);
   double B = 0, C = 0, P = 0;  // the majorants of the coefficient being formed
-  double bk = 0;
+  double bk = 0, bki = 0;
   for (std::size_t k = n; k >= 1; --k) {  // b[k-1] from c[k] and b[k]
     const double Ek = sh.eps * D[k] + kUnderflowSlack;
     P = B + G * P;
     C = Ek + G * C;
-    B = (std::fabs(c[k]) + Ek) + G * B;
-    bk = c[k] + h * bk;
+    B = (std::hypot(c[k], ci ? (*ci)[k] : 0.0) + Ek) + G * B;
+    const double pr = h * bk - hi * bki, pi = h * bki + hi * bk;  // h b_k
+    bk = c[k] + pr;
+    bki = (ci ? (*ci)[k] : 0.0) + pi;
     b[k - 1] = bk;
+    bi[k - 1] = bki;
     err[k - 1] = C + e * P + eps2 * B + kUnderflowSlack;
   }
   double var = 0, rerr = 0;
   for (std::size_t k = n - 1; k >= 1; --k) {
-    var = (var + std::fabs(b[k])) * sh.r;
+    var = (var + std::hypot(b[k], bi[k])) * sh.r;
     rerr = (rerr + err[k]) * sh.r;
   }
   rerr += err[0];
   const double rad = (var + rerr) * (1 + 0x1p-40) + kUnderflowSlack;
-  if (!std::isfinite(rad) || !std::isfinite(b[0])) return false;
-  if (rerr > max_error * (std::fabs(b[0]) + var)) return false;
-  set_out(v, b[0], rad, sh.real);
+  if (!std::isfinite(rad) || !std::isfinite(b[0]) || !std::isfinite(bi[0])) return false;
+  if (rerr > max_error * (std::hypot(b[0], bi[0]) + var)) return false;
+  set_out(v, b[0], bi[0], rad, sh.real);
   return true;
 }
 

@@ -5,6 +5,7 @@
 // dominates (near a zero of p after cancellation), gives real enclosures on
 // real balls, and refuses what its contract excludes.
 #include <acb.h>
+#include <acb_poly.h>
 #include <arb_poly.h>
 #include <flint/fmpz_poly.h>
 #include <gtest/gtest.h>
@@ -23,6 +24,11 @@ namespace uniparam {
 namespace {
 
 using test_support::expect_encloses_at_points;
+
+// |c| rounded to a double (an estimate, for tightness bounds only).
+double acb_get_d_abs_for_test(const acb_t c) {
+  return std::hypot(arf_get_d(arb_midref(acb_realref(c)), ARF_RND_NEAR), arf_get_d(arb_midref(acb_imagref(c)), ARF_RND_NEAR));
+}
 using test_support::iterations;
 using test_support::pure_power;
 
@@ -36,9 +42,10 @@ struct Balls {
   }
   Balls(const Balls&) = delete;
   Balls& operator=(const Balls&) = delete;
-  void set(double mid, double rx, double ry) {
+  void set(double mid, double rx, double ry, double mid_im = 0) {
     acb_zero(z);
     arb_set_d(acb_realref(z), mid);
+    arb_set_d(acb_imagref(z), mid_im);
     mag_set_d(arb_radref(acb_realref(z)), rx);
     mag_set_d(arb_radref(acb_imagref(z)), ry);
   }
@@ -127,6 +134,65 @@ TEST(DoubleCentredForm, EnclosesDensePolynomialsAndRefusesOverflow) {
   EXPECT_GT(refused, 0) << "some radii must overflow";
 }
 
+// Boxes above the real axis (the quadrature's upper-half boxes): complex
+// midpoints x + i y, x in [-0.25, 1.25], y in [0, 1], radii 2^-24 .. 2, of
+// dense polynomials up to degree 64 (coefficients up to 1000, or times
+// 2^780). Every enclosure given holds at the exact points; and it is about
+// as tight as the exact centred form there: at most twice the majorant
+// sum_{k>=1} |d_k| r^k of p - p(m) (d_k the exact Taylor coefficients at
+// the double midpoint m, r the hypot of the radii) plus 2^-30 of
+// sum |a_j| (|m| + r)^j, which bounds the rounding part many times over.
+// An imaginary part left out of the synthetic division, or a real |m| for
+// the bound, fails the first; a much looser bound the second.
+TEST(DoubleCentredForm, EnclosesPolynomialsOnBallsWithComplexMidpoints) {
+  std::mt19937_64 rng(240611);
+  std::uniform_real_distribution<double> unit(0, 1);
+  long checked = 0;
+  acb_poly_t exact;
+  acb_poly_init(exact);
+  acb_t m, c;
+  acb_init(m);
+  acb_init(c);
+  for (long it = 0; it < iterations(60); ++it) {
+    Poly p = test_support::random_poly(rng, std::uniform_int_distribution<long>(3, 64)(rng), 1000);
+    if (it % 4 == 0) fmpz_poly_scalar_mul_2exp(p.get(), p.get(), 780);
+    const DoubleCentredForm form(p);
+    ASSERT_TRUE(form.usable());
+    for (int k = 0; k < 6; ++k) {
+      Balls x;
+      const double rx = std::ldexp(1.0 + unit(rng), -std::uniform_int_distribution<int>(1, 24)(rng));
+      const double re = -0.25 + 1.5 * unit(rng), im = unit(rng);
+      x.set(re, rx, rx * (0.25 + unit(rng)), im);
+      if (!form.eval(x.v, x.d1, x.d2, x.z, HUGE_VAL)) continue;
+      ++checked;
+      const acb_struct* outs[3] = {x.v, x.d1, x.d2};
+      expect_encloses_at_points(p, outs, x.z, rng, "of a polynomial of degree " + std::to_string(p.degree()) +
+                                                        " on a ball around " + std::to_string(re) + " + " +
+                                                        std::to_string(im) + "i");
+      for (acb_srcptr o : {x.v, x.d1, x.d2}) EXPECT_TRUE(acb_is_finite(o));
+      // tightness of the value's enclosure
+      acb_set_d_d(m, re, im);
+      acb_poly_set_fmpz_poly(exact, p.get(), 4000);
+      acb_poly_taylor_shift(exact, exact, m, 4000);
+      const double r = std::hypot(mag_get_d(arb_radref(acb_realref(x.z))), mag_get_d(arb_radref(acb_imagref(x.z))));
+      double var = 0, scale = 0;
+      const double am = std::hypot(re, im);
+      for (long j = p.degree(); j >= 0; --j) {
+        acb_poly_get_coeff_acb(c, exact, j);
+        const double cj = j >= 1 ? acb_get_d_abs_for_test(c) : 0.0;
+        var = var * r + cj;
+        scale = scale * (am + r) + std::fabs(fmpz_get_d(p.get()->coeffs + j));
+      }
+      const double rad = std::max(mag_get_d(arb_radref(acb_realref(x.v))), mag_get_d(arb_radref(acb_imagref(x.v))));
+      EXPECT_LE(rad, 2 * var + 0x1p-30 * scale) << "degree " << p.degree() << " at " << re << " + " << im << "i, r " << r;
+    }
+  }
+  EXPECT_GT(checked, iterations(60) * 3);
+  acb_poly_clear(exact);
+  acb_clear(m);
+  acb_clear(c);
+}
+
 // p = (2t^2 - 1) q with gamma = 1/sqrt(2) known only to [mid +- rad] (mid
 // off by up to 2^-25): the quotient's enclosure on wide balls around gamma
 // holds p(t) / (t - gamma) = 2 (t + gamma) q(t) at the exact points, against
@@ -157,7 +223,9 @@ TEST(DoubleCentredForm, DeflatedEnclosesTheQuotientForARootKnownToAnyAccuracy) {
     Balls x;
     const double rx = std::ldexp(1.0 + unit(rng), -std::uniform_int_distribution<int>(3, 24)(rng));
     const double mid = std::ldexp(std::round(std::ldexp(g_double + rx * (unit(rng) - 0.5), 30)), -30);
-    x.set(mid, rx, it % 2 ? rx * unit(rng) : 0);
+    // real balls, complex balls about the real axis, and (it % 4 == 3)
+    // boxes above it, with a complex midpoint
+    x.set(mid, rx, it % 2 ? rx * unit(rng) : 0, it % 4 == 3 ? rx * unit(rng) : 0);
     if (!form.eval_deflated(x.v, x.z, g_mid, g_rad, HUGE_VAL)) continue;
     ++checked;
     arb_poly_t qp;
@@ -180,7 +248,7 @@ TEST(DoubleCentredForm, DeflatedEnclosesTheQuotientForARootKnownToAnyAccuracy) {
   arb_clear(g);
 }
 
-// What the contract excludes is refused: a non-real midpoint, |m| > 2,
+// What the contract excludes is refused: |m| > 2 (real or complex m),
 // r > 2^8; for the quotient, a constant p, |gamma_mid| > 4 or
 // gamma_rad > 1; and polynomials of degree > 64 or coefficients of 800 bits
 // are not usable.
@@ -190,8 +258,12 @@ TEST(DoubleCentredForm, RefusesWhatItsContractExcludes) {
   Balls x;
   x.set(0.5, 0.1, 0.1);
   EXPECT_TRUE(form.eval(x.v, nullptr, nullptr, x.z, HUGE_VAL));
-  arb_set_d(acb_imagref(x.z), 0x1p-30);
-  EXPECT_FALSE(form.eval(x.v, nullptr, nullptr, x.z, HUGE_VAL)) << "a non-real midpoint";
+  x.set(0.5, 0.1, 0.1, 0.25);
+  EXPECT_TRUE(form.eval(x.v, nullptr, nullptr, x.z, HUGE_VAL)) << "a complex midpoint";
+  EXPECT_FALSE(acb_is_real(x.v));
+  x.set(1.5, 0.1, 0.1, 1.5);
+  EXPECT_FALSE(form.eval(x.v, nullptr, nullptr, x.z, HUGE_VAL)) << "|m| = 2.12 > 2";
+  EXPECT_FALSE(form.eval_deflated(x.v, x.z, 0.25, 0x1p-60, HUGE_VAL)) << "|m| = 2.12 > 2";
   x.set(2.5, 0.1, 0);
   EXPECT_FALSE(form.eval(x.v, nullptr, nullptr, x.z, HUGE_VAL)) << "|m| > 2";
   x.set(0.5, 300, 0);

@@ -37,15 +37,15 @@ class DoubleCentredForm {
   bool usable() const { return !a_.empty(); }
 
   /// Enclosures of p(z), p'(z), p''(z) (outputs may be null, and may not
-  /// alias z) on a complex ball z with a real midpoint m:
+  /// alias z) on a complex ball z with midpoint m (real or complex):
   ///     p^(j)(t) in j! c_j +- (j! E_j + sum_{k>j} k!/(k-j)! (|c_k| + E_k) r^(k-j))
   /// for every t in z, with c_k the Taylor coefficients at m rounded to a
   /// double, computed in double, E_k rigorous bounds of their errors, and
   /// r >= |t - m| the hypot of z's radii (a disc holding the box). A real z
   /// (zero imaginary radius) gives real enclosures.
   /// \pre usable().
-  /// \return true with the enclosures; false (outputs unspecified) when the
-  ///       midpoint is not real or |m| > 2, r > 2^8, a bound is not finite,
+  /// \return true with the enclosures; false (outputs unspecified) when
+  ///       |m| > 2, r > 2^8, a bound is not finite,
   ///       or, for some output, the rounding part (the terms in E) exceeds
   ///       max_error times |centre| + variation (the terms in |c_k|).
   bool eval(acb_t v, acb_t d1, acb_t d2, const acb_t z, double max_error) const;
@@ -63,9 +63,10 @@ class DoubleCentredForm {
 
  private:
   struct Shift {
-    double m = 0, r = 0, eps = 0;  // centre, radius, E_k / D_k
+    double m = 0, mi = 0, r = 0, eps = 0;  // centre m + i mi, radius, E_k / D_k
     bool real = false;
-    const std::vector<double>*c = nullptr, *D = nullptr;  // c_k and D_k (thread-local)
+    // c_k (real parts; ci: imaginary parts, null for a real centre) and D_k (thread-local)
+    const std::vector<double>*c = nullptr, *ci = nullptr, *D = nullptr;
   };
   // The Taylor coefficients at z's midpoint (see eval); false as eval.
   bool shift(const acb_t z, Shift& sh) const;
