@@ -385,7 +385,6 @@ int gl_step(acb_ptr res, long* evals, Context& ctx, const acb_t a, const acb_t b
     return ARB_CALC_NO_CONVERGENCE;
   }
   const long n = kGlSteps[best];
-  if (getenv("TRACE_GL")) fprintf(stderr, "GL [%.6f, %.6f] n %ld rho %.3f evals %ld prec %ld\n", hm - hd, hm + hd, n, mag_get_d(best_rho.v), *evals, prec);
   const GlRule& rule = gl_rule(best, prec);
   arb_t x;
   arb_init(x);
