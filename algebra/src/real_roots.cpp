@@ -158,16 +158,21 @@ constexpr int kNewtonBisections = 8;
 /// lambda on a ball of radius >= 2^-23 holding it). c is the dyadic middle m, or,
 /// once w < 2^-kQuadraticNewtonBits, the Newton guess m - f(m) / f'(m) from
 /// the power basis (only a choice of c: nothing relies on its accuracy).
-/// N is rounded outward to the grid 2^-(bits+8) and widened by one grid
+/// N is rounded outward to the grid 2^-(b+8) and widened by one grid
 /// step (r is then strictly inside, so the new ends are not roots, and there
-/// is one root between them, on the side of each end where it was). Returns
+/// is one root between them, on the side of each end where it was), where
+/// b = min(bits, 2 |log2 w| + 32): a step gains at most about that much
+/// (quadratic convergence), so f(c) is evaluated at the precision this step
+/// can use, not at the final one (the early steps of a refinement to 133
+/// bits from 2^-3 took ~200-bit evaluations for gains of a few bits). Returns
 /// true when (lo, hi) was replaced by an interval at most half as wide;
 /// false (interval unchanged or narrowed less) when F holds 0 or the step
 /// gains less.
 bool interval_newton_step(const Poly& f, const Poly& df, const ScaledEvaluator& sev, Rational& lo, Rational& hi,
-                          long bits, long mag) {
+                          long target_bits, long mag) {
   const Rational w = hi - lo;
   const long ew = floor_log2(w);
+  const long bits = std::min(target_bits, 2 * std::max(0L, -ew) + 32);  // what this step can gain
   const Rational m = grid_floor((lo + hi) * Rational(1, 2), ew - 4);
   ArbVar X, M, v, F, lam, fm, N;
   {

@@ -28,7 +28,10 @@ Poly critical_numerator(const Speed& s) {
 }
 
 // The piece's left end a and its length b - a as balls at precision
-// prec + 16, for each working precision the integrands are called with (the
+// prec (the quadrature's own end balls' precision, so the ends are refined
+// once for both; t~ = (t - a) / (b - a) then carries a radius of
+// ~2^-prec / (b - a), below the integrand's own rounding), for each
+// working precision the integrands are called with (the
 // Gauss-Legendre nodes and the wider error-bound balls come at different
 // precisions). RealAlgebraic::to_ball remembers one precision only and its
 // enclosure depends on (x, prec) alone, so caching here gives exactly the
@@ -52,7 +55,7 @@ class PieceEnds {
     dt = e.dd_d;
     return e.dd_ok;
   }
-  /// The enclosure of the end b alone (at prec + 16, as a's), and as a
+  /// The enclosure of the end b alone (at prec, as a's), and as a
   /// double-word ball (false when not representable).
   const Ball& b(long prec) { return entry(prec).b; }
   bool get_dd_b(DDBall& tb, long prec) {
@@ -73,8 +76,8 @@ class PieceEnds {
       if (e.prec == prec) return e;
     Entry e;
     e.prec = prec;
-    e.a = a_.to_ball(prec + 16);
-    e.b = b_.to_ball(prec + 16);
+    e.a = a_.to_ball(prec);
+    e.b = b_.to_ball(prec);
     arb_sub(e.d.get(), e.b.get(), e.a.get(), prec + 16);
     e.dd_ok = dd_set_arb(e.dd_a, e.a.get()) && dd_set_arb(e.dd_b, e.b.get()) && dd_set_arb(e.dd_d, e.d.get());
     entries_.push_back(std::move(e));
@@ -355,9 +358,9 @@ std::vector<std::vector<PieceIntegrals>> all_piece_integrals(const Speed& s, con
   // two workers from refining one number at the same time. The enclosures
   // the integrals use depend on (t, prec) alone, not on how far t was
   // refined before (RealAlgebraic::to_ball), so nothing else changes. The
-  // integrands ask for rel_goal_bits + 83 bits at the first attempt when no
-  // cancellation raises it (working precision rel_goal_bits + 32, ends at
-  // + 16, to_ball's refinement + 35).
+  // integrands ask for rel_goal_bits + 67 bits at the first attempt when no
+  // cancellation raises it (working precision rel_goal_bits + 32, to_ball's
+  // refinement + 35).
   // The numbers are independent (each refinement is an exact root
   // refinement of its own), so they are refined on the workers too; a
   // number's copies share one locked state, so each is refined once.
@@ -365,13 +368,13 @@ std::vector<std::vector<PieceIntegrals>> all_piece_integrals(const Speed& s, con
   std::vector<std::pair<const RealAlgebraic*, long>> to_refine;
   for (const PieceJob& j : jobs) {
     for (const Breakpoint& b : j.T)
-      if (!b.t.is_rational()) to_refine.emplace_back(&b.t, j.rel_goal_bits + 83);
+      if (!b.t.is_rational()) to_refine.emplace_back(&b.t, j.rel_goal_bits + 67);
     most_bits = std::max(most_bits, j.rel_goal_bits);
   }
   if (!to_refine.empty())
     parallel_for(to_refine.size(), std::min(worker_count(), to_refine.size()),
                  [&](std::size_t, std::size_t i) { to_refine[i].first->refine(to_refine[i].second); });
-  for (const SpeedZero& z : s.zeros()) z.t.refine(most_bits + 83);  // mostly breakpoints already
+  for (const SpeedZero& z : s.zeros()) z.t.refine(most_bits + 67);  // mostly breakpoints already
   std::vector<Speed> speeds;
   std::vector<std::vector<PieceJob>> job_copies;
   for (std::size_t w = 1; w < workers; ++w) {
