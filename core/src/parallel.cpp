@@ -60,7 +60,12 @@ struct Job {
   }
 };
 
-thread_local bool t_in_pool = false;  // true on the pool's threads
+/// The number of pools: a parallel_for made inside a task of another (an
+/// operation's steps side by side, each with its own parallel loops) takes
+/// the next pool, whose threads are as persistent as the first's. Deeper
+/// nesting gets threads of its own.
+constexpr int kPools = 4;
+thread_local int t_pool = -1;  // the pool this thread belongs to (-1: none)
 
 /// How long a pool thread that finished its items, and a caller waiting for
 /// the pool threads, poll before they block on a condition variable. A
@@ -91,12 +96,14 @@ bool spin_until(Ready ready) {
 /// instead of being rebuilt by fresh threads at every call. Pool thread k
 /// (k >= 1) is worker k of every job that uses at least k + 1 workers.
 /// One job at a time: a call that finds the pool in use (from another
-/// thread, or from inside a task) gets threads of its own instead.
+/// thread, or from inside a task) takes the next pool (parallel_for), and
+/// threads of its own when all kPools are.
 class Pool {
  public:
-  static Pool& instance() {
-    static Pool pool;
-    return pool;
+  /// Pool k (0 <= k < kPools); pool k's threads know they belong to it.
+  static Pool& instance(int k) {
+    static Pool pools[kPools] = {Pool(0), Pool(1), Pool(2), Pool(3)};
+    return pools[k];
   }
 
   /// Runs job on the calling thread (worker 0) and pool threads 1..workers-1;
@@ -139,10 +146,10 @@ class Pool {
   }
 
  private:
-  Pool() = default;
+  explicit Pool(int level) : level_(level) {}
 
   void loop(std::size_t k) {
-    t_in_pool = true;
+    t_pool = level_;
     std::uint64_t seen = 0;
     for (;;) {
       Job* job = nullptr;
@@ -170,6 +177,7 @@ class Pool {
     flint_cleanup();  // this thread's FLINT/Arb caches
   }
 
+  int level_;                        // this pool's index (Pool::instance)
   std::atomic<bool> in_use_{false};  // a parallel_for is using the pool
   std::mutex m_;    // guards everything below
   std::condition_variable wake_, done_;
@@ -208,7 +216,12 @@ void parallel_for(std::size_t n, std::size_t max_workers, const std::function<vo
     return;
   }
   Job job(n, workers, task);
-  if (t_in_pool || !Pool::instance().run(job)) run_on_fresh_threads(job);
+  // A free pool after the calling thread's own (the caller is worker 0 of
+  // whatever job it is running; the pools before its own may be busy with
+  // the job it belongs to).
+  bool ran = false;
+  for (int k = t_pool + 1; k < kPools && !ran; ++k) ran = Pool::instance(k).run(job);
+  if (!ran) run_on_fresh_threads(job);
   if (job.error) std::rethrow_exception(job.error);
 }
 

@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <algorithm>
+#include <mutex>
+#include <chrono>
 #include <set>
 #include <stdexcept>
 #include <thread>
@@ -95,6 +98,34 @@ TEST(Parallel, NestedCallsRunEveryItemOnce) {
   });
   EXPECT_FALSE(out_of_range);
   for (std::size_t k = 0; k < runs.size(); ++k) EXPECT_EQ(runs[k].load(), 1) << "item " << k;
+}
+
+// A loop nested in a task (an operation's steps side by side, each with
+// its own loop) runs on persistent threads too: the inner worker 1 is the
+// same thread from one outer call to the next (a thread-local counter there
+// keeps counting), so its FLINT/Arb caches stay warm. With threads started
+// for each call the counter would restart at every round.
+thread_local long t_items = 0;
+
+TEST(Parallel, NestedCallsRunOnPersistentThreads) {
+  long most = 0;
+  std::mutex m;
+  const int rounds = 10;
+  for (int round = 0; round < rounds; ++round)
+    parallel_for(2, 2, [&](std::size_t w, std::size_t) {
+      if (w != 0) {  // the calling thread's task nests a loop (this one keeps the other item)
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        return;
+      }
+      parallel_for(2, 2, [&](std::size_t v, std::size_t) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));  // both workers get an item
+        if (v != 1) return;
+        const long seen = ++t_items;
+        std::lock_guard<std::mutex> lock(m);
+        most = std::max(most, seen);
+      });
+    });
+  EXPECT_GE(most, rounds / 2);  // threads of each call's own: at most 2
 }
 
 TEST(Parallel, ConcurrentCallsRunEveryItemOnce) {

@@ -26,10 +26,12 @@ std::size_t worker_count();
 /// has finished, and the caller waiting for the pool threads, poll for up to
 /// 0.5 ms before they sleep, so that the calls of one operation (each a
 /// fraction of a millisecond at low degree) do not wait for a thread to be
-/// woken and rescheduled. The pool runs one call
-/// at a time: a call made while it is busy (from another thread, or nested
-/// inside a task) runs on threads of its own, started for the call and
-/// released (caches included) when it returns. Which thread runs which item
+/// woken and rescheduled. A pool runs one call at a time: a call made while
+/// it is busy (from another thread, or nested inside a task, e.g. an
+/// operation's steps side by side with loops of their own) takes the next
+/// of four such pools, equally persistent, and when all are busy runs on
+/// threads of its own, started for the call and released (caches included)
+/// when it returns. Which thread runs which item
 /// is not fixed either way, so tasks must not depend on it beyond `worker`.
 /// \post all items ran, or the first exception thrown by a task is rethrown
 ///       here after every worker has stopped (items not yet started are
