@@ -48,27 +48,24 @@ class PieceEnds {
     acb_set_arb(ta, e.a.get());
     acb_set_arb(dt, e.d.get());
   }
-  /// The same as double-word balls; false when they are not representable.
-  bool get_dd(DDBall& ta, DDBall& dt, long prec) {
+  /// a, b, dt = b - a and 1 / dt as double-word balls (1 / dt holds 1 / d
+  /// for every d in dt's ball).
+  struct DD {
+    DDBall a, b, dt, inv_dt;
+  };
+  /// The ends as double-word balls; null when they are not representable.
+  const DD* get_dd(long prec) {
     const Entry& e = entry(prec);
-    ta = e.dd_a;
-    dt = e.dd_d;
-    return e.dd_ok;
+    return e.dd_ok ? &e.dd : nullptr;
   }
-  /// The enclosure of the end b alone (at prec, as a's), and as a
-  /// double-word ball (false when not representable).
+  /// The enclosure of the end b alone (at prec, as a's).
   const Ball& b(long prec) { return entry(prec).b; }
-  bool get_dd_b(DDBall& tb, long prec) {
-    const Entry& e = entry(prec);
-    tb = e.dd_b;
-    return e.dd_ok;
-  }
 
  private:
   struct Entry {
     long prec = 0;
     Ball a, b, d;
-    DDBall dd_a, dd_b, dd_d;  // a, b, d as double words (when dd_ok)
+    DD dd;  // a, b, d, 1 / d as double words (when dd_ok)
     bool dd_ok = false;
   };
   Entry& entry(long prec) {
@@ -79,7 +76,8 @@ class PieceEnds {
     e.a = a_.to_ball(prec);
     e.b = b_.to_ball(prec);
     arb_sub(e.d.get(), e.b.get(), e.a.get(), prec + 16);
-    e.dd_ok = dd_set_arb(e.dd_a, e.a.get()) && dd_set_arb(e.dd_b, e.b.get()) && dd_set_arb(e.dd_d, e.d.get());
+    e.dd_ok = dd_set_arb(e.dd.a, e.a.get()) && dd_set_arb(e.dd.b, e.b.get()) && dd_set_arb(e.dd.dt, e.d.get()) &&
+              dd_div(e.dd.inv_dt, dd_from_double(1), e.dd.dt);
     entries_.push_back(std::move(e));
     return entries_.back();
   }
@@ -268,10 +266,12 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
   // at gamma; close to it, sigma^2's cancellation shows in its radius and
   // the accuracy check below sends the node to f, which deflates).
   qo.node_fast = [&s, &ends, side, mu](DDBall* out, const DDBall& t, long prec) {
-    DDBall ta, dt, tb, v, tt, st;
-    if (!ends.get_dd(ta, dt, prec) || !ends.get_dd_b(tb, prec)) return false;
+    const PieceEnds::DD* e = ends.get_dd(prec);
+    if (!e) return false;
+    const DDBall &ta = e->a, &tb = e->b, &dt = e->dt;
+    DDBall v, st;
     if (!s.eval_dd(v, t, Speed::PieceSigns{}, true, prec)) return false;
-    if (!dd_div(tt, dd_sub(t, ta), dt)) return false;  // t~
+    const DDBall tt = dd_mul(dd_sub(t, ta), e->inv_dt);  // t~
     const DDBall one = dd_from_double(1);
     if (side == ZeroSide::None) {
       v = dd_mul(v, dt);  // rho = Delta t
@@ -292,9 +292,10 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
       st = side == ZeroSide::Left ? p : dd_sub(one, p);
     }
     const DDBall w = dd_sub(one, st);  // 1 - s~
-    out[0] = dd_mul(dd_mul(w, w), v);
-    out[1] = dd_mul_2exp(dd_mul(dd_mul(w, st), v), 1);
-    out[2] = dd_mul(dd_mul(st, st), v);
+    const DDBall wv = dd_mul(w, v), sv = dd_mul(st, v);
+    out[0] = dd_mul(wv, w);
+    out[1] = dd_mul_2exp(dd_mul(wv, st), 1);
+    out[2] = dd_mul(sv, st);
     const double goal = std::ldexp(1.0, -static_cast<int>(prec - kNodeFastSlackBits));
     for (int k = 0; k < (side == ZeroSide::None ? 3 : 4); ++k)
       if (!(dd_rel_rad(out[k]) <= goal)) return false;
