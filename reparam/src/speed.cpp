@@ -69,6 +69,11 @@ struct SpeedDD {
   std::vector<DDPoly> M;
   DDPoly L;
   bool unit_den = false;  // L == 1 (a polynomial curve)
+  // The angular speed with L != 1: A_i = M_i' L - M_i L' as polynomials
+  // (B_i = A_i'), where they are double words losing few bits: one Horner
+  // pass for A_i and A_i' instead of M_i and L with two derivatives each and
+  // four products. Empty otherwise.
+  std::vector<DDPoly> A;
 };
 }  // namespace detail
 
@@ -124,6 +129,19 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
       ok = dd->L.usable() && dd->L.cancellation_bits() <= kDDMaxLoss;
     }
     for (const DDPoly& m : dd->M) ok = ok && m.usable() && m.cancellation_bits() <= kDDMaxLoss;
+    if (ok && kind == SpeedKind::Angular && !dd->unit_den) {
+      const Poly L1 = L.derivative();
+      bool a_ok = true;
+      for (const auto& x : c.components()) {
+        const Poly M = x.num() * divexact(L, x.den());
+        const Poly A = M.derivative() * L - M * L1;
+        if (!(a_ok = A.degree() <= kDDMaxDegree)) break;
+        dd->A.emplace_back(A);
+        a_ok = dd->A.back().usable() && dd->A.back().cancellation_bits() <= kDDMaxLoss;
+        if (!a_ok) break;
+      }
+      if (!a_ok) dd->A.clear();
+    }
     if (ok) dd_ = std::move(dd);
   }
   const auto& X = c.derivative_numerators();
@@ -441,7 +459,9 @@ using namespace dd_detail;
 //   x_i' x_j'' - x_i'' x_j' = C_ij / L^4,         C_ij = A_i B_j - A_j B_i,
 // and L cancels from the angular speed: sigma = sqrt(sum C_ij^2) / S
 // (plane: C_12 / S, times the piece's sign); the parametric one is
-// sqrt(S) / L^2. A polynomial curve (L = 1) has A_i = M_i', B_i = M_i''.
+// sqrt(S) / L^2. A polynomial curve (L = 1) has A_i = M_i', B_i = M_i''; a
+// rational one's angular speed takes A_i and A_i' = B_i from A_i's own
+// power basis where SpeedDD::A holds it.
 // False where a ball is not finite, a divisor's ball holds 0 or a square
 // root's holds a non-positive number.
 template <bool F>
@@ -450,8 +470,13 @@ template <bool F>
   const std::size_t n = dd.M.size();
   DDBall A[3], B[3];  // curves of up to 3 components take this path
   DDBall q, q1, q2;
-  if (!dd.unit_den && !dd.L.eval_t<F>(&q, &q1, angular ? &q2 : nullptr, x)) return false;
+  const bool direct = angular && !dd.A.empty();  // A_i and B_i = A_i' from their own polynomials
+  if (!dd.unit_den && !direct && !dd.L.eval_t<F>(&q, &q1, angular ? &q2 : nullptr, x)) return false;
   for (std::size_t i = 0; i < n; ++i) {
+    if (direct) {
+      if (!dd.A[i].eval_t<F>(A + i, B + i, nullptr, x)) return false;
+      continue;
+    }
     if (dd.unit_den) {
       if (!dd.M[i].eval_t<F>(nullptr, A + i, angular ? B + i : nullptr, x)) return false;
       continue;
