@@ -334,47 +334,33 @@ void Speed::eval_derivatives(acb_ptr d1, acb_ptr d2, const acb_t z, long prec) c
 
 void Speed::eval_components(acb_t S, acb_t F, const acb_t z, long prec) const {
   const slong n = static_cast<slong>(comp_.size());
-  bool common = kind_ == SpeedKind::Angular && !comp_.empty() && !comp_[0].unit_den;
+  const bool angular = kind_ == SpeedKind::Angular;
+  bool common = angular && !comp_.empty() && !comp_[0].unit_den;
   for (const Component& k : comp_) common = common && k.q_index == comp_[0].q_index;
+  acb_ptr d1 = _acb_vec_init(2 * n);
+  acb_ptr d2 = angular ? d1 + n : nullptr;
   if (common) {
     // One denominator Q (a rational curve's weight): with A_i = N_i' Q -
-    // N_i Q' and B_i = N_i'' Q - N_i Q'', sum A_i^2 = Q^4 sum x_i'^2 and
-    // A_i B_j - A_j B_i = Q^4 (x_i' x_j'' - x_i'' x_j') (eval_dd's formula),
-    // so S and F come scaled by Q^4 and Q^8 (E by Q^4), which sigma's ratios
-    // F / S^2, E / S do not see: no division by Q, whose complex zeros
-    // (the curve's poles, not sigma's) no longer spoil wide balls.
-    acb_ptr A = _acb_vec_init(2 * n);
-    acb_ptr B = A + n;
+    // N_i Q' and B_i = N_i'' Q - N_i Q'' in place of x_i' and x_i'',
+    // sum A_i^2 = Q^4 sum x_i'^2 and A_i B_j - A_j B_i = Q^4 (x_i' x_j'' -
+    // x_i'' x_j') (eval_dd's formula), so S and F come scaled by Q^4 and Q^8
+    // (E by Q^4), which sigma's ratios F / S^2, E / S do not see: no
+    // division by Q, whose complex zeros (the curve's poles, not sigma's) no
+    // longer spoil wide balls.
     acb_t nv, n1, n2, q, q1, q2;
     for (acb_ptr x : {nv, n1, n2, q, q1, q2}) acb_init(x);
     comp_[0].Q.eval(q, q1, q2, z, prec);
     for (slong i = 0; i < n; ++i) {
       comp_[static_cast<std::size_t>(i)].N.eval(nv, n1, n2, z, prec);
-      acb_mul(A + i, n1, q, prec);
-      acb_submul(A + i, nv, q1, prec);
-      acb_mul(B + i, n2, q, prec);
-      acb_submul(B + i, nv, q2, prec);
+      acb_mul(d1 + i, n1, q, prec);
+      acb_submul(d1 + i, nv, q1, prec);
+      acb_mul(d2 + i, n2, q, prec);
+      acb_submul(d2 + i, nv, q2, prec);
     }
-    acb_zero(S);
-    for (slong i = 0; i < n; ++i) acb_addmul(S, A + i, A + i, prec);
-    acb_t e;
-    acb_init(e);
-    acb_zero(F);
-    for (slong i = 0; i < n; ++i)
-      for (slong j = i + 1; j < n; ++j) {
-        acb_mul(e, A + i, B + j, prec);
-        acb_submul(e, A + j, B + i, prec);
-        if (n == 2) acb_set(F, e);
-        else acb_addmul(F, e, e, prec);
-      }
-    acb_clear(e);
     for (acb_ptr x : {nv, n1, n2, q, q1, q2}) acb_clear(x);
-    _acb_vec_clear(A, 2 * n);
-    return;
+  } else {
+    eval_derivatives(d1, d2, z, prec);
   }
-  acb_ptr d1 = _acb_vec_init(n);
-  acb_ptr d2 = kind_ == SpeedKind::Angular ? _acb_vec_init(n) : nullptr;
-  eval_derivatives(d1, d2, z, prec);
   acb_zero(S);
   for (slong i = 0; i < n; ++i) acb_addmul(S, d1 + i, d1 + i, prec);
   if (d2) {
@@ -389,9 +375,8 @@ void Speed::eval_components(acb_t S, acb_t F, const acb_t z, long prec) const {
         else acb_addmul(F, e, e, prec);
       }
     acb_clear(e);
-    _acb_vec_clear(d2, n);
   }
-  _acb_vec_clear(d1, n);
+  _acb_vec_clear(d1, 2 * n);
 }
 
 void Speed::eval_g(acb_t out, const acb_t z, long prec, std::size_t skip) const {

@@ -254,6 +254,51 @@ TEST(Quadrature, SubdividesWithoutDirectEvaluationsWhereGaussLegendreSucceeds) {
   EXPECT_LE(direct, 1) << "direct evaluations on subintervals";
 }
 
+/// The calls the quadrature of 1 / ((t - 1/2)^2 + (a_num/20)^2) over [0, 1]
+/// made: ellipse bounds (analytic) and narrow real points.
+struct PolePairCalls {
+  long ellipses = 0, nodes = 0;
+};
+
+/// That quadrature at a 53-bit goal; checks that the result holds the exact
+/// (2 / a) atan(1 / (2 a)) and meets the goal, and returns the calls.
+PolePairCalls integrate_pole_pair(long a_num) {
+  PolePairCalls calls;
+  Integrand f = [&](acb_t out, const acb_t z, bool analytic, long prec) {
+    if (analytic) ++calls.ellipses;
+    else if (mag_cmp_2exp_si(arb_radref(acb_realref(z)), -30) < 0) ++calls.nodes;
+    acb_t h;
+    acb_init(h);
+    acb_set_ui(h, 1);
+    acb_mul_2exp_si(h, h, -1);
+    acb_sub(out, z, h, prec);  // t - 1/2
+    acb_mul(out, out, out, prec);
+    acb_set_ui(h, static_cast<ulong>(a_num * a_num));
+    acb_div_ui(h, h, 400, prec);  // a^2
+    acb_add(out, out, h, prec);
+    acb_inv(out, out, prec);
+    acb_clear(h);
+  };
+  QuadratureOptions opt;
+  opt.rel_goal_bits = 53;
+  const Ball r = integrate(f, Rational(0), Rational(1), opt);
+  arb_t ref, a;  // (2 / a) atan(1 / (2 a))
+  arb_init(ref);
+  arb_init(a);
+  arb_set_ui(a, static_cast<ulong>(a_num));
+  arb_div_ui(a, a, 20, 256);
+  arb_mul_2exp_si(ref, a, 1);
+  arb_inv(ref, ref, 256);
+  arb_atan(ref, ref, 256);
+  arb_mul_2exp_si(ref, ref, 1);
+  arb_div(ref, ref, a, 256);
+  EXPECT_TRUE(overlaps(r, ref)) << "a = " << a_num << "/20: " << r.str(30);
+  EXPECT_TRUE(meets_rel(r, 53)) << r.str(30);
+  arb_clear(ref);
+  arb_clear(a);
+  return calls;
+}
+
 TEST(Quadrature, SmallEllipseSavesTheBisectionOfAPoleJustOutsideIt) {
   // f = 1 / ((t - 1/2)^2 + a^2) on [0, 1], poles at 1/2 +- a i. On the
   // bounding box of the ellipse X (half-widths X/2 and sqrt(X^2 - 1)/2 here),
@@ -264,91 +309,26 @@ TEST(Quadrature, SmallEllipseSavesTheBisectionOfAPoleJustOutsideIt) {
   // the first of its two upper-half boxes (which holds the pole 1/2 + a i:
   // the second is not tried) and X = 5/4 (Arb's rule fails at X = 2 and
   // bisects: two more ellipses at least).
-  for (long a_num : {16L, 20L}) {  // a = 4/5, 1
-    long ellipses = 0;
-    Integrand f = [&](acb_t out, const acb_t z, bool analytic, long prec) {
-      if (analytic) ++ellipses;
-      acb_t h;
-      acb_init(h);
-      acb_set_ui(h, 1);
-      acb_mul_2exp_si(h, h, -1);
-      acb_sub(out, z, h, prec);  // t - 1/2
-      acb_mul(out, out, out, prec);
-      acb_set_ui(h, static_cast<ulong>(a_num * a_num));
-      acb_div_ui(h, h, 400, prec);  // a^2
-      acb_add(out, out, h, prec);
-      acb_inv(out, out, prec);
-      acb_clear(h);
-    };
-    QuadratureOptions opt;
-    opt.rel_goal_bits = 53;
-    const Ball r = integrate(f, Rational(0), Rational(1), opt);
-    arb_t ref, a;  // (2 / a) atan(1 / (2 a))
-    arb_init(ref);
-    arb_init(a);
-    arb_set_ui(a, static_cast<ulong>(a_num));
-    arb_div_ui(a, a, 20, 256);
-    arb_mul_2exp_si(ref, a, 1);
-    arb_inv(ref, ref, 256);
-    arb_atan(ref, ref, 256);
-    arb_mul_2exp_si(ref, ref, 1);
-    arb_div(ref, ref, a, 256);
-    EXPECT_TRUE(overlaps(r, ref)) << "a = " << a_num << "/20: " << r.str(30);
-    EXPECT_TRUE(meets_rel(r, 53)) << r.str(30);
-    EXPECT_EQ(ellipses, 3) << "a = " << a_num << "/20";
-    arb_clear(ref);
-    arb_clear(a);
-  }
+  for (long a_num : {16L, 20L})  // a = 4/5, 1
+    EXPECT_EQ(integrate_pole_pair(a_num).ellipses, 3) << "a = " << a_num << "/20";
 }
 
 TEST(Quadrature, UpperHalfBoxesServeWhereTheBoundingBoxReachesAPole) {
-  // f = 1 / ((t - 1/2)^2 + a^2) on [0, 1] for a in [1.2, 1.3]: the poles
-  // 1/2 +- a i lie outside the ellipse X = 2 (semi-minor axis 0.866) but in
-  // reach of ball arithmetic on its bounding box (Re (z - 1/2)^2 in
-  // +-1.75 > a^2), so that box fails (for a below ~1.1 the halves' balls
-  // reach the poles too). The two boxes [0, X] x [0, Y] and
-  // [-X, 0] x [0, Y] (around the midpoint, times the half-length) cover the
-  // upper half of the ellipse with half the radius, and f, real on [0, 1],
-  // is bounded on the lower half by reflection: the step must succeed on
-  // X = 2 after exactly four ellipse evaluations (the bounding box, the two
-  // halves, X = 4's box), with the nodes of rho = 3.73 (at most 30 for
-  // this goal) where the small ellipse X = 5/4 (rho = 2) takes over 30.
+  // The same f for a in [1.2, 1.3]: the poles 1/2 +- a i lie outside the
+  // ellipse X = 2 (semi-minor axis 0.866) but in reach of ball arithmetic on
+  // its bounding box (Re (z - 1/2)^2 in +-1.75 > a^2), so that box fails (for
+  // a below ~1.1 the halves' balls reach the poles too). The two boxes
+  // [0, X] x [0, Y] and [-X, 0] x [0, Y] (around the midpoint, times the
+  // half-length) cover the upper half of the ellipse with half the radius,
+  // and f, real on [0, 1], is bounded on the lower half by reflection: the
+  // step must succeed on X = 2 after exactly four ellipse evaluations (the
+  // bounding box, the two halves, X = 4's box), with the nodes of
+  // rho = 3.73 (at most 30 for this goal) where the small ellipse X = 5/4
+  // (rho = 2) takes over 30.
   for (long a_num : {24L, 25L, 26L}) {  // a = 1.2 .. 1.3
-    long ellipses = 0, nodes = 0;
-    Integrand f = [&](acb_t out, const acb_t z, bool analytic, long prec) {
-      if (analytic) ++ellipses;
-      else if (mag_cmp_2exp_si(arb_radref(acb_realref(z)), -30) < 0) ++nodes;
-      acb_t h;
-      acb_init(h);
-      acb_set_ui(h, 1);
-      acb_mul_2exp_si(h, h, -1);
-      acb_sub(out, z, h, prec);  // t - 1/2
-      acb_mul(out, out, out, prec);
-      acb_set_ui(h, static_cast<ulong>(a_num * a_num));
-      acb_div_ui(h, h, 400, prec);  // a^2
-      acb_add(out, out, h, prec);
-      acb_inv(out, out, prec);
-      acb_clear(h);
-    };
-    QuadratureOptions opt;
-    opt.rel_goal_bits = 53;
-    const Ball r = integrate(f, Rational(0), Rational(1), opt);
-    arb_t ref, a;  // (2 / a) atan(1 / (2 a))
-    arb_init(ref);
-    arb_init(a);
-    arb_set_ui(a, static_cast<ulong>(a_num));
-    arb_div_ui(a, a, 20, 256);
-    arb_mul_2exp_si(ref, a, 1);
-    arb_inv(ref, ref, 256);
-    arb_atan(ref, ref, 256);
-    arb_mul_2exp_si(ref, ref, 1);
-    arb_div(ref, ref, a, 256);
-    EXPECT_TRUE(overlaps(r, ref)) << "a = " << a_num << "/20: " << r.str(30);
-    EXPECT_TRUE(meets_rel(r, 53)) << r.str(30);
-    EXPECT_EQ(ellipses, 4) << "a = " << a_num << "/20";
-    EXPECT_LE(nodes, 30 + 7) << "a = " << a_num << "/20";  // (+ the start-precision probe's 7 points)
-    arb_clear(ref);
-    arb_clear(a);
+    const PolePairCalls calls = integrate_pole_pair(a_num);
+    EXPECT_EQ(calls.ellipses, 4) << "a = " << a_num << "/20";
+    EXPECT_LE(calls.nodes, 30 + 7) << "a = " << a_num << "/20";  // (+ the start-precision probe's 7 points)
   }
 }
 
