@@ -305,6 +305,20 @@ bool refine_isolating_interval(const Poly& f, Rational& lo, Rational& hi, long b
   const long mag = magnitude_bits(lo, hi);
   const Poly df = f.derivative();
   int s_lo = 0;  // the sign of f at lo, once asked
+  // One bisection by the exact sign at a short dyadic in the middle half of
+  // (lo, hi): true when that dyadic is the root (lo = hi = it).
+  auto bisect = [&]() {
+    if (s_lo == 0) s_lo = exact_sign(f, lo);
+    if (s_lo == 0) throw InvalidArgument("refine: the lower end " + lo.str() + " is a root of " + f.str());
+    const Rational m = grid_floor((lo + hi) * Rational(1, 2), floor_log2(hi - lo) - 2);
+    const int sm = exact_sign(f, m);
+    if (sm == 0) {
+      lo = hi = m;
+      return true;
+    }
+    if (sm == s_lo) lo = m; else hi = m;
+    return false;
+  };
   if (sev && sev->ev) {
     // Where a step fails (f' on a wide isolating interval holds 0: the
     // interval may hold a zero of f', or the bound is loose there), a
@@ -319,12 +333,7 @@ bool refine_isolating_interval(const Poly& f, Rational& lo, Rational& hi, long b
       check_time_budget();
       if (!interval_newton_step(f, df, *sev, lo, hi, bits, mag)) {
         if (++bisections > max_bisections) break;
-        if (s_lo == 0) s_lo = exact_sign(f, lo);
-        if (s_lo == 0) throw InvalidArgument("refine: the lower end " + lo.str() + " is a root of " + f.str());
-        const Rational m = grid_floor((lo + hi) * Rational(1, 2), floor_log2(w) - 2);
-        const int sm = exact_sign(f, m);
-        if (sm == 0) { lo = hi = m; return true; }
-        if (sm == s_lo) lo = m; else hi = m;
+        if (bisect()) return true;
       }
       w = hi - lo;
     }
@@ -348,13 +357,13 @@ bool refine_isolating_interval(const Poly& f, Rational& lo, Rational& hi, long b
       throw BudgetExceeded("could not refine the root of " + f.str() + " to 2^-" + std::to_string(bits) +
                            " within " + std::to_string(cap) + " steps");
     const long ew = floor_log2(w);  // 2^ew <= w < 2^(ew+1)
-    bool bisect = log_n < 2;
-    if (!bisect) {
+    bool halve = log_n < 2;
+    if (!halve) {
       const long s = std::max(ew - log_n, -bits - 1);  // grid spacing 2^s
       Rational guess;
       if (!newton_guess(f, df, lo, hi, s, extra, guess)) {
         log_n /= 2;
-        bisect = true;
+        halve = true;
       } else {
         // Candidate [g - 2^s, g + 2^s] around the grid point g nearest to the
         // guess, clipped to (lo, hi); certified by exact signs at its ends.
@@ -382,12 +391,8 @@ bool refine_isolating_interval(const Poly& f, Rational& lo, Rational& hi, long b
         }
       }
     }
-    if (bisect) {
-      // A short dyadic in the middle half of (lo, hi).
-      const Rational m = grid_floor((lo + hi) * Rational(1, 2), ew - 2);
-      const int sm = exact_sign(f, m);
-      if (sm == 0) { lo = hi = m; return true; }
-      if (sm == s_lo) lo = m; else hi = m;
+    if (halve) {
+      if (bisect()) return true;
       if (log_n < 2) log_n = 2;
     }
     w = hi - lo;

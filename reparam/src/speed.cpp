@@ -117,11 +117,12 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
       L = divexact(L * x.den(), gcd(L, x.den()));
       ok = L.degree() <= kDDMaxDegree;
     }
+    std::vector<Poly> Ms;  // M_i, exactly
     for (const auto& x : c.components()) {
       if (!ok) break;
-      const Poly M = x.num() * divexact(L, x.den());
-      ok = M.degree() <= kDDMaxDegree;
-      if (ok) dd->M.emplace_back(M);
+      Ms.push_back(x.num() * divexact(L, x.den()));
+      ok = Ms.back().degree() <= kDDMaxDegree;
+      if (ok) dd->M.emplace_back(Ms.back());
     }
     if (ok) {
       dd->unit_den = L == Poly(1);
@@ -132,8 +133,7 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
     if (ok && kind == SpeedKind::Angular && !dd->unit_den) {
       const Poly L1 = L.derivative();
       bool a_ok = true;
-      for (const auto& x : c.components()) {
-        const Poly M = x.num() * divexact(L, x.den());
+      for (const Poly& M : Ms) {
         const Poly A = M.derivative() * L - M * L1;
         if (!(a_ok = A.degree() <= kDDMaxDegree)) break;
         dd->A.emplace_back(A);

@@ -30,7 +30,7 @@
 #include "uniparam/core/dd_ball.hpp"
 
 // UNIPARAM_DD_FMA marks a function compiled for processors with FMA; the
-// templates it instantiates with F = kDDHaveFmaTarget are inlined into it
+// templates it instantiates with F = dd_detail::kHaveFmaTarget are inlined into it
 // (always_inline), so __builtin_fma is one instruction. Elsewhere (other
 // compilers or architectures) there is one path, F = false.
 #if (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__)
@@ -112,7 +112,7 @@ struct DW {
 }
 
 // F: the processor's fused multiply-add (only inside functions compiled for
-// it, see UNIPARAM_FMA below); otherwise Dekker's splitting.
+// it, see UNIPARAM_DD_FMA above); otherwise Dekker's splitting.
 template <bool F>
 [[gnu::always_inline]] inline DW two_prod(double a, double b) {
   const double p = a * b;
