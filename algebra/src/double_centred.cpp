@@ -72,7 +72,6 @@ bool DoubleCentredForm::shift(const acb_t z, Shift& sh) const {
   if (!(am <= 2)) return false;
   const double ry = mag_get_d(arb_radref(acb_imagref(z)));  // upper bounds
   const double rx = mag_get_d(arb_radref(acb_realref(z)));
-  sh.real = ry == 0 && sh.mi == 0;
   // |mid(z) - m| <= 2^-53 |m| in each part (+ 2^-1075 if subnormal)
   sh.r = (std::hypot(rx, ry) + am * 0x1p-52 + 0x1p-1000) * (1 + 0x1p-50);
   if (!(sh.r <= 256)) return false;
@@ -121,7 +120,7 @@ void set_out(acb_t out, double centre, double centre_im, double rad, bool real) 
 
 }  // namespace
 
-bool DoubleCentredForm::eval(acb_t v, acb_t d1, acb_t d2, const acb_t z, double max_error) const {
+bool DoubleCentredForm::eval_disks(CDisk* v, CDisk* d1, CDisk* d2, const acb_t z, double max_error) const {
   Shift sh;
   if (!shift(z, sh)) return false;
   const std::vector<double>& c = *sh.c;
@@ -130,9 +129,9 @@ bool DoubleCentredForm::eval(acb_t v, acb_t d1, acb_t d2, const acb_t z, double 
   const double r = sh.r, eps = sh.eps;
   const std::size_t n = a_.size() - 1;
   auto abs_c = [&](std::size_t k) { return ci ? std::hypot(c[k], (*ci)[k]) : std::fabs(c[k]); };
-  acb_ptr outs[3] = {v, d1, d2};
+  CDisk* outs[3] = {v, d1, d2};
   for (std::size_t j = 0; j <= 2; ++j) {
-    acb_ptr out = outs[j];
+    CDisk* out = outs[j];
     if (!out) continue;
     // sum_{k>j} k!/(k-j)! |c_k| r^(k-j) (the variation) and the same with
     // E_k (the rounding part), by Horner
@@ -148,8 +147,19 @@ bool DoubleCentredForm::eval(acb_t v, acb_t d1, acb_t d2, const acb_t z, double 
     const double rad = (var + err) * (1 + 0x1p-40) + kUnderflowSlack;
     if (!std::isfinite(rad) || !std::isfinite(centre) || !std::isfinite(centre_im)) return false;
     if (err > max_error * (std::hypot(centre, centre_im) + var)) return false;
-    set_out(out, centre, centre_im, rad, sh.real);
+    *out = CDisk{centre, centre_im, rad};
   }
+  return true;
+}
+
+bool DoubleCentredForm::eval(acb_t v, acb_t d1, acb_t d2, const acb_t z, double max_error) const {
+  CDisk o[3];
+  if (!eval_disks(v ? &o[0] : nullptr, d1 ? &o[1] : nullptr, d2 ? &o[2] : nullptr, z, max_error)) return false;
+  // a real z gives real values: the disc's real segment
+  const bool real = arb_is_zero(acb_imagref(z));
+  acb_ptr outs[3] = {v, d1, d2};
+  for (int j = 0; j < 3; ++j)
+    if (outs[j]) set_out(outs[j], o[j].re, o[j].im, o[j].rad, real);
   return true;
 }
 
@@ -219,7 +229,7 @@ bool DoubleCentredForm::eval_deflated(acb_t v, const acb_t z, double gamma_mid, 
   const double rad = (var + rerr) * (1 + 0x1p-40) + kUnderflowSlack;
   if (!std::isfinite(rad) || !std::isfinite(b[0]) || !std::isfinite(bi[0])) return false;
   if (rerr > max_error * (std::hypot(b[0], bi[0]) + var)) return false;
-  set_out(v, b[0], bi[0], rad, sh.real);
+  set_out(v, b[0], bi[0], rad, arb_is_zero(acb_imagref(z)));
   return true;
 }
 

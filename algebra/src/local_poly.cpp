@@ -492,7 +492,8 @@ LocalPoly::LocalPoly(const Poly& p)
   if (n < 0 || n > std::max(kDoubleHornerMaxDegree, DoubleCentredForm::kMaxDegree)) return;
   const double loss = horner_loss_bits(p);
   cache_->double_horner = n <= kDoubleHornerMaxDegree && loss <= kDoubleHornerMaxLoss;
-  if (n + 1 > kMinLength && loss <= kDoubleCentredMaxLoss) cache_->centred = DoubleCentredForm(p);
+  // (eval takes it above kMinLength only; eval_disk at any length)
+  if (loss <= kDoubleCentredMaxLoss) cache_->centred = DoubleCentredForm(p);
 }
 LocalPoly::LocalPoly(const LocalPoly& o) = default;
 LocalPoly& LocalPoly::operator=(const LocalPoly& o) = default;
@@ -858,6 +859,32 @@ void LocalPoly::eval(acb_t v, acb_t d1, acb_t d2, const acb_t z, long prec) cons
   if (cache_->centred.usable() && is_wide_ball(z) && cache_->centred.eval(v, d1, d2, z, kDoubleCentredMaxError))
     return;
   if (!eval_cells(-1, v, d1, d2, z, prec)) centred_eval(v, d1, d2, b_, b1_, b2_, z, prec);
+}
+
+bool LocalPoly::has_disk_form() const { return cache_->centred.usable(); }
+
+void LocalPoly::eval_disks(CDisk* v, CDisk* d1, CDisk* d2, const acb_t z, long prec) const {
+  if (cache_->centred.usable() && acb_is_finite(z) && cache_->centred.eval_disks(v, d1, d2, z, kDoubleCentredMaxError))
+    return;
+  acb_t a[3];
+  for (auto& x : a) acb_init(x);
+  eval(a[0], d1 ? a[1] : nullptr, d2 ? a[2] : nullptr, z, prec);
+  CDisk* outs[3] = {v, d1, d2};
+  for (int j = 0; j < 3; ++j)
+    if (outs[j]) *outs[j] = cdisk_set_acb(a[j]);
+  for (auto& x : a) acb_clear(x);
+}
+
+CDisk LocalPoly::eval_disk(const acb_t z, long prec) const {
+  CDisk d;
+  if (cache_->centred.usable() && acb_is_finite(z) && cache_->centred.eval_disks(&d, nullptr, nullptr, z, kDoubleCentredMaxError))
+    return d;
+  acb_t v;
+  acb_init(v);
+  eval(v, z, prec);
+  d = cdisk_set_acb(v);
+  acb_clear(v);
+  return d;
 }
 
 void LocalPoly::eval_deflated(acb_t v, const acb_t z, const RealAlgebraic& gamma, long prec) const {

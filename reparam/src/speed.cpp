@@ -11,6 +11,7 @@
 #include "uniparam/algebra/local_poly.hpp"
 #include "uniparam/algebra/quadrature.hpp"
 #include "uniparam/algebra/real_roots.hpp"
+#include "uniparam/core/cdisk.hpp"
 #include "uniparam/core/dd_inline.hpp"
 #include "uniparam/core/error.hpp"
 #include "uniparam/core/parallel.hpp"
@@ -60,6 +61,13 @@ Poly gcd_all(const std::vector<Poly>& ps) {
 
 // p(z) on a complex ball z, from local expansions (LocalPoly).
 void poly_eval(acb_t out, const LocalPoly& p, const acb_t z, long prec) { p.eval(out, z, prec); }
+
+// True when z's radius (real or imaginary) is at least 2^-24: the
+// quadrature's segments and ellipses, whose enclosures only bound sigma
+// (LocalPoly's wide balls), rather than its nodes.
+bool wide_ball(const acb_t z) {
+  return mag_cmp_2exp_si(arb_radref(acb_realref(z)), -24) >= 0 || mag_cmp_2exp_si(arb_radref(acb_imagref(z)), -24) >= 0;
+}
 
 }  // namespace
 
@@ -214,6 +222,10 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
   for (std::size_t i = 0; i < zeros_.size(); ++i) zeros_[i].index = i;
   g_b_ = LocalPoly(g_);
   for (const auto& k : K_) K_b_.emplace_back(k);
+  disk_form_ = true;
+  for (const auto* v : {&Y_b_, &K_b_, &g_h_})
+    for (const LocalPoly& q : *v) disk_form_ = disk_form_ && q.has_disk_form();
+  if (kind == SpeedKind::Parametric) disk_form_ = disk_form_ && W_b_.has_disk_form();
 }
 
 const RatFunc& Speed::squared() const {
@@ -535,8 +547,23 @@ void Speed::eval(acb_t out, const acb_t z, const PieceSigns& p, bool analytic, l
   // succeed more often from the components, where the factored form costs
   // more.
   if (analytic && kind_ == SpeedKind::Angular && comp_.size() >= 3) {
-    if (!eval_factored(out, z, p, analytic, prec)) acb_indeterminate(out);
+    // In discs first (cheap); where every factor has its centred form in
+    // double there, Arb's balls would not succeed where the discs failed
+    // (they hold the same enclosures, in boxes), so they are not tried.
+    const DiskResult r = disk_form_ ? eval_factored_disk(out, z, p, prec) : DiskResult::Unknown;
+    if (r == DiskResult::Ok) return;
+    if (r == DiskResult::Refused || !eval_factored(out, z, p, analytic, prec)) acb_indeterminate(out);
     return;
+  }
+  // Ellipses in discs first (see eval_disk); Arb's balls only where a
+  // factor lacks its centred form in double (see above).
+  if (analytic) {
+    const DiskResult r = eval_disk(out, z, p, prec);
+    if (r == DiskResult::Ok) return;
+    if (r == DiskResult::Refused) {
+      acb_indeterminate(out);
+      return;
+    }
   }
   acb_t S, F;
   acb_init(S);
@@ -600,9 +627,172 @@ bool Speed::eval_factored(acb_t out, const acb_t z, const PieceSigns& p, bool an
   return acb_is_finite(out);
 }
 
+namespace {
+
+// Whether the disc x, which could not be divided by (root: or square-rooted),
+// holds 0 (root: or meets the cut (-inf, 0]) with a finite centre and radius
+// within 2^400: Arb's balls, holding the same enclosure, would fail there
+// too. Otherwise (a magnitude out of the discs' range) Arb may still succeed.
+bool holds_singularity(const CDisk& x, bool root) {
+  if (!cdisk_is_finite(x) || std::max(std::fabs(x.re), std::fabs(x.im)) > 0x1p400 || x.rad > 0x1p400) return false;
+  if (std::hypot(x.re, x.im) <= x.rad) return true;
+  return root && x.re <= 0 && std::fabs(x.im) <= x.rad;
+}
+
+}  // namespace
+
+Speed::DiskResult Speed::factored_disks(CDisk& g, CDisk& q, CDisk& inv_d, const acb_t z, long prec) const {
+  CDisk d{0, 0, 0};
+  if (kind_ == SpeedKind::Parametric) {
+    d = W_b_.eval_disk(z, prec);
+  } else {
+    for (const auto& y : Y_b_) {
+      const CDisk v = y.eval_disk(z, prec);
+      d = cdisk_add(d, cdisk_mul(v, v));
+    }
+  }
+  inv_d = cdisk_inv(d);  // first: see eval_cofactor
+  if (!cdisk_is_finite(inv_d)) return holds_singularity(d, false) ? DiskResult::Refused : DiskResult::Unknown;
+  if (K_b_.size() == 1) {
+    q = K_b_[0].eval_disk(z, prec);
+  } else {
+    q = CDisk{0, 0, 0};
+    for (const auto& k : K_b_) {
+      const CDisk v = k.eval_disk(z, prec);
+      q = cdisk_add(q, cdisk_mul(v, v));
+    }
+  }
+  // g = content * prod h_i^m_i; fmpz_get_d rounds towards zero (< 2u relative)
+  const double content = fmpz_get_d(g_content_.get());
+  g = CDisk{content, 0, cdisk_detail::up(0x1p-52 * std::fabs(content))};
+  for (std::size_t i = 0; i < g_h_.size(); ++i) {
+    const CDisk h = g_h_[i].eval_disk(z, prec);
+    for (int k = 0; k < g_m_[i]; ++k) g = cdisk_mul(g, h);
+  }
+  return cdisk_is_finite(q) && cdisk_is_finite(g) ? DiskResult::Ok : DiskResult::Unknown;
+}
+
+Speed::DiskResult Speed::eval_factored_disk(acb_t out, const acb_t z, const PieceSigns& p, long prec) const {
+  CDisk g, s, inv_d;
+  const DiskResult parts = factored_disks(g, s, inv_d, z, prec);
+  if (parts != DiskResult::Ok) return parts;
+  if (K_b_.size() == 1) {  // a nonzero integer constant: its absolute value
+    if (!(s.im == 0 && std::fabs(s.re) > s.rad)) return DiskResult::Unknown;
+    if (s.re < 0) s = cdisk_neg(s);
+  } else {
+    const CDisk q = s;
+    s = cdisk_sqrt_analytic(q);
+    if (!cdisk_is_finite(s)) return holds_singularity(q, true) ? DiskResult::Refused : DiskResult::Unknown;
+  }
+  CDisk r = cdisk_mul(cdisk_mul(s, inv_d), g);
+  if (p.g < 0) r = cdisk_neg(r);
+  if (!cdisk_is_finite(r)) return DiskResult::Unknown;
+  cdisk_get_acb(out, r);
+  return DiskResult::Ok;
+}
+
+bool Speed::components_disk(CDisk& S, CDisk& F, const acb_t z, long prec) const {
+  constexpr std::size_t kMax = 8;
+  const std::size_t n = comp_.size();
+  const bool angular = kind_ == SpeedKind::Angular;
+  if (n == 0 || n > kMax) return false;
+  bool poly = true, common = true;
+  for (const Component& k : comp_) {
+    poly = poly && k.unit_den;
+    common = common && !k.unit_den && k.q_index == comp_[0].q_index;
+  }
+  if (!poly && !(common && angular)) return false;
+  CDisk d1[kMax], d2[kMax];
+  if (poly) {  // x' = N', x'' = N''
+    for (std::size_t i = 0; i < n; ++i) comp_[i].N.eval_disks(nullptr, d1 + i, angular ? d2 + i : nullptr, z, prec);
+  } else {  // A_i = N_i' Q - N_i Q' and B_i = N_i'' Q - N_i Q'' (eval_components)
+    CDisk q, q1, q2, v, v1, v2;
+    comp_[0].Q.eval_disks(&q, &q1, &q2, z, prec);
+    for (std::size_t i = 0; i < n; ++i) {
+      comp_[i].N.eval_disks(&v, &v1, &v2, z, prec);
+      d1[i] = cdisk_add(cdisk_mul(v1, q), cdisk_neg(cdisk_mul(v, q1)));
+      d2[i] = cdisk_add(cdisk_mul(v2, q), cdisk_neg(cdisk_mul(v, q2)));
+    }
+  }
+  S = CDisk{0, 0, 0};
+  for (std::size_t i = 0; i < n; ++i) S = cdisk_add(S, cdisk_mul(d1[i], d1[i]));
+  F = CDisk{0, 0, 0};
+  if (angular)
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = i + 1; j < n; ++j) {
+        const CDisk e = cdisk_add(cdisk_mul(d1[i], d2[j]), cdisk_neg(cdisk_mul(d2[i], d1[j])));
+        F = n == 2 ? e : cdisk_add(F, cdisk_mul(e, e));
+      }
+  return cdisk_is_finite(S) && cdisk_is_finite(F);
+}
+
+Speed::DiskResult Speed::eval_disk(acb_t out, const acb_t z, const PieceSigns& p, long prec) const {
+  CDisk S, F;
+  bool unknown = true;  // the components failed for want of range, not at a singularity
+  if (components_disk(S, F, z, prec)) {
+    CDisk r;
+    if (kind_ == SpeedKind::Parametric) {
+      r = cdisk_sqrt_analytic(S);
+      unknown = !holds_singularity(S, true);
+    } else if (comp_.size() == 2) {
+      r = cdisk_div(p.component < 0 ? cdisk_neg(F) : F, S);  // E / S
+      unknown = !holds_singularity(S, false);
+    } else {
+      r = cdisk_div(cdisk_sqrt_analytic(F), S);
+      unknown = !holds_singularity(S, false) && !holds_singularity(F, true);
+    }
+    if (cdisk_is_finite(r)) {
+      cdisk_get_acb(out, r);
+      return DiskResult::Ok;
+    }
+  }
+  if (!disk_form_) return DiskResult::Unknown;
+  const DiskResult f = eval_factored_disk(out, z, p, prec);
+  return f == DiskResult::Refused && unknown ? DiskResult::Unknown : f;
+}
+
+Speed::DiskResult Speed::eval_squared_disk(acb_t out, const acb_t z, long prec) const {
+  CDisk S, F;
+  bool unknown = true;  // as in eval_disk
+  if (components_disk(S, F, z, prec)) {
+    CDisk r = S;
+    if (kind_ == SpeedKind::Angular) {
+      const CDisk inv_s = cdisk_inv(S);
+      r = cdisk_mul(cdisk_mul(comp_.size() == 2 ? cdisk_mul(F, F) : F, inv_s), inv_s);
+      unknown = !holds_singularity(S, false);
+    }
+    if (cdisk_is_finite(r)) {
+      cdisk_get_acb(out, r);
+      if (arb_is_zero(acb_imagref(z))) arb_zero(acb_imagref(out));  // sigma^2 is real on a real segment
+      return DiskResult::Ok;
+    }
+  }
+  // the factored form g^2 sum K^2 / D^2 (p'(z) = 0 in reach: see eval_squared)
+  if (!disk_form_) return DiskResult::Unknown;
+  CDisk g, q, inv_d;
+  const DiskResult parts = factored_disks(g, q, inv_d, z, prec);
+  if (parts != DiskResult::Ok) return parts == DiskResult::Refused && unknown ? DiskResult::Unknown : parts;
+  if (K_b_.size() == 1) q = cdisk_mul(q, q);
+  const CDisk gd = cdisk_mul(g, inv_d);
+  const CDisk r = cdisk_mul(q, cdisk_mul(gd, gd));
+  if (!cdisk_is_finite(r)) return DiskResult::Unknown;
+  cdisk_get_acb(out, r);
+  if (arb_is_zero(acb_imagref(z))) arb_zero(acb_imagref(out));
+  return DiskResult::Ok;
+}
+
 void Speed::eval_squared(acb_t out, const acb_t z, long prec, bool double_word) const {
   if (zero_) { acb_zero(out); return; }
   if (double_word && eval_double_word(out, z, PieceSigns{}, true, prec)) return;
+  // Wide balls in discs first, as eval's ellipses.
+  if (wide_ball(z)) {
+    const DiskResult r = eval_squared_disk(out, z, prec);
+    if (r == DiskResult::Ok) return;
+    if (r == DiskResult::Refused) {
+      acb_indeterminate(out);
+      return;
+    }
+  }
   acb_t S, F;
   acb_init(S);
   acb_init(F);

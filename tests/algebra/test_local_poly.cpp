@@ -135,6 +135,54 @@ TEST(LocalPoly, EnclosesValueAndDerivativesOnRandomBalls) {
   }
 }
 
+TEST(LocalPoly, DiscsHoldValueAndDerivativesOnRandomBalls) {
+  // eval_disks: the centred form's discs (degree <= 64, any length) or
+  // eval's enclosures as discs (higher degrees), on the same balls as above
+  // plus short polynomials (lengths 1-3, which eval leaves to Arb).
+  std::mt19937_64 rng(20261201);
+  long centred = 0;
+  for (long it = 0; it < iterations(60); ++it) {
+    const Poly p = it % 3 == 0 ? random_poly(rng, it % 9 / 3, 20) : random_test_poly(rng);
+    const LocalPoly lp(p);
+    centred += lp.has_disk_form();
+    arb_poly_t ref[3];
+    for (auto& r : ref) arb_poly_init(r);
+    arb_poly_set_fmpz_poly(ref[0], p.get(), ARF_PREC_EXACT);
+    arb_poly_derivative(ref[1], ref[0], ARF_PREC_EXACT);
+    arb_poly_derivative(ref[2], ref[1], ARF_PREC_EXACT);
+    for (int b = 0; b < 25; ++b) {
+      acb_t z, t, exact, w;
+      for (acb_ptr x : {z, t, exact, w}) acb_init(x);
+      random_ball(z, rng);
+      CDisk o[4];
+      lp.eval_disks(&o[0], &o[1], &o[2], z, 64);
+      o[3] = lp.eval_disk(z, 64);  // the value alone (the centred form may serve it and not p'')
+      for (const auto& [a, c] : offsets(rng)) {
+        point_of(t, z, a, c);
+        for (int j = 0; j < 4; ++j) {
+          if (!cdisk_is_finite(o[j])) continue;
+          arb_poly_evaluate_acb(exact, ref[j % 3], t, kRefPrec);
+          // |exact - centre| <= rad
+          acb_set_d_d(w, o[j].re, o[j].im);
+          acb_sub(w, exact, w, kRefPrec);
+          arb_t m, r;
+          arb_init(m);
+          arb_init(r);
+          acb_abs(m, w, kRefPrec);
+          arb_set_d(r, o[j].rad);
+          ASSERT_TRUE(arb_le(m, r)) << "derivative " << j << " of a degree-" << p.degree() << " polynomial";
+          arb_clear(m);
+          arb_clear(r);
+        }
+      }
+      for (acb_ptr x : {z, t, exact, w}) acb_clear(x);
+    }
+    for (auto& r : ref) arb_poly_clear(r);
+  }
+  EXPECT_GT(centred, iterations(60) / 3);  // both paths ran
+  EXPECT_LT(centred, iterations(60));
+}
+
 TEST(LocalPoly, DeflatedEnclosesQuotientNearAndFarFromTheRoot) {
   std::mt19937_64 rng(7);
   // p = q (2t^2 - 1): gamma = 1/sqrt(2), p / (t - gamma) = 2 q (t + gamma).

@@ -129,6 +129,47 @@ TEST(SpeedEval, SquaredSpeedOnWideBallsContainsEveryPointValue) {
   EXPECT_GT(finite, 0);  // the check above ran
 }
 
+TEST(SpeedEval, AnalyticSpeedOnEllipsesInDiscsContainsEveryPointValue) {
+  // Low degrees, where every factor has its centred form in double and the
+  // ellipses are bounded in complex discs (Speed::eval_disk, the factored
+  // form's discs for space curves): plane and space, polynomial and
+  // rational, angular and parametric; boxes as the quadrature's (real and
+  // complex midpoints). The enclosure must contain sigma at every point.
+  std::mt19937_64 rng(31);
+  long finite = 0, total = 0;
+  for (long it = 0; it < test_support::iterations(12); ++it) {
+    const long d = 3 + static_cast<long>(rng() % 8);
+    const std::size_t dim = 2 + it % 2;
+    const Curve c = random_bezier(rng, d, dim, (it / 2) % 2 == 1);
+    for (SpeedKind kind : {SpeedKind::Angular, SpeedKind::Parametric}) {
+      const Speed s(c, kind);
+      acb_t z, w, out, v;
+      acb_init(z);
+      acb_init(w);
+      acb_init(out);
+      acb_init(v);
+      for (int b = 0; b < 10; ++b) {
+        random_ball(z, rng, b % 2 ? 0.1 : 0.01);
+        if (b % 3 == 0) arb_zero(acb_imagref(z));  // the ellipses' bounding boxes: real midpoints
+        ++total;
+        s.eval(out, z, Speed::PieceSigns{}, true, 64);
+        if (!acb_is_finite(out)) continue;
+        ++finite;
+        for (int p = 0; p < 8; ++p) {
+          random_point(w, z, rng);
+          s.eval(v, w, Speed::PieceSigns{}, false, 256);
+          ASSERT_TRUE(overlaps_up_to_sign(out, v)) << c.str() << " degree " << d << " kind " << static_cast<int>(kind);
+        }
+      }
+      acb_clear(z);
+      acb_clear(w);
+      acb_clear(out);
+      acb_clear(v);
+    }
+  }
+  EXPECT_GE(2 * finite, total);  // most boxes near [0, 1] are bounded
+}
+
 TEST(SpeedEval, SpeedAndSquaredOverIrrationalZeroOnWideBalls) {
   // (t, t^4 - 3 t^2): angular speed zero of multiplicity 1 at 1/sqrt(2).
   const Curve c = parse_curve("(t, t^4 - 3*t^2)");

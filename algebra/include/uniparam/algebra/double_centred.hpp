@@ -18,6 +18,7 @@
 
 #include <vector>
 
+#include "uniparam/core/cdisk.hpp"
 #include "uniparam/core/poly.hpp"
 
 namespace uniparam {
@@ -49,6 +50,10 @@ class DoubleCentredForm {
   ///       or, for some output, the rounding part (the terms in E) exceeds
   ///       max_error times |centre| + variation (the terms in |c_k|).
   bool eval(acb_t v, acb_t d1, acb_t d2, const acb_t z, double max_error) const;
+  /// eval's enclosures as the discs j! c_j +- (...) themselves (CDisk; a
+  /// real z gives discs whose real segments enclose the real values), for
+  /// callers that go on in disc arithmetic. Same \pre and \return.
+  bool eval_disks(CDisk* v, CDisk* d1, CDisk* d2, const acb_t z, double max_error) const;
 
   /// Enclosure of p(t) / (t - gamma) for every t in z, for a real root gamma
   /// of p in [gamma_mid - gamma_rad, gamma_mid + gamma_rad]: the centred form
@@ -64,7 +69,6 @@ class DoubleCentredForm {
  private:
   struct Shift {
     double m = 0, mi = 0, r = 0, eps = 0;  // centre m + i mi, radius, E_k / D_k
-    bool real = false;
     // c_k (real parts; ci: imaginary parts, null for a real centre) and D_k (thread-local)
     const std::vector<double>*c = nullptr, *ci = nullptr, *D = nullptr;
   };

@@ -43,6 +43,7 @@
 
 #include "uniparam/algebra/algebraic.hpp"
 #include "uniparam/core/ball_poly.hpp"
+#include "uniparam/core/cdisk.hpp"
 #include "uniparam/core/poly.hpp"
 
 namespace uniparam {
@@ -77,6 +78,19 @@ class LocalPoly {
   void eval(acb_t v, acb_t d1, acb_t d2, const acb_t z, long prec) const;
   /// Same as eval(v, nullptr, nullptr, z, prec).
   void eval(acb_t v, const acb_t z, long prec) const { eval(v, nullptr, nullptr, z, prec); }
+  /// A disc (core/cdisk.hpp) that contains p(t) for every t in z, for
+  /// callers that bound a function of several polynomials on a wide ball
+  /// in disc arithmetic: the centred form in double at z's midpoint
+  /// (DoubleCentredForm, any length up to its degree limit) where it
+  /// serves as in eval, otherwise eval's enclosure at prec as a disc.
+  /// \post contains p(t) for every t in z, or is not finite (nothing known).
+  CDisk eval_disk(const acb_t z, long prec) const;
+  /// eval_disk with p' and p'' (outputs may be null): discs that contain
+  /// p(t), p'(t), p''(t) for every t in z, or are not finite.
+  void eval_disks(CDisk* v, CDisk* d1, CDisk* d2, const acb_t z, long prec) const;
+  /// Whether eval_disk has the centred form in double (not only eval's
+  /// enclosures converted to discs, up to sqrt(2) wider than Arb's boxes).
+  bool has_disk_form() const;
 
   /// Enclosure of p(z) / (z - gamma) for a real root gamma of p: the
   /// removable singularity removed by deflation (MATH.md section 4), in the

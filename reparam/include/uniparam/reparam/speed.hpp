@@ -16,6 +16,7 @@
 #include "uniparam/algebra/local_poly.hpp"
 #include "uniparam/algebra/squarefree.hpp"
 #include "uniparam/core/ball_poly.hpp"
+#include "uniparam/core/cdisk.hpp"
 #include "uniparam/core/dd_ball.hpp"
 #include "uniparam/core/ratfunc.hpp"
 #include "uniparam/reparam/curve.hpp"
@@ -190,6 +191,27 @@ class Speed {
   // sigma = s g R (the sign s from p); false (out not finite) where D's
   // enclosure holds 0 or the square root is not certified analytic
   bool eval_factored(acb_t out, const acb_t z, const PieceSigns& p, bool analytic, long prec) const;
+  // Wide balls (the quadrature's ellipses and segments) in complex discs
+  // in double (core/cdisk.hpp), each polynomial's disc from
+  // LocalPoly::eval_disk. Ok: out holds the value on z. Refused: a disc
+  // that has every factor's centred form in double holds a pole or (for a
+  // root) meets the branch cut: Arb's balls, holding the same enclosures,
+  // would fail too, so the caller answers "not finite". Unknown (out
+  // untouched): anything else (a factor without the centred form in double,
+  // magnitudes out of the discs' range): the caller tries Arb's balls.
+  enum class DiskResult { Ok, Refused, Unknown };
+  // eval_factored (analytic) in discs: g sqrt(sum K^2) / D
+  DiskResult eval_factored_disk(acb_t out, const acb_t z, const PieceSigns& p, long prec) const;
+  // the factored form's parts: g, sum K^2 (a single cofactor: K itself), 1 / D
+  DiskResult factored_disks(CDisk& g, CDisk& q, CDisk& inv_d, const acb_t z, long prec) const;
+  // eval_components' S and F in discs; false for components that are not
+  // all polynomials or (angular speed) over one common denominator, or
+  // where a disc is not finite
+  bool components_disk(CDisk& S, CDisk& F, const acb_t z, long prec) const;
+  // sigma (analytic: principal roots) and sigma^2 in discs, from the
+  // components, else the factored form (where disk_form_)
+  DiskResult eval_disk(acb_t out, const acb_t z, const PieceSigns& p, long prec) const;
+  DiskResult eval_squared_disk(acb_t out, const acb_t z, long prec) const;
   // x_i'(z) (and x_i''(z) when d2 is non-null) from the components
   void eval_derivatives(acb_ptr d1, acb_ptr d2, const acb_t z, long prec) const;
   // sum x_i'^2 and, for the angular speed, F = sum_{i<j} (x_i' x_j'' - x_i'' x_j')^2
@@ -216,6 +238,7 @@ class Speed {
   std::vector<LocalPoly> K_b_;
   std::vector<LocalPoly> Y_b_;  // angular: D = sum Y^2; parametric: empty
   LocalPoly W_b_;               // parametric: D = W
+  bool disk_form_ = false;      // every factor of eval_factored has LocalPoly::has_disk_form
 };
 
 }  // namespace uniparam
