@@ -226,6 +226,9 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
   for (const auto* v : {&Y_b_, &K_b_, &g_h_})
     for (const LocalPoly& q : *v) disk_form_ = disk_form_ && q.has_disk_form();
   if (kind == SpeedKind::Parametric) disk_form_ = disk_form_ && W_b_.has_disk_form();
+  components_disk_form_ = !comp_.empty();
+  for (const Component& k : comp_)
+    components_disk_form_ = components_disk_form_ && k.N.has_disk_form() && (k.unit_den || k.Q.has_disk_form());
 }
 
 const RatFunc& Speed::squared() const {
@@ -695,7 +698,7 @@ bool Speed::components_disk(CDisk& S, CDisk& F, const acb_t z, long prec) const 
   constexpr std::size_t kMax = 8;
   const std::size_t n = comp_.size();
   const bool angular = kind_ == SpeedKind::Angular;
-  if (n == 0 || n > kMax) return false;
+  if (!components_disk_form_ || n > kMax) return false;
   bool poly = true, common = true;
   for (const Component& k : comp_) {
     poly = poly && k.unit_den;

@@ -205,8 +205,9 @@ class Speed {
   // the factored form's parts: g, sum K^2 (a single cofactor: K itself), 1 / D
   DiskResult factored_disks(CDisk& g, CDisk& q, CDisk& inv_d, const acb_t z, long prec) const;
   // eval_components' S and F in discs; false for components that are not
-  // all polynomials or (angular speed) over one common denominator, or
-  // where a disc is not finite
+  // all polynomials or (angular speed) over one common denominator, that
+  // lack their centred forms in double (their discs would only be Arb's
+  // boxes, wider), or where a disc is not finite
   bool components_disk(CDisk& S, CDisk& F, const acb_t z, long prec) const;
   // sigma (analytic: principal roots) and sigma^2 in discs, from the
   // components, else the factored form (where disk_form_)
@@ -239,6 +240,7 @@ class Speed {
   std::vector<LocalPoly> Y_b_;  // angular: D = sum Y^2; parametric: empty
   LocalPoly W_b_;               // parametric: D = W
   bool disk_form_ = false;      // every factor of eval_factored has LocalPoly::has_disk_form
+  bool components_disk_form_ = false;  // every N and Q of comp_ has it
 };
 
 }  // namespace uniparam
