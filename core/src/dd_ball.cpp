@@ -200,10 +200,18 @@ UNIPARAM_DD_FMA bool poly_eval_fma(const DDPoly& p, DDBall* v, DDBall* d1, DDBal
   return p.eval_t<kHaveFmaTarget>(v, d1, d2, x);
 }
 
+UNIPARAM_DD_FMA bool lanes_eval_fma(int k, const DDPoly* const* p, const int* j, DDBall* const* out, const DDBall& x) {
+  return DDPoly::eval_lanes<kHaveFmaTarget>(k, p, j, out, x);
+}
+
 }  // namespace
 
 bool DDPoly::eval(DDBall* v, DDBall* d1, DDBall* d2, const DDBall& x) const {
   return use_fma() ? poly_eval_fma(*this, v, d1, d2, x) : eval_t<false>(v, d1, d2, x);
+}
+
+bool DDPoly::eval_many(int k, const DDPoly* const* p, const int* j, DDBall* const* out, const DDBall& x) {
+  return use_fma() ? lanes_eval_fma(k, p, j, out, x) : eval_lanes<false>(k, p, j, out, x);
 }
 
 bool dd_fma_available() { return cpu_has_fma(); }

@@ -471,21 +471,39 @@ template <bool F>
   DDBall A[3], B[3];  // curves of up to 3 components take this path
   DDBall q, q1, q2;
   const bool direct = angular && !dd.A.empty();  // A_i and B_i = A_i' from their own polynomials
-  if (!dd.unit_den && !direct && !dd.L.eval_t<F>(&q, &q1, angular ? &q2 : nullptr, x)) return false;
+  // Every polynomial value the speed needs, as lanes of one interleaved
+  // Horner loop (DDPoly::eval_lanes): A_i, A_i' (direct); M_i', M_i''
+  // (polynomial curves); or L, M_i and their first two derivatives.
+  const DDPoly* lp[DDPoly::kMaxLanes];
+  int lj[DDPoly::kMaxLanes];
+  DDBall* lo[DDPoly::kMaxLanes];
+  DDBall m[3][3];  // the general case's M_i, M_i', M_i''
+  int k = 0;
+  auto lane = [&](const DDPoly& poly, int deriv, DDBall* o) {
+    lp[k] = &poly;
+    lj[k] = deriv;
+    lo[k++] = o;
+  };
+  const int top = angular ? 2 : 1;  // the highest derivative of M_i and L needed
+  if (!direct && !dd.unit_den)
+    for (int d = 0; d <= top; ++d) lane(dd.L, d, d == 0 ? &q : d == 1 ? &q1 : &q2);
   for (std::size_t i = 0; i < n; ++i) {
     if (direct) {
-      if (!dd.A[i].eval_t<F>(A + i, B + i, nullptr, x)) return false;
-      continue;
+      lane(dd.A[i], 0, A + i);
+      lane(dd.A[i], 1, B + i);
+    } else if (dd.unit_den) {
+      lane(dd.M[i], 1, A + i);
+      if (angular) lane(dd.M[i], 2, B + i);
+    } else {
+      for (int d = 0; d <= top; ++d) lane(dd.M[i], d, &m[i][d]);
     }
-    if (dd.unit_den) {
-      if (!dd.M[i].eval_t<F>(nullptr, A + i, angular ? B + i : nullptr, x)) return false;
-      continue;
-    }
-    DDBall m, m1, m2;
-    if (!dd.M[i].eval_t<F>(&m, &m1, angular ? &m2 : nullptr, x)) return false;
-    A[i] = ball_sub(ball_mul<F>(m1, q), ball_mul<F>(m, q1));
-    if (angular) B[i] = ball_sub(ball_mul<F>(m2, q), ball_mul<F>(m, q2));
   }
+  if (!DDPoly::eval_lanes<F>(k, lp, lj, lo, x)) return false;
+  if (!direct && !dd.unit_den)
+    for (std::size_t i = 0; i < n; ++i) {
+      A[i] = ball_sub(ball_mul<F>(m[i][1], q), ball_mul<F>(m[i][0], q1));
+      if (angular) B[i] = ball_sub(ball_mul<F>(m[i][2], q), ball_mul<F>(m[i][0], q2));
+    }
   DDBall S{0, 0, 0}, r;
   for (std::size_t i = 0; i < n; ++i) S = ball_add(S, ball_mul<F>(A[i], A[i]));
   if (!angular) {

@@ -203,6 +203,73 @@ TEST(DDPoly, HornerContainsTheExactValueAndDerivatives) {
   }
 }
 
+// Lanes of one interleaved Horner loop: every lane's ball is bit for bit
+// eval's, for polynomials of different degrees (the zero polynomial and
+// constants too), derivatives 0-2, double and double-word coefficients, on
+// both product paths.
+TEST(DDPoly, InterleavedLanesGiveEvalsBallsBitForBit) {
+  std::mt19937_64 rng(15);
+  std::uniform_int_distribution<long> deg(-1, 30), sgn(0, 1), lanes(1, DDPoly::kMaxLanes);
+  std::uniform_int_distribution<int> der(0, 2);
+  std::uniform_int_distribution<unsigned long> word;
+  std::uniform_real_distribution<double> pos(-1.25, 1.25);
+  auto same = [](const DDBall& a, const DDBall& b) {
+    return std::memcmp(&a.hi, &b.hi, sizeof(double)) == 0 && std::memcmp(&a.lo, &b.lo, sizeof(double)) == 0 &&
+           std::memcmp(&a.rad, &b.rad, sizeof(double)) == 0;
+  };
+  long fast = 0;
+  for (bool fma : {false, true}) {
+    dd_set_fma(fma);
+    for (long it = 0; it < iterations(150); ++it) {
+      const int k = static_cast<int>(lanes(rng));
+      const bool dword = it % 5 == 0;  // one lane with double-word coefficients: lane by lane
+      std::vector<DDPoly> polys;
+      for (int q = 0; q < k; ++q) {
+        const long n = deg(rng);
+        std::vector<Integer> c;
+        for (long i = 0; i <= n; ++i) {
+          Integer v;
+          fmpz_set_ui(v.get(), word(rng) >> (dword && q == 0 ? 0 : 12));  // 64 bits: a double word
+          if (sgn(rng)) fmpz_neg(v.get(), v.get());
+          c.push_back(v);
+        }
+        polys.emplace_back(n < 0 ? Poly(0) : Poly(c));
+        ASSERT_TRUE(polys.back().usable());
+      }
+      std::vector<const DDPoly*> p;
+      std::vector<int> j;
+      std::vector<DDBall> got(static_cast<std::size_t>(k));
+      std::vector<DDBall*> out;
+      for (int q = 0; q < k; ++q) {
+        p.push_back(&polys[static_cast<std::size_t>(q)]);
+        j.push_back(der(rng));
+        out.push_back(&got[static_cast<std::size_t>(q)]);
+      }
+      DDBall x = dd_from_double(pos(rng));
+      if (it % 2) x.rad = std::ldexp(1.0, -70);
+      const bool ok = DDPoly::eval_many(k, p.data(), j.data(), out.data(), x);
+      bool ok_each = true;
+      for (int q = 0; q < k; ++q) {
+        DDBall o[3];
+        DDBall* want[3] = {nullptr, nullptr, nullptr};
+        want[j[static_cast<std::size_t>(q)]] = &o[j[static_cast<std::size_t>(q)]];
+        ok_each = polys[static_cast<std::size_t>(q)].eval(want[0], want[1], want[2], x) && ok_each;
+        if (ok) ASSERT_TRUE(same(got[static_cast<std::size_t>(q)], o[j[static_cast<std::size_t>(q)]])) << it << " lane " << q;
+      }
+      ASSERT_EQ(ok, ok_each) << it;
+      fast += ok && !dword;
+    }
+  }
+  dd_set_fma(true);
+  EXPECT_GT(fast, iterations(150));  // the interleaved loop ran
+  DDBall o;
+  const DDPoly one(Poly(1));
+  const DDPoly* p1[1] = {&one};
+  const int j0[1] = {0};
+  DDBall* o1[1] = {&o};
+  EXPECT_FALSE(DDPoly::eval_many(0, p1, j0, o1, dd_from_double(0.5)));  // no lanes
+}
+
 TEST(DDPoly, CoefficientsThatAreNotDoubleWordsAreRefused) {
   Integer big;
   fmpz_one(big.get());

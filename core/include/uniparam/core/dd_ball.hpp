@@ -89,6 +89,16 @@ class DDPoly {
   /// (UNIPARAM_DD_FMA) and called where dd_fma_in_use().
   template <bool F>
   bool eval_t(DDBall* v, DDBall* d1, DDBall* d2, const DDBall& x) const;
+  /// Lanes q < k: out[q] = p[q]^(j[q])(x) (j[q] in 0..2), each bit for bit
+  /// eval_t's ball, with the k Horner loops interleaved in one (independent
+  /// chains of double-word operations, whose latency a lone loop waits on).
+  /// Defined in core/dd_inline.hpp, as eval_t. \pre 1 <= k <= kMaxLanes,
+  /// every p[q]->usable(); out[q] distinct. \return as eval_t, for all lanes.
+  static constexpr int kMaxLanes = 12;
+  template <bool F>
+  static bool eval_lanes(int k, const DDPoly* const* p, const int* j, DDBall* const* out, const DDBall& x);
+  /// eval_lanes, out of line (the FMA path where in use, as eval).
+  static bool eval_many(int k, const DDPoly* const* p, const int* j, DDBall* const* out, const DDBall& x);
   /// UNCERTIFIED estimate, for choosing a path only: log2 of
   /// sum |c_k| / max |p(t)| over t = 0, 1/16, ..., 1 for p, p' and p''
   /// (the bits that Horner's rule loses on [0, 1]); large for a

@@ -23,6 +23,7 @@
 #error "uniparam/core/dd_inline.hpp needs IEEE arithmetic: compile without -ffast-math"
 #endif
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -274,6 +275,99 @@ template <bool F>
     const double r = up(gamma * horner_abs(abs_[j], mu) + x.rad * slope);
     *outs[j] = ball(acc, r);
     ok = ok && dd_is_finite(*outs[j]);
+  }
+  return ok;
+}
+
+namespace dd_detail {
+// eval_lanes' loop for K lanes (acc[q] from {0, 0}; lane q's coefficient i
+// is 0 at and above size[q]).
+// habs[q] = horner_abs(lane q's |coefficients|, mu), the same way
+// interleaved (from 0, exactly as horner_abs from its top coefficient).
+template <bool F, int K>
+[[gnu::always_inline]] inline void horner_lanes(DW* acc, const double* const* h, const std::size_t* size,
+                                                std::size_t len, DW m, double* habs, const double* const* ha,
+                                                double mu) {
+  DW a[K];
+  double b[K];
+  for (int q = 0; q < K; ++q) {
+    a[q] = {0, 0};
+    b[q] = 0;
+  }
+  for (std::size_t i = len; i-- > 0;)
+    for (int q = 0; q < K; ++q) {
+      const bool in = i < size[q];
+      a[q] = dw_add_fp(dw_mul<F>(a[q], m), in ? h[q][i] : 0.0);
+      b[q] = b[q] * mu + (in ? ha[q][i] : 0.0);
+    }
+  for (int q = 0; q < K; ++q) {
+    acc[q] = a[q];
+    habs[q] = b[q] * (1 + (4 * static_cast<double>(size[q]) + 8) * kU);
+  }
+}
+}  // namespace dd_detail
+
+template <bool F>
+[[gnu::always_inline]] inline bool DDPoly::eval_lanes(int k, const DDPoly* const* p, const int* j, DDBall* const* out,
+                                                      const DDBall& x) {
+  using namespace dd_detail;
+  bool single = k >= 1 && k <= kMaxLanes;
+  std::size_t len = 0;
+  for (int q = 0; q < k && single; ++q) {
+    single = p[q]->single_[j[q]];
+    len = std::max(len, p[q]->hi_[j[q]].size());
+  }
+  if (!single) {  // double-word coefficients (or a bad k): lane by lane
+    bool ok = k >= 1 && k <= kMaxLanes;
+    for (int q = 0; q < k && ok; ++q) {
+      DDBall* o[3] = {nullptr, nullptr, nullptr};
+      o[j[q]] = out[q];
+      ok = p[q]->eval_t<F>(o[0], o[1], o[2], x);
+    }
+    return ok;
+  }
+  // Each lane's Horner loop from degree len - 1, its coefficients above its
+  // own degree 0: those steps keep acc = 0 exactly (0 * m and 0 + 0 are
+  // exact), and the first real one gives {c_top, 0} as eval_t starts, so
+  // every lane's acc is eval_t's, and so is its error bound (below). The
+  // lane count is a template argument below, so the accumulators stay in
+  // registers.
+  DW acc[kMaxLanes];
+  std::size_t size[kMaxLanes];
+  const double *h[kMaxLanes], *ha[kMaxLanes];
+  double habs[kMaxLanes];
+  for (int q = 0; q < k; ++q) {
+    size[q] = p[q]->hi_[j[q]].size();
+    h[q] = p[q]->hi_[j[q]].data();
+    ha[q] = p[q]->abs_[j[q]].data();
+  }
+  const DW m = mid(x);
+  const double mu = mag_up(x);  // >= |m|
+  switch (k) {
+#define UNIPARAM_DD_LANES(K) \
+  case K: dd_detail::horner_lanes<F, K>(acc, h, size, len, m, habs, ha, mu); break;
+    UNIPARAM_DD_LANES(1) UNIPARAM_DD_LANES(2) UNIPARAM_DD_LANES(3) UNIPARAM_DD_LANES(4)
+    UNIPARAM_DD_LANES(5) UNIPARAM_DD_LANES(6) UNIPARAM_DD_LANES(7) UNIPARAM_DD_LANES(8)
+    UNIPARAM_DD_LANES(9) UNIPARAM_DD_LANES(10) UNIPARAM_DD_LANES(11) UNIPARAM_DD_LANES(12)
+#undef UNIPARAM_DD_LANES
+    default: return false;
+  }
+  const double mr = up(mu + x.rad);  // >= |t| for every t in x
+  bool ok = std::isfinite(mr);
+  for (int q = 0; q < k; ++q) {
+    if (size[q] == 0) {  // p^(j) == 0
+      *out[q] = {0, 0, 0};
+      continue;
+    }
+    // eval_t's bound
+    const DDPoly& P = *p[q];
+    const int jq = j[q];
+    const double steps = 2.0 * static_cast<double>(size[q] - 1);
+    const double gamma = steps * kEpsX * (1 + 0x1p-40);
+    const double slope = mr <= 1 ? P.abs1_[jq + 1] : horner_abs(P.abs_[jq + 1], mr);
+    const double r = up(gamma * habs[q] + x.rad * slope);  // habs[q] = horner_abs(P.abs_[jq], mu)
+    *out[q] = ball(acc[q], r);
+    ok = ok && dd_is_finite(*out[q]);
   }
   return ok;
 }
