@@ -63,7 +63,8 @@ DoubleCentredForm::DoubleCentredForm(const Poly& p) {
 // L = 4n + 3. D_k is formed as before with |m| rounded upward (hypot is
 // within an ulp, times 1 + 2^-51), so it bounds the exact
 // sum_j C(j, k) |a_j| |m|^(j-k) up to the same factor 1 - gamma_{2n+1};
-// E_k = 1.01 L u D_k covers both. |c_k| (hypot, within an ulp) enters only
+// E_k = 1.01 L u D_k covers both. |c_k| (cdisk.hpp's abs_up, an upper
+// bound; computed once per shift, for the outputs' sums) enters only
 // sums of positive terms, whose factor 1 + 2^-40 covers it.
 bool DoubleCentredForm::shift(const acb_t z, Shift& sh) const {
   sh.m = arf_get_d(arb_midref(acb_realref(z)), ARF_RND_NEAR);
@@ -128,7 +129,10 @@ bool DoubleCentredForm::eval_disks(CDisk* v, CDisk* d1, CDisk* d2, const acb_t z
   const std::vector<double>& D = *sh.D;
   const double r = sh.r, eps = sh.eps;
   const std::size_t n = a_.size() - 1;
-  auto abs_c = [&](std::size_t k) { return ci ? std::hypot(c[k], (*ci)[k]) : std::fabs(c[k]); };
+  thread_local std::vector<double> ac;  // |c_k|, upper bounds
+  ac.resize(n + 1);
+  for (std::size_t k = 0; k <= n; ++k) ac[k] = ci ? cdisk_detail::abs_up(c[k], (*ci)[k]) : std::fabs(c[k]);
+  auto abs_c = [&](std::size_t k) { return ac[k]; };
   CDisk* outs[3] = {v, d1, d2};
   for (std::size_t j = 0; j <= 2; ++j) {
     CDisk* out = outs[j];
