@@ -102,17 +102,30 @@ void random_ball(acb_t z, std::mt19937_64& rng) {
   if (pick(rng) != 0) mag_set_ui_2exp_si(arb_radref(acb_imagref(z)), 1 + std::uniform_int_distribution<ulong>(0, 7)(rng), e - 3);
 }
 
+/// p, p', p'' as exact Arb polynomials (the reference evaluations).
+struct RefDerivatives {
+  arb_poly_t r[3];
+  explicit RefDerivatives(const Poly& p) {
+    for (auto& x : r) arb_poly_init(x);
+    arb_poly_set_fmpz_poly(r[0], p.get(), ARF_PREC_EXACT);
+    arb_poly_derivative(r[1], r[0], ARF_PREC_EXACT);
+    arb_poly_derivative(r[2], r[1], ARF_PREC_EXACT);
+  }
+  ~RefDerivatives() {
+    for (auto& x : r) arb_poly_clear(x);
+  }
+  RefDerivatives(const RefDerivatives&) = delete;
+  RefDerivatives& operator=(const RefDerivatives&) = delete;
+};
+
 TEST(LocalPoly, EnclosesValueAndDerivativesOnRandomBalls) {
   std::mt19937_64 rng(20261122);
   const long precs[] = {30, 64, 128, 200};
   for (long it = 0; it < iterations(60); ++it) {
     const Poly p = random_test_poly(rng);
     const LocalPoly lp(p);
-    arb_poly_t ref[3];
-    for (auto& r : ref) arb_poly_init(r);
-    arb_poly_set_fmpz_poly(ref[0], p.get(), ARF_PREC_EXACT);
-    arb_poly_derivative(ref[1], ref[0], ARF_PREC_EXACT);
-    arb_poly_derivative(ref[2], ref[1], ARF_PREC_EXACT);
+    const RefDerivatives rd(p);
+    const auto& ref = rd.r;
     for (int b = 0; b < 25; ++b) {
       acb_t z, v, d1, d2, t, exact;
       for (acb_ptr x : {z, v, d1, d2, t, exact}) acb_init(x);
@@ -131,7 +144,6 @@ TEST(LocalPoly, EnclosesValueAndDerivativesOnRandomBalls) {
       }
       for (acb_ptr x : {z, v, d1, d2, t, exact}) acb_clear(x);
     }
-    for (auto& r : ref) arb_poly_clear(r);
   }
 }
 
@@ -145,11 +157,8 @@ TEST(LocalPoly, DiscsHoldValueAndDerivativesOnRandomBalls) {
     const Poly p = it % 3 == 0 ? random_poly(rng, it % 9 / 3, 20) : random_test_poly(rng);
     const LocalPoly lp(p);
     centred += lp.has_disk_form();
-    arb_poly_t ref[3];
-    for (auto& r : ref) arb_poly_init(r);
-    arb_poly_set_fmpz_poly(ref[0], p.get(), ARF_PREC_EXACT);
-    arb_poly_derivative(ref[1], ref[0], ARF_PREC_EXACT);
-    arb_poly_derivative(ref[2], ref[1], ARF_PREC_EXACT);
+    const RefDerivatives rd(p);
+    const auto& ref = rd.r;
     for (int b = 0; b < 25; ++b) {
       acb_t z, t, exact, w;
       for (acb_ptr x : {z, t, exact, w}) acb_init(x);
@@ -177,7 +186,6 @@ TEST(LocalPoly, DiscsHoldValueAndDerivativesOnRandomBalls) {
       }
       for (acb_ptr x : {z, t, exact, w}) acb_clear(x);
     }
-    for (auto& r : ref) arb_poly_clear(r);
   }
   EXPECT_GT(centred, iterations(60) / 3);  // both paths ran
   EXPECT_LT(centred, iterations(60));

@@ -11,6 +11,7 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "support/iterations.hpp"
@@ -95,38 +96,64 @@ void random_point(acb_t w, const acb_t z, std::mt19937_64& rng) {
 
 }  // namespace
 
-TEST(SpeedEval, SquaredSpeedOnWideBallsContainsEveryPointValue) {
-  std::mt19937_64 rng(7);
-  long finite = 0;
-  for (long it = 0; it < test_support::iterations(6); ++it) {
-    const long d = 8 + static_cast<long>(rng() % 24);
-    const std::size_t dim = 2 + rng() % 2;
-    const Curve c = random_bezier(rng, d, dim, it % 2 == 1);
+namespace {
+
+// For `iters` random Bezier curves (make(it): degree, dimension, rational)
+// and both speed kinds, 10 random balls each (ball(z, b) makes ball b):
+// where wide(s, out, z) gives a finite enclosure, the values point(s, v, w)
+// at 8 exact points w of the ball must overlap it (up to sign: see
+// overlaps_up_to_sign). Returns {finite enclosures, balls}.
+struct WideCase {
+  long d;
+  std::size_t dim;
+  bool rational;
+};
+template <class Make, class Ball, class Wide, class Point>
+std::pair<long, long> check_wide_balls(std::mt19937_64& rng, long iters, Make make, Ball ball, Wide wide,
+                                       Point point, bool up_to_sign) {
+  long finite = 0, total = 0;
+  for (long it = 0; it < iters; ++it) {
+    const WideCase k = make(it);
+    const Curve c = random_bezier(rng, k.d, k.dim, k.rational);
     for (SpeedKind kind : {SpeedKind::Angular, SpeedKind::Parametric}) {
       const Speed s(c, kind);
       acb_t z, w, out, v;
-      acb_init(z);
-      acb_init(w);
-      acb_init(out);
-      acb_init(v);
+      for (acb_ptr x : {z, w, out, v}) acb_init(x);
       for (int b = 0; b < 10; ++b) {
-        random_ball(z, rng, b % 2 ? 0.05 : 0.002);
-        s.eval_squared(out, z, 128);
+        ball(z, b);
+        ++total;
+        wide(s, out, z);
         if (!acb_is_finite(out)) continue;
         ++finite;
         for (int p = 0; p < 8; ++p) {
           random_point(w, z, rng);
-          s.eval_squared(v, w, 256);
-          ASSERT_TRUE(acb_overlaps(out, v)) << c.str() << " degree " << d;
+          point(s, v, w);
+          const bool ok = up_to_sign ? overlaps_up_to_sign(out, v) : acb_overlaps(out, v);
+          if (!ok) {  // (ASSERT_* needs a void function)
+            ADD_FAILURE() << c.str() << " degree " << k.d << " kind " << static_cast<int>(kind);
+            for (acb_ptr x : {z, w, out, v}) acb_clear(x);
+            return {finite, total};
+          }
         }
       }
-      acb_clear(z);
-      acb_clear(w);
-      acb_clear(out);
-      acb_clear(v);
+      for (acb_ptr x : {z, w, out, v}) acb_clear(x);
     }
   }
+  return {finite, total};
+}
+
+}  // namespace
+
+TEST(SpeedEval, SquaredSpeedOnWideBallsContainsEveryPointValue) {
+  std::mt19937_64 rng(7);
+  const auto [finite, total] = check_wide_balls(
+      rng, test_support::iterations(6),
+      [&](long it) { return WideCase{8 + static_cast<long>(rng() % 24), 2 + rng() % 2, it % 2 == 1}; },
+      [&](acb_t z, int b) { random_ball(z, rng, b % 2 ? 0.05 : 0.002); },
+      [](const Speed& s, acb_t out, const acb_t z) { s.eval_squared(out, z, 128); },
+      [](const Speed& s, acb_t v, const acb_t w) { s.eval_squared(v, w, 256); }, false);
   EXPECT_GT(finite, 0);  // the check above ran
+  EXPECT_GT(total, 0);
 }
 
 TEST(SpeedEval, AnalyticSpeedOnEllipsesInDiscsContainsEveryPointValue) {
@@ -136,37 +163,15 @@ TEST(SpeedEval, AnalyticSpeedOnEllipsesInDiscsContainsEveryPointValue) {
   // rational, angular and parametric; boxes as the quadrature's (real and
   // complex midpoints). The enclosure must contain sigma at every point.
   std::mt19937_64 rng(31);
-  long finite = 0, total = 0;
-  for (long it = 0; it < test_support::iterations(12); ++it) {
-    const long d = 3 + static_cast<long>(rng() % 8);
-    const std::size_t dim = 2 + it % 2;
-    const Curve c = random_bezier(rng, d, dim, (it / 2) % 2 == 1);
-    for (SpeedKind kind : {SpeedKind::Angular, SpeedKind::Parametric}) {
-      const Speed s(c, kind);
-      acb_t z, w, out, v;
-      acb_init(z);
-      acb_init(w);
-      acb_init(out);
-      acb_init(v);
-      for (int b = 0; b < 10; ++b) {
+  const auto [finite, total] = check_wide_balls(
+      rng, test_support::iterations(12),
+      [&](long it) { return WideCase{3 + static_cast<long>(rng() % 8), 2 + static_cast<std::size_t>(it % 2), (it / 2) % 2 == 1}; },
+      [&](acb_t z, int b) {
         random_ball(z, rng, b % 2 ? 0.1 : 0.01);
         if (b % 3 == 0) arb_zero(acb_imagref(z));  // the ellipses' bounding boxes: real midpoints
-        ++total;
-        s.eval(out, z, Speed::PieceSigns{}, true, 64);
-        if (!acb_is_finite(out)) continue;
-        ++finite;
-        for (int p = 0; p < 8; ++p) {
-          random_point(w, z, rng);
-          s.eval(v, w, Speed::PieceSigns{}, false, 256);
-          ASSERT_TRUE(overlaps_up_to_sign(out, v)) << c.str() << " degree " << d << " kind " << static_cast<int>(kind);
-        }
-      }
-      acb_clear(z);
-      acb_clear(w);
-      acb_clear(out);
-      acb_clear(v);
-    }
-  }
+      },
+      [](const Speed& s, acb_t out, const acb_t z) { s.eval(out, z, Speed::PieceSigns{}, true, 64); },
+      [](const Speed& s, acb_t v, const acb_t w) { s.eval(v, w, Speed::PieceSigns{}, false, 256); }, true);
   EXPECT_GE(2 * finite, total);  // most boxes near [0, 1] are bounded
 }
 
