@@ -93,7 +93,8 @@ class DDPoly {
   /// eval_t's ball, with the k Horner loops interleaved in one (independent
   /// chains of double-word operations, whose latency a lone loop waits on).
   /// Defined in core/dd_inline.hpp, as eval_t. \pre 1 <= k <= kMaxLanes,
-  /// every p[q]->usable(); out[q] distinct. \return as eval_t, for all lanes.
+  /// every p[q]->usable(); out[q] distinct. \return as eval_t, for all lanes
+  /// (false, outputs unspecified, for k outside 1..kMaxLanes).
   static constexpr int kMaxLanes = 12;
   template <bool F>
   static bool eval_lanes(int k, const DDPoly* const* p, const int* j, DDBall* const* out, const DDBall& x);
