@@ -86,9 +86,8 @@ TEST(CDisk, ArithmeticContainsEveryExactResult) {
   long divisions = 0;
   for (long it = 0; it < iterations(600); ++it) {
     const CDisk a = random_disk(rng), b = random_disk(rng);
-    const double k = std::ldexp(std::uniform_real_distribution<double>(-1, 1)(rng), 7);
-    const CDisk s = cdisk_add(a, b), p = cdisk_mul(a, b), q = cdisk_div(a, b), i = cdisk_inv(b), ak = cdisk_mul_d(a, k);
-    ASSERT_TRUE(cdisk_is_finite(s) && cdisk_is_finite(p) && cdisk_is_finite(ak)) << it;
+    const CDisk s = cdisk_add(a, b), p = cdisk_mul(a, b), q = cdisk_div(a, b), i = cdisk_inv(b);
+    ASSERT_TRUE(cdisk_is_finite(s) && cdisk_is_finite(p)) << it;
     divisions += cdisk_is_finite(q);
     for (const auto& pa : points(a, rng))
       for (const auto& pb : points(b, rng)) {
@@ -98,9 +97,6 @@ TEST(CDisk, ArithmeticContainsEveryExactResult) {
         ASSERT_TRUE(holds(s, e)) << it;
         acb_mul(e, x, y, kRefPrec);
         ASSERT_TRUE(holds(p, e)) << it;
-        acb_set_d(e, k);
-        acb_mul(e, e, x, kRefPrec);
-        ASSERT_TRUE(holds(ak, e)) << it;
         if (cdisk_is_finite(q)) {
           acb_div(e, x, y, kRefPrec);
           ASSERT_TRUE(holds(q, e)) << it;
@@ -185,7 +181,6 @@ TEST(CDisk, ArbBoxesRoundTrip) {
   for (long it = 0; it < iterations(300); ++it) {
     const CDisk a = random_disk(rng);
     // a box with a midpoint of more than 53 bits: set_acb rounds it
-    acb_set_d_d(z, a.re, a.im);
     acb_t third;
     acb_init(third);
     acb_set_d_d(third, a.re / 3 + 1e-3, a.im / 7);

@@ -82,9 +82,6 @@ inline bool cdisk_is_finite(const CDisk& a) {
   return std::isfinite(a.re) && std::isfinite(a.im) && std::isfinite(a.rad);
 }
 
-/// The exact disc {v} of a double v.
-inline CDisk cdisk_from_double(double v) { return CDisk{v, 0, 0}; }
-
 inline CDisk cdisk_neg(const CDisk& a) { return CDisk{-a.re, -a.im, a.rad}; }
 
 inline CDisk cdisk_add(const CDisk& a, const CDisk& b) {
@@ -99,15 +96,6 @@ inline CDisk cdisk_mul(const CDisk& a, const CDisk& b) {
   CDisk p{a.re * b.re - a.im * b.im, a.re * b.im + a.im * b.re, 0};
   const double A = abs_up(a.re, a.im), B = abs_up(b.re, b.im);
   p.rad = up(A * b.rad + B * a.rad + a.rad * b.rad + 3 * kU * A * B);
-  return p;
-}
-
-/// a * k for a double k (exact midpoint products by powers of two are not
-/// special-cased: one rounding each part, bounded like a sum).
-inline CDisk cdisk_mul_d(const CDisk& a, double k) {
-  using namespace cdisk_detail;
-  CDisk p{a.re * k, a.im * k, 0};
-  p.rad = up(a.rad * std::fabs(k) + 2 * kU * (std::fabs(p.re) + std::fabs(p.im)));
   return p;
 }
 
@@ -157,7 +145,8 @@ inline void cdisk_get_acb(acb_t out, const CDisk& a) {
 }
 
 /// A disc holding the Arb box z: its midpoint rounded to doubles (the
-/// rounding added to the radius) and the hypot of its radii. Not finite
+/// rounding added to the radius) and an upper bound of the hypot of its
+/// radii. Not finite
 /// if z is not, or its midpoint or radii overflow a double.
 inline CDisk cdisk_set_acb(const acb_t z) {
   using namespace cdisk_detail;
