@@ -107,6 +107,8 @@ class DDPoly {
   double cancellation_bits() const { return loss_; }
 
  private:
+  // eval_t's and eval_lanes' rounding and slope bound (dd_inline.hpp)
+  double horner_radius(int j, std::size_t len, double habs, double mr, double rad) const;
   bool usable_ = false;
   long n_ = -1;
   // coefficients (low to high) of p, p', p'' as double words

@@ -244,6 +244,20 @@ template <bool F>
 }
 }  // namespace dd_detail
 
+// The radius of p^(j)'s Horner value on a ball of radius rad: Horner with
+// 2 (len - 1) double-word operations of relative error <= kEpsX gives
+// |acc - p^(j)(m)| <= gamma sum |c_k| |m|^k (habs bounds the sum), and moving
+// m over the ball adds at most rad * sup |p^(j+1)| <= rad * sum |c'_k| mr^k,
+// which is at most rad * abs1_[j + 1] (>= sum |c'_k|) when mr <= 1.
+[[gnu::always_inline]] inline double DDPoly::horner_radius(int j, std::size_t len, double habs, double mr,
+                                                           double rad) const {
+  using namespace dd_detail;
+  const double steps = 2.0 * static_cast<double>(len - 1);
+  const double gamma = steps * kEpsX * (1 + 0x1p-40);  // >= steps eps / (1 - steps eps)
+  const double slope = mr <= 1 ? abs1_[j + 1] : horner_abs(abs_[j + 1], mr);
+  return up(gamma * habs + rad * slope);
+}
+
 template <bool F>
 [[gnu::always_inline]] inline bool DDPoly::eval_t(DDBall* v, DDBall* d1, DDBall* d2, const DDBall& x) const {
   using namespace dd_detail;
@@ -265,15 +279,7 @@ template <bool F>
       for (std::size_t k = h.size() - 1; k-- > 0;) acc = dw_add_fp(dw_mul<F>(acc, m), h[k]);
     else
       for (std::size_t k = h.size() - 1; k-- > 0;) acc = dw_add(dw_mul<F>(acc, m), {h[k], l[k]});
-    // Horner with 2 n_j double-word operations of relative error <= kEpsX:
-    // |acc - p^(j)(m)| <= gamma_{2 n_j} sum |c_k| |m|^k, and moving m over
-    // the ball adds at most rad * sup |p^(j+1)| <= rad * sum |c'_k| mr^k,
-    // which is at most rad * abs1_[j + 1] (>= sum |c'_k|) when mr <= 1.
-    const double steps = 2.0 * static_cast<double>(h.size() - 1);
-    const double gamma = steps * kEpsX * (1 + 0x1p-40);  // >= steps eps / (1 - steps eps)
-    const double slope = mr <= 1 ? abs1_[j + 1] : horner_abs(abs_[j + 1], mr);
-    const double r = up(gamma * horner_abs(abs_[j], mu) + x.rad * slope);
-    *outs[j] = ball(acc, r);
+    *outs[j] = ball(acc, horner_radius(j, h.size(), horner_abs(abs_[j], mu), mr, x.rad));
     ok = ok && dd_is_finite(*outs[j]);
   }
   return ok;
@@ -359,14 +365,8 @@ template <bool F>
       *out[q] = {0, 0, 0};
       continue;
     }
-    // eval_t's bound
-    const DDPoly& P = *p[q];
-    const int jq = j[q];
-    const double steps = 2.0 * static_cast<double>(size[q] - 1);
-    const double gamma = steps * kEpsX * (1 + 0x1p-40);
-    const double slope = mr <= 1 ? P.abs1_[jq + 1] : horner_abs(P.abs_[jq + 1], mr);
-    const double r = up(gamma * habs[q] + x.rad * slope);  // habs[q] = horner_abs(P.abs_[jq], mu)
-    *out[q] = ball(acc[q], r);
+    // eval_t's bound (habs[q] = horner_abs(abs_[j[q]], mu))
+    *out[q] = ball(acc[q], p[q]->horner_radius(j[q], size[q], habs[q], mr, x.rad));
     ok = ok && dd_is_finite(*out[q]);
   }
   return ok;
