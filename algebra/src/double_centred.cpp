@@ -132,7 +132,6 @@ bool DoubleCentredForm::eval_disks(CDisk* v, CDisk* d1, CDisk* d2, const acb_t z
   thread_local std::vector<double> ac;  // |c_k|, upper bounds
   ac.resize(n + 1);
   for (std::size_t k = 0; k <= n; ++k) ac[k] = ci ? cdisk_detail::abs_up(c[k], (*ci)[k]) : std::fabs(c[k]);
-  auto abs_c = [&](std::size_t k) { return ac[k]; };
   CDisk* outs[3] = {v, d1, d2};
   for (std::size_t j = 0; j <= 2; ++j) {
     CDisk* out = outs[j];
@@ -142,7 +141,7 @@ bool DoubleCentredForm::eval_disks(CDisk* v, CDisk* d1, CDisk* d2, const acb_t z
     double var = 0, err = 0;
     for (std::size_t k = n; k > j; --k) {
       const double f = j == 0 ? 1.0 : j == 1 ? static_cast<double>(k) : static_cast<double>(k * (k - 1));
-      var = (var + f * abs_c(k)) * r;
+      var = (var + f * ac[k]) * r;
       err = (err + f * (eps * D[k] + kUnderflowSlack)) * r;
     }
     const double fj = j == 2 ? 2 : 1;

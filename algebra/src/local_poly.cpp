@@ -169,13 +169,11 @@ void centred_eval(acb_t v, acb_t d1, acb_t d2, const BallPoly& p, const BallPoly
   mag_clear(r);
 }
 
-// True when z's radius (real or imaginary) is at least 2^-24: the
-// quadrature's segments and ellipses rather than its nodes.
+}  // namespace
+
 bool is_wide_ball(const acb_t z) {
   return mag_cmp_2exp_si(arb_radref(acb_realref(z)), -24) >= 0 || mag_cmp_2exp_si(arb_radref(acb_imagref(z)), -24) >= 0;
 }
-
-}  // namespace
 
 // ---------------------------------------------------------------------------
 
@@ -877,13 +875,7 @@ void LocalPoly::eval_disks(CDisk* v, CDisk* d1, CDisk* d2, const acb_t z, long p
 
 CDisk LocalPoly::eval_disk(const acb_t z, long prec) const {
   CDisk d;
-  if (cache_->centred.usable() && acb_is_finite(z) && cache_->centred.eval_disks(&d, nullptr, nullptr, z, kDoubleCentredMaxError))
-    return d;
-  acb_t v;
-  acb_init(v);
-  eval(v, z, prec);
-  d = cdisk_set_acb(v);
-  acb_clear(v);
+  eval_disks(&d, nullptr, nullptr, z, prec);
   return d;
 }
 

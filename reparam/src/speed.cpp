@@ -62,12 +62,6 @@ Poly gcd_all(const std::vector<Poly>& ps) {
 // p(z) on a complex ball z, from local expansions (LocalPoly).
 void poly_eval(acb_t out, const LocalPoly& p, const acb_t z, long prec) { p.eval(out, z, prec); }
 
-// True when z's radius (real or imaginary) is at least 2^-24: the
-// quadrature's segments and ellipses, whose enclosures only bound sigma
-// (LocalPoly's wide balls), rather than its nodes.
-bool wide_ball(const acb_t z) {
-  return mag_cmp_2exp_si(arb_radref(acb_realref(z)), -24) >= 0 || mag_cmp_2exp_si(arb_radref(acb_imagref(z)), -24) >= 0;
-}
 
 }  // namespace
 
@@ -80,7 +74,8 @@ struct SpeedDD {
   // The angular speed with L != 1: A_i = M_i' L - M_i L' as polynomials
   // (B_i = A_i'), where they are double words losing few bits: one Horner
   // pass for A_i and A_i' instead of M_i and L with two derivatives each and
-  // four products. Empty otherwise.
+  // four products. Empty otherwise; where it is not, M and L are empty
+  // (they only had to pass the path's checks).
   std::vector<DDPoly> A;
 };
 }  // namespace detail
@@ -149,6 +144,10 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
         if (!a_ok) break;
       }
       if (!a_ok) dd->A.clear();
+      if (a_ok) {  // speed_dd takes A_i alone: M_i and L only had to pass the checks above
+        dd->M.clear();
+        dd->L = DDPoly();
+      }
     }
     if (ok) dd_ = std::move(dd);
   }
@@ -467,10 +466,10 @@ using namespace dd_detail;
 template <bool F>
 [[gnu::always_inline]] inline bool speed_dd(DDBall& out, const detail::SpeedDD& dd, bool angular, int sign,
                                             bool squared, const DDBall& x) {
-  const std::size_t n = dd.M.size();
+  const bool direct = angular && !dd.A.empty();  // A_i and B_i = A_i' from their own polynomials
+  const std::size_t n = direct ? dd.A.size() : dd.M.size();
   DDBall A[3], B[3];  // curves of up to 3 components take this path
   DDBall q, q1, q2;
-  const bool direct = angular && !dd.A.empty();  // A_i and B_i = A_i' from their own polynomials
   // Every polynomial value the speed needs, as lanes of one interleaved
   // Horner loop (DDPoly::eval_lanes): A_i, A_i' (direct); M_i', M_i''
   // (polynomial curves); or L, M_i and their first two derivatives.
@@ -806,7 +805,7 @@ void Speed::eval_squared(acb_t out, const acb_t z, long prec, bool double_word) 
   if (zero_) { acb_zero(out); return; }
   if (double_word && eval_double_word(out, z, PieceSigns{}, true, prec)) return;
   // Wide balls in discs first, as eval's ellipses.
-  if (wide_ball(z)) {
+  if (is_wide_ball(z)) {  // (its enclosures only bound sigma^2)
     const DiskResult r = eval_squared_disk(out, z, prec);
     if (r == DiskResult::Ok) return;
     if (r == DiskResult::Refused) {

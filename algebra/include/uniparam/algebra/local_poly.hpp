@@ -48,6 +48,11 @@
 
 namespace uniparam {
 
+/// True when z's radius (real or imaginary) is at least 2^-24: the
+/// quadrature's segments and ellipses rather than its nodes (LocalPoly's
+/// wide balls, whose enclosures only bound p; see eval).
+bool is_wide_ball(const acb_t z);
+
 /// An exact integer polynomial with a cache of local expansions (see the
 /// file comment). Copies share the cache, and every member may be called
 /// from several threads at once on one LocalPoly or on its copies: the cache
