@@ -146,14 +146,14 @@ std::pair<long, long> check_wide_balls(std::mt19937_64& rng, long iters, Make ma
 
 TEST(SpeedEval, SquaredSpeedOnWideBallsContainsEveryPointValue) {
   std::mt19937_64 rng(7);
-  const auto [finite, total] = check_wide_balls(
+  const auto [finite, balls] = check_wide_balls(
       rng, test_support::iterations(6),
       [&](long it) { return WideCase{8 + static_cast<long>(rng() % 24), 2 + rng() % 2, it % 2 == 1}; },
       [&](acb_t z, int b) { random_ball(z, rng, b % 2 ? 0.05 : 0.002); },
       [](const Speed& s, acb_t out, const acb_t z) { s.eval_squared(out, z, 128); },
       [](const Speed& s, acb_t v, const acb_t w) { s.eval_squared(v, w, 256); }, false);
+  (void)balls;
   EXPECT_GT(finite, 0);  // the check above ran
-  EXPECT_GT(total, 0);
 }
 
 TEST(SpeedEval, AnalyticSpeedOnEllipsesInDiscsContainsEveryPointValue) {
