@@ -43,7 +43,13 @@ DoubleCentredForm::DoubleCentredForm(const Poly& p) {
 //     gamma_L = L u / (1 - L u); the computed D_k (positive terms along the
 //     same paths) is below the exact one by at most the factor 1 - gamma_L.
 //     E_k = 1.01 L u D_k covers both for n <= 64, and the rounding of E_k;
-//     kUnderflowSlack covers gradual underflow;
+//     kUnderflowSlack covers gradual underflow. eval_disks needs only the
+//     sums sum_k k!/(k-j)! E_k r^(k-j) (j <= 2) of the exact D_k (with
+//     |m| <= am): they are 1.01 L u |p|^(j)(am + r), |p| = sum |a_i| t^i,
+//     since sum_k D_k r^k = sum_i |a_i| (am + r)^i, and it computes them
+//     by Horner's rule (positive terms) without forming the D_k; only
+//     eval_deflated's majorants need the D_k themselves (shift's
+//     `majorants`);
 //   * r >= |t - m| for t in z: the hypot of z's radii (mag_get_d gives
 //     upper bounds) plus |mid(z) - m| <= 2^-53 |m| (+ 2^-1075 if
 //     subnormal), times 1 + 2^-50 for the roundings;
@@ -60,13 +66,13 @@ DoubleCentredForm::DoubleCentredForm(const Poly& p) {
 // m c (1 + d) with |d| <= sqrt(5) u (Brent, Percival and Zimmermann, 2007;
 // 2u with a fused multiply-add), so each of the j - k moves counts 3 + 1
 // units of u, the k + 1 passes 1 each and the rounding of a_j 2:
-// L = 4n + 3. D_k is formed as before with |m| rounded upward (hypot is
-// within an ulp, times 1 + 2^-51), so it bounds the exact
-// sum_j C(j, k) |a_j| |m|^(j-k) up to the same factor 1 - gamma_{2n+1};
-// E_k = 1.01 L u D_k covers both. |c_k| (cdisk.hpp's abs_up, an upper
+// L = 4n + 3. D_k (or |p| at am + r) is formed as before with am >= |m|
+// rounded upward (hypot is within an ulp, times 1 + 2^-51), so it bounds
+// the exact sum_j C(j, k) |a_j| |m|^(j-k) up to the same factor
+// 1 - gamma_{2n+1}; E_k = 1.01 L u D_k covers both. |c_k| (cdisk.hpp's abs_up, an upper
 // bound; computed once per shift, for the outputs' sums) enters only
 // sums of positive terms, whose factor 1 + 2^-40 covers it.
-bool DoubleCentredForm::shift(const acb_t z, Shift& sh) const {
+bool DoubleCentredForm::shift(const acb_t z, Shift& sh, bool majorants) const {
   sh.m = arf_get_d(arb_midref(acb_realref(z)), ARF_RND_NEAR);
   sh.mi = arf_get_d(arb_midref(acb_imagref(z)), ARF_RND_NEAR);
   const double am = sh.mi == 0 ? std::fabs(sh.m) : std::hypot(sh.m, sh.mi) * (1 + 0x1p-51);  // >= |m|
@@ -79,14 +85,11 @@ bool DoubleCentredForm::shift(const acb_t z, Shift& sh) const {
   const std::size_t n = a_.size() - 1;
   thread_local std::vector<double> c, ci, D;
   c = a_;
-  D = abs_a_;
   const double m = sh.m, mi = sh.mi;
+  sh.am = am;
   if (mi == 0) {
     for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t k = n; k-- > i;) {
-        c[k] += m * c[k + 1];
-        D[k] += am * D[k + 1];
-      }
+      for (std::size_t k = n; k-- > i;) c[k] += m * c[k + 1];
     sh.eps = 1.01 * static_cast<double>(2 * n + 3) * 0x1p-53;
   } else {
     ci.assign(n + 1, 0.0);
@@ -95,13 +98,18 @@ bool DoubleCentredForm::shift(const acb_t z, Shift& sh) const {
         const double pr = m * c[k + 1] - mi * ci[k + 1], pi = m * ci[k + 1] + mi * c[k + 1];
         c[k] += pr;
         ci[k] += pi;
-        D[k] += am * D[k + 1];
       }
     sh.eps = 1.01 * static_cast<double>(4 * n + 3) * 0x1p-53;
   }
+  sh.D = nullptr;
+  if (majorants) {  // the same synthetic division on |a_k| and |m|
+    D = abs_a_;
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t k = n; k-- > i;) D[k] += am * D[k + 1];
+    sh.D = &D;
+  }
   sh.c = &c;
   sh.ci = mi == 0 ? nullptr : &ci;
-  sh.D = &D;
   return true;
 }
 
@@ -123,30 +131,43 @@ void set_out(acb_t out, double centre, double centre_im, double rad, bool real) 
 
 bool DoubleCentredForm::eval_disks(CDisk* v, CDisk* d1, CDisk* d2, const acb_t z, double max_error) const {
   Shift sh;
-  if (!shift(z, sh)) return false;
+  if (!shift(z, sh, false)) return false;
   const std::vector<double>& c = *sh.c;
   const std::vector<double>* ci = sh.ci;  // null: a real midpoint
-  const std::vector<double>& D = *sh.D;
   const double r = sh.r, eps = sh.eps;
   const std::size_t n = a_.size() - 1;
   thread_local std::vector<double> ac;  // |c_k|, upper bounds
   ac.resize(n + 1);
   for (std::size_t k = 0; k <= n; ++k) ac[k] = ci ? cdisk_detail::abs_up(c[k], (*ci)[k]) : std::fabs(c[k]);
+  // The rounding parts sum_{k>=j} k!/(k-j)! E_k r^(k-j) need no D_k: with
+  // s = |m| + r, sum_k D_k r^k = sum_i |a_i| s^i (the binomial theorem), so
+  // they are eps |p|^(j)(s), |p| = sum |a_i| t^i, by Horner (positive terms,
+  // s rounded upward: the factor 1 + 2^-40 below covers the sums' roundings)
+  // plus the slack's own sums.
+  const double s = (sh.am + r) * (1 + 0x1p-52);
+  double h0 = 0, h1 = 0, h2 = 0;  // |p|(s), |p|'(s), |p|''(s) / 2
+  for (std::size_t k = n + 1; k-- > 0;) {
+    h2 = h2 * s + h1;
+    h1 = h1 * s + h0;
+    h0 = h0 * s + abs_a_[k];
+  }
+  const double hj[3] = {h0, h1, 2 * h2};
   CDisk* outs[3] = {v, d1, d2};
   for (std::size_t j = 0; j <= 2; ++j) {
     CDisk* out = outs[j];
     if (!out) continue;
     // sum_{k>j} k!/(k-j)! |c_k| r^(k-j) (the variation) and the same with
-    // E_k (the rounding part), by Horner
+    // the underflow slack, by Horner
     double var = 0, err = 0;
     for (std::size_t k = n; k > j; --k) {
       const double f = j == 0 ? 1.0 : j == 1 ? static_cast<double>(k) : static_cast<double>(k * (k - 1));
       var = (var + f * ac[k]) * r;
-      err = (err + f * (eps * D[k] + kUnderflowSlack)) * r;
+      err = (err + f * kUnderflowSlack) * r;
     }
     const double fj = j == 2 ? 2 : 1;
     const double centre = j <= n ? fj * c[j] : 0, centre_im = j <= n && ci ? fj * (*ci)[j] : 0;
-    if (j <= n) err += fj * (eps * D[j] + kUnderflowSlack);
+    if (j <= n) err += fj * kUnderflowSlack;
+    err += eps * hj[j];
     const double rad = (var + err) * (1 + 0x1p-40) + kUnderflowSlack;
     if (!std::isfinite(rad) || !std::isfinite(centre) || !std::isfinite(centre_im)) return false;
     if (err > max_error * (std::hypot(centre, centre_im) + var)) return false;
@@ -192,7 +213,7 @@ bool DoubleCentredForm::eval_deflated(acb_t v, const acb_t z, double gamma_mid, 
                                       double max_error) const {
   if (a_.size() < 2 || !(std::fabs(gamma_mid) <= 4) || !(gamma_rad >= 0 && gamma_rad <= 1)) return false;
   Shift sh;
-  if (!shift(z, sh)) return false;
+  if (!shift(z, sh, true)) return false;
   const std::vector<double>& c = *sh.c;
   const std::vector<double>* ci = sh.ci;  // null: a real midpoint
   const std::vector<double>& D = *sh.D;

@@ -252,6 +252,64 @@ TEST(DoubleCentredForm, DeflatedEnclosesTheQuotientForARootKnownToAnyAccuracy) {
 // r > 2^8; for the quotient, a constant p, |gamma_mid| > 4 or
 // gamma_rad > 1; and polynomials of degree > 64 or coefficients of 800 bits
 // are not usable.
+// The rounding part of each output j is the documented majorant
+// 1.01 L u |p|^(j)(|m| + r), |p| = sum |a_i| t^i (L = 2n + 3 for a real
+// midpoint, 4n + 3 for a complex one; the underflow slack is negligible
+// here): measured through max_error, whose refusal compares it with
+// |centre| + variation (both from the exact Taylor shift at 4000 bits).
+// Just below the majorant's ratio the output is refused, just above it is
+// given: a rounding part without the radius in |m| + r, or with |p| for
+// |p|' or |p|'', fails.
+TEST(DoubleCentredForm, TheRoundingPartIsTheMajorantOfTheAbsoluteCoefficients) {
+  std::mt19937_64 rng(90125);
+  std::uniform_real_distribution<double> unit(0, 1);
+  acb_poly_t exact;
+  acb_poly_init(exact);
+  acb_t m, c;
+  acb_init(m);
+  acb_init(c);
+  long checked = 0;
+  for (long it = 0; it < iterations(80); ++it) {
+    const Poly p = test_support::random_poly(rng, std::uniform_int_distribution<long>(3, 64)(rng), 1000);
+    const DoubleCentredForm form(p);
+    ASSERT_TRUE(form.usable());
+    const long n = p.degree();
+    Balls x;
+    const double re = -0.25 + 1.5 * unit(rng), im = it % 2 ? 0.5 * unit(rng) : 0;
+    const double rx = std::ldexp(1.0 + unit(rng), -std::uniform_int_distribution<int>(1, 8)(rng));
+    x.set(re, rx, it % 3 == 0 ? 0 : rx * unit(rng), im);
+    const double r = std::hypot(mag_get_d(arb_radref(acb_realref(x.z))), mag_get_d(arb_radref(acb_imagref(x.z))));
+    const double am = std::hypot(re, im), s = am + r;
+    const double eps = 1.01 * static_cast<double>((im == 0 ? 2 : 4) * n + 3) * 0x1p-53;
+    acb_set_d_d(m, re, im);
+    acb_poly_set_fmpz_poly(exact, p.get(), 4000);
+    acb_poly_taylor_shift(exact, exact, m, 4000);
+    for (int j = 0; j <= 2; ++j) {
+      // |p|^(j)(s) and j! |c_j| + sum_{k>j} k!/(k-j)! |c_k| r^(k-j)
+      double major = 0, scale = 0;
+      for (long k = n; k >= j; --k) {
+        const double f = j == 0 ? 1.0 : j == 1 ? static_cast<double>(k) : static_cast<double>(k * (k - 1));
+        major = major * s + f * std::fabs(fmpz_get_d(p.get()->coeffs + k));
+        acb_poly_get_coeff_acb(c, exact, k);
+        scale = scale * r + f * acb_get_d_abs_for_test(c);
+      }
+      const double ratio = eps * major / scale;
+      acb_ptr out[3] = {nullptr, nullptr, nullptr};
+      out[j] = j == 0 ? x.v : j == 1 ? x.d1 : x.d2;
+      const std::string what = "output " + std::to_string(j) + ", degree " + std::to_string(n) + " at " +
+                               std::to_string(re) + " + " + std::to_string(im) + "i, r " + std::to_string(r);
+      if (!form.eval(out[0], out[1], out[2], x.z, HUGE_VAL)) continue;  // (overflow)
+      ++checked;
+      EXPECT_FALSE(form.eval(out[0], out[1], out[2], x.z, 0.999 * ratio)) << "rounding part below the majorant, " << what;
+      EXPECT_TRUE(form.eval(out[0], out[1], out[2], x.z, 1.001 * ratio)) << "rounding part above the majorant, " << what;
+    }
+  }
+  EXPECT_GT(checked, iterations(80) * 2);
+  acb_poly_clear(exact);
+  acb_clear(m);
+  acb_clear(c);
+}
+
 TEST(DoubleCentredForm, RefusesWhatItsContractExcludes) {
   const Poly p = pure_power(3, 1, 2, 5);
   const DoubleCentredForm form(p);

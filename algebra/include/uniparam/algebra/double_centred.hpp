@@ -68,12 +68,14 @@ class DoubleCentredForm {
 
  private:
   struct Shift {
-    double m = 0, mi = 0, r = 0, eps = 0;  // centre m + i mi, radius, E_k / D_k
-    // c_k (real parts; ci: imaginary parts, null for a real centre) and D_k (thread-local)
+    double m = 0, mi = 0, am = 0, r = 0, eps = 0;  // centre m + i mi, am >= |m|, radius, E_k / D_k
+    // c_k (real parts; ci: imaginary parts, null for a real centre) and, when
+    // asked, D_k (else null); thread-local
     const std::vector<double>*c = nullptr, *ci = nullptr, *D = nullptr;
   };
-  // The Taylor coefficients at z's midpoint (see eval); false as eval.
-  bool shift(const acb_t z, Shift& sh) const;
+  // The Taylor coefficients at z's midpoint (see eval), with the majorants
+  // D_k when `majorants`; false as eval.
+  bool shift(const acb_t z, Shift& sh, bool majorants) const;
 
   std::vector<double> a_, abs_a_;  // p's coefficients rounded towards zero, and |.|
 };
