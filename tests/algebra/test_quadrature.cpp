@@ -304,32 +304,75 @@ TEST(Quadrature, SmallEllipseSavesTheBisectionOfAPoleJustOutsideIt) {
   // bounding box of the ellipse X (half-widths X/2 and sqrt(X^2 - 1)/2 here),
   // ball arithmetic gives Re (z - 1/2)^2 in +-(r_x^2 + r_y^2): +-1.75 for
   // X = 2, +-0.53 for X = 5/4. For a^2 between the two, f's enclosure is
-  // infinite on the first box and finite on the second: the step on [0, 1]
-  // must succeed on the small ellipse after exactly three ellipses: X = 2,
-  // the first of its two upper-half boxes (which holds the pole 1/2 + a i:
-  // the second is not tried) and X = 5/4 (Arb's rule fails at X = 2 and
+  // infinite on the first box and finite on the second. For a below the
+  // ellipse X = 2's semi-minor axis 0.866 the pole 1/2 + a i is in the
+  // inner strip [0, 1/2] x [0, 0.866] over its upper half, tried first
+  // after the box: the step on [0, 1] must succeed on the small ellipse after
+  // exactly three ellipse calls: X = 2's box, that strip (the other three
+  // are not tried) and X = 5/4's box (Arb's rule fails at X = 2 and
   // bisects: two more ellipses at least).
-  for (long a_num : {16L, 20L})  // a = 4/5, 1
+  for (long a_num : {16L, 17L})  // a = 0.8, 0.85
     EXPECT_EQ(integrate_pole_pair(a_num).ellipses, 3) << "a = " << a_num << "/20";
 }
 
-TEST(Quadrature, UpperHalfBoxesServeWhereTheBoundingBoxReachesAPole) {
-  // The same f for a in [1.2, 1.3]: the poles 1/2 +- a i lie outside the
+TEST(Quadrature, UpperHalfStripsServeWhereTheBoundingBoxReachesAPole) {
+  // The same f for a in [1, 1.3]: the poles 1/2 +- a i lie outside the
   // ellipse X = 2 (semi-minor axis 0.866) but in reach of ball arithmetic on
-  // its bounding box (Re (z - 1/2)^2 in +-1.75 > a^2), so that box fails (for
-  // a below ~1.1 the halves' balls reach the poles too). The two boxes
-  // [0, X] x [0, Y] and [-X, 0] x [0, Y] (around the midpoint, times the
-  // half-length) cover the upper half of the ellipse with half the radius,
-  // and f, real on [0, 1], is bounded on the lower half by reflection: the
-  // step must succeed on X = 2 after exactly four ellipse evaluations (the
-  // bounding box, the two halves, X = 4's box), with the nodes of
-  // rho = 3.73 (at most 30 for this goal) where the small ellipse X = 5/4
-  // (rho = 2) takes over 30.
-  for (long a_num : {24L, 25L, 26L}) {  // a = 1.2 .. 1.3
+  // its bounding box (Re (z - 1/2)^2 in +-1.75 > a^2), so that box fails.
+  // The four strips [-X, -X/2], [-X/2, 0], [0, X/2], [X/2, X], each up to
+  // the ellipse's height over it (around the midpoint, times the
+  // half-length), cover the upper half of the ellipse with discs of well
+  // under half the box's radius, and f, real on [0, 1], is bounded on the
+  // lower half by reflection: the step must succeed on X = 2 after exactly
+  // six ellipse calls (the bounding box, the four strips, X = 4's box), with
+  // the nodes of rho = 3.73 (at most 30 for this goal) where the small
+  // ellipse X = 5/4 (rho = 2) takes over 30. Without the strips it bisects
+  // (more ellipses) or takes the small ellipse (more nodes).
+  for (long a_num : {20L, 24L, 25L, 26L}) {  // a = 1 .. 1.3
     const PolePairCalls calls = integrate_pole_pair(a_num);
-    EXPECT_EQ(calls.ellipses, 4) << "a = " << a_num << "/20";
+    EXPECT_EQ(calls.ellipses, 6) << "a = " << a_num << "/20";
     EXPECT_LE(calls.nodes, 30 + 7) << "a = " << a_num << "/20";  // (+ the start-precision probe's 7 points)
   }
+}
+
+/// Nodes the quadrature of 1 over [0, 1] takes when the integrand reports
+/// a singularity at 1/2 + (x + y i)/2 and its conjugate (x, y in units of
+/// the half-length): every ellipse box holding either point is answered
+/// indeterminate, every other call exactly 1.
+long nodes_with_virtual_singularity(double x, double y) {
+  long nodes = 0;
+  acb_t p, q;
+  acb_init(p);
+  acb_init(q);
+  acb_set_d_d(p, 0.5 + 0.5 * x, 0.5 * y);
+  acb_conj(q, p);
+  Integrand f = [&](acb_t out, const acb_t z, bool analytic, long) {
+    if (!analytic && mag_cmp_2exp_si(arb_radref(acb_realref(z)), -30) < 0) ++nodes;
+    if (analytic && (acb_contains(z, p) || acb_contains(z, q))) acb_indeterminate(out);
+    else acb_one(out);
+  };
+  QuadratureOptions opt;
+  opt.rel_goal_bits = 53;
+  const Ball r = integrate(f, Rational(0), Rational(1), opt);
+  EXPECT_TRUE(r.contains(Rational(1))) << r.str(30);
+  acb_clear(p);
+  acb_clear(q);
+  return nodes;
+}
+
+TEST(Quadrature, NoStripCoverServesWhereTheEllipseHoldsASingularity) {
+  // (1.5, 1.1) is inside the ellipse X = 2 (height 1.146 at x = 1.5) and
+  // outside X = 5/4's bounding box: the step on [0, 1] must refuse X = 2
+  // (the outer strip [1, 2] x [0, 1.5] holds it) and take X = 5/4's nodes
+  // (rho = 2). (1.5, 1.55) is outside the ellipse and every strip, though
+  // inside X = 2's bounding box: the strips serve, with rho = 3.73's fewer
+  // nodes. An outer strip lower than the ellipse over it, or strips that
+  // miss part of the half ellipse, accept the first as well.
+  const long inside = nodes_with_virtual_singularity(1.5, 1.1);
+  const long outside = nodes_with_virtual_singularity(1.5, 1.55);
+  EXPECT_GT(inside, outside) << "inside: " << inside << " nodes, outside: " << outside;
+  // the inner strips: a point above the middle, inside and outside
+  EXPECT_GT(nodes_with_virtual_singularity(0.25, 1.65), nodes_with_virtual_singularity(0.25, 1.8));
 }
 
 TEST(Quadrature, AlgebraicEnds) {
