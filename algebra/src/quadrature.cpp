@@ -288,27 +288,31 @@ int gl_step(acb_ptr res, long* evals, Context& ctx, const acb_t a, const acb_t b
   // M_k = |delta| sup |f_k| on the ellipse X; false when f is not finite
   // there. f is bounded on the ellipse's bounding box first, as Arb does.
   // Where that is not finite and X <= 2, on a real interval (f real there),
-  // on the four strips [-X, -X/2], [-X/2, 0], [0, X/2], [X/2, X] (each up to
-  // the ellipse's height over it: Y sqrt(3)/2 over the outer ones, Y over
-  // the inner ones; times delta, plus mid), which cover the upper half of
-  // the ellipse: by Schwarz's reflection, G(z) = f(z) above the axis and
-  // conj f(conj z) below is holomorphic on the ellipse, equals f on [a, b]
-  // and has the same bound, which is all the Gauss-Legendre error bound
-  // asks. A strip's disc has well under half the radius of the bounding
-  // box's (at X = 2: 1.0 against 2.65, in units of delta), so its
-  // enclosure is far tighter: one that reached a branch point's cut or a
-  // pole often no longer does, and a centred form's overestimate near a
-  // nearly double zero of a radicand shrinks with the radius. The ellipse
-  // X = 2 then often serves where only X = 5/4 did, with about half the
-  // nodes, and fewer intervals are bisected: on bez-rat-space 12's
+  // on strips that cover the upper half of the ellipse, each up to the
+  // ellipse's height over it (times delta, plus mid): by Schwarz's
+  // reflection, G(z) = f(z) above the axis and conj f(conj z) below is
+  // holomorphic on the ellipse, equals f on [a, b] and has the same bound,
+  // which is all the Gauss-Legendre error bound asks. First the two halves
+  // [-X, 0] x [0, Y] and [0, X] x [0, Y]; on the small ellipse X = 5/4,
+  // where they fail, the four quarters [-X, -X/2], [-X/2, 0], [0, X/2],
+  // [X/2, X] (height Y sqrt(3)/2 over the outer ones, Y over the inner
+  // ones; the inner ones, the tallest and the likeliest to fail, first).
+  // A strip's disc is far smaller than the bounding box's (at X = 2: 1.32
+  // and 1.0 against 2.65, in units of delta), so its enclosure is far
+  // tighter: one that reached a branch point's cut or a pole often no
+  // longer does, and a centred form's overestimate near a nearly double
+  // zero of a radicand (the space curves' sum K^2 near a branch point close
+  // to the axis) shrinks with the radius. X = 2 then often serves where only
+  // X = 5/4 did, with about half the nodes, and the quarters save
+  // bisections where the small ellipse's halves fail: on bez-rat-space 12's
   // uniformity, 1836 nodes and 45 bisections a run with the bounding box
-  // alone, 888 and 20 with the strips. (Two boxes over the halves
-  // [-X, 0], [0, X] served there too, but with bounds that took 1228 nodes
-  // and 30 bisections.) The inner strips, the tallest and the likeliest to
-  // fail, go first, so a failure costs one or two calls of f. (Session
-  // 20's halves stopped once they had failed twice as often as they served;
-  // the strips are always tried: that record turned them off after the
-  // first, hopeless, levels of the subdivision, where nothing serves.)
+  // alone, 1228 and 30 with the halves at both ellipses. (The quarters at X = 2 as well took
+  // 888 nodes and 20 bisections there, with fewer instructions, but cost
+  // 10% at degree 6, where the halves serve and every strip is a complex
+  // centred form; see docs/benchmarks.md, session 22.) Session 20's halves
+  // stopped once they had failed twice as often as they served; they are
+  // now always tried: that record turned them off after the first,
+  // hopeless, levels of the subdivision, where nothing serves.
   const bool real_interval = arb_is_zero(acb_imagref(mid.v)) && arb_is_zero(acb_imagref(delta.v));
   auto bound_on = [&](const mag_t x) {
     if (hinted(x)) return false;
@@ -338,27 +342,34 @@ int gl_step(acb_ptr res, long* evals, Context& ctx, const acb_t a, const acb_t b
     mag_set(arb_radref(acb_imagref(wide.v)), Y.v);
     if (on_box(true)) return true;
     if (!real_interval || mag_cmp_2exp_si(x, 1) > 0) return false;
+    // the m = 2 or 4 strips j = 0 .. m-1, [-X + 2jX/m, -X + 2(j+1)X/m] x
+    // [0, the ellipse's height over it], the inner ones first
     MagVar h;
-    static constexpr int kStripOrder[] = {1, 2, 0, 3};
-    for (int i = 0; i < 4; ++i) {
-      const int j = kStripOrder[i];  // strip j: [(j - 2) X/2, (j - 1) X/2] x [0, h]
-      if (j == 0 || j == 3) {
-        mag_set_d(h.v, 0.86602540378445);  // >= sqrt(3)/2
-        mag_mul(h.v, h.v, Y.v);
-      } else {
-        mag_set(h.v, Y.v);
+    auto strips = [&](int m) {
+      static constexpr int kOrder2[] = {0, 1}, kOrder4[] = {1, 2, 0, 3};
+      for (int i = 0; i < m; ++i) {
+        const int j = m == 2 ? kOrder2[i] : kOrder4[i];
+        if (m == 4 && (j == 0 || j == 3)) {
+          mag_set_d(h.v, 0.86602540378445);  // >= sqrt(3)/2
+          mag_mul(h.v, h.v, Y.v);
+        } else {
+          mag_set(h.v, Y.v);
+        }
+        acb_zero(wide.v);
+        arf_set_mag(arb_midref(acb_realref(wide.v)), x);  // centre (2j + 1 - m) X/m (exact), radius X/m
+        arb_mul_si(acb_realref(wide.v), acb_realref(wide.v), 2 * j + 1 - m, prec);
+        arb_mul_2exp_si(acb_realref(wide.v), acb_realref(wide.v), m == 2 ? -1 : -2);
+        mag_mul_2exp_si(arb_radref(acb_realref(wide.v)), x, m == 2 ? -1 : -2);
+        arf_set_mag(arb_midref(acb_imagref(wide.v)), h.v);  // [0, h]
+        arb_mul_2exp_si(acb_imagref(wide.v), acb_imagref(wide.v), -1);
+        mag_mul_2exp_si(arb_radref(acb_imagref(wide.v)), h.v, -1);
+        if (!on_box(i == 0)) return false;
       }
-      acb_zero(wide.v);
-      arf_set_mag(arb_midref(acb_realref(wide.v)), x);  // centre (2j - 3) X/4 (exact), radius X/4
-      arb_mul_si(acb_realref(wide.v), acb_realref(wide.v), 2 * j - 3, prec);
-      arb_mul_2exp_si(acb_realref(wide.v), acb_realref(wide.v), -2);
-      mag_mul_2exp_si(arb_radref(acb_realref(wide.v)), x, -2);
-      arf_set_mag(arb_midref(acb_imagref(wide.v)), h.v);  // [0, h]
-      arb_mul_2exp_si(acb_imagref(wide.v), acb_imagref(wide.v), -1);
-      mag_mul_2exp_si(arb_radref(acb_imagref(wide.v)), h.v, -1);
-      if (!on_box(i == 0)) return false;
-    }
-    return true;
+      return true;
+    };
+    // the halves; at X < 2 (the small ellipse, the last before a bisection)
+    // the quarters where they fail
+    return strips(2) || (mag_cmp_2exp_si(x, 1) < 0 && strips(4));
   };
   // best: the fewest nodes found so far, with the M_k and rho it was found with
   int best = -1;

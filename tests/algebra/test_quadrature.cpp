@@ -306,31 +306,30 @@ TEST(Quadrature, SmallEllipseSavesTheBisectionOfAPoleJustOutsideIt) {
   // X = 2, +-0.53 for X = 5/4. For a^2 between the two, f's enclosure is
   // infinite on the first box and finite on the second. For a below the
   // ellipse X = 2's semi-minor axis 0.866 the pole 1/2 + a i is in the
-  // inner strip [0, 1/2] x [0, 0.866] over its upper half, tried first
-  // after the box: the step on [0, 1] must succeed on the small ellipse after
-  // exactly three ellipse calls: X = 2's box, that strip (the other three
-  // are not tried) and X = 5/4's box (Arb's rule fails at X = 2 and
-  // bisects: two more ellipses at least).
+  // first of the two halves [0, 1/2] x [0, 0.866], [1/2, 1] x [0, 0.866]
+  // over its upper half, tried after the box: the step on [0, 1] must
+  // succeed on the small ellipse after exactly three ellipse calls: X = 2's
+  // box, that half (the other is not tried) and X = 5/4's box (Arb's rule
+  // fails at X = 2 and bisects: two more ellipses at least).
   for (long a_num : {16L, 17L})  // a = 0.8, 0.85
     EXPECT_EQ(integrate_pole_pair(a_num).ellipses, 3) << "a = " << a_num << "/20";
 }
 
 TEST(Quadrature, UpperHalfStripsServeWhereTheBoundingBoxReachesAPole) {
-  // The same f for a in [1, 1.3]: the poles 1/2 +- a i lie outside the
+  // The same f for a in [1.2, 1.3]: the poles 1/2 +- a i lie outside the
   // ellipse X = 2 (semi-minor axis 0.866) but in reach of ball arithmetic on
-  // its bounding box (Re (z - 1/2)^2 in +-1.75 > a^2), so that box fails.
-  // The four strips [-X, -X/2], [-X/2, 0], [0, X/2], [X/2, X], each up to
-  // the ellipse's height over it (around the midpoint, times the
-  // half-length), cover the upper half of the ellipse with discs of well
-  // under half the box's radius, and f, real on [0, 1], is bounded on the
-  // lower half by reflection: the step must succeed on X = 2 after exactly
-  // six ellipse calls (the bounding box, the four strips, X = 4's box), with
-  // the nodes of rho = 3.73 (at most 30 for this goal) where the small
-  // ellipse X = 5/4 (rho = 2) takes over 30. Without the strips it bisects
-  // (more ellipses) or takes the small ellipse (more nodes).
-  for (long a_num : {20L, 24L, 25L, 26L}) {  // a = 1 .. 1.3
+  // its bounding box (Re (z - 1/2)^2 in +-1.75 > a^2), so that box fails
+  // (for a below ~1.1 the halves' balls reach the poles too). The two halves [-X, 0] x [0, Y], [0, X] x [0, Y] (around the midpoint,
+  // times the half-length) cover the upper half of the ellipse with half the
+  // box's radius, and f, real on [0, 1], is bounded on the lower half by
+  // reflection: the step must succeed on X = 2 after exactly four ellipse
+  // calls (the bounding box, the two halves, X = 4's box), with the nodes of
+  // rho = 3.73 (at most 30 for this goal) where the small ellipse X = 5/4
+  // (rho = 2) takes over 30. Without the halves it bisects (more ellipses)
+  // or takes the small ellipse (more nodes).
+  for (long a_num : {24L, 25L, 26L}) {  // a = 1.2 .. 1.3
     const PolePairCalls calls = integrate_pole_pair(a_num);
-    EXPECT_EQ(calls.ellipses, 6) << "a = " << a_num << "/20";
+    EXPECT_EQ(calls.ellipses, 4) << "a = " << a_num << "/20";
     EXPECT_LE(calls.nodes, 30 + 7) << "a = " << a_num << "/20";  // (+ the start-precision probe's 7 points)
   }
 }
@@ -361,18 +360,21 @@ long nodes_with_virtual_singularity(double x, double y) {
 }
 
 TEST(Quadrature, NoStripCoverServesWhereTheEllipseHoldsASingularity) {
-  // (1.5, 1.1) is inside the ellipse X = 2 (height 1.146 at x = 1.5) and
-  // outside X = 5/4's bounding box: the step on [0, 1] must refuse X = 2
-  // (the outer strip [1, 2] x [0, 1.5] holds it) and take X = 5/4's nodes
-  // (rho = 2). (1.5, 1.55) is outside the ellipse and every strip, though
-  // inside X = 2's bounding box: the strips serve, with rho = 3.73's fewer
-  // nodes. An outer strip lower than the ellipse over it, or strips that
-  // miss part of the half ellipse, accept the first as well.
-  const long inside = nodes_with_virtual_singularity(1.5, 1.1);
-  const long outside = nodes_with_virtual_singularity(1.5, 1.55);
-  EXPECT_GT(inside, outside) << "inside: " << inside << " nodes, outside: " << outside;
-  // the inner strips: a point above the middle, inside and outside
-  EXPECT_GT(nodes_with_virtual_singularity(0.25, 1.65), nodes_with_virtual_singularity(0.25, 1.8));
+  // Points inside the ellipse X = 2 and X = 5/4's halves [-5/4, 0] x
+  // [0, 3/4], [0, 5/4] x [0, 3/4] (so both fail, and the quarters of X = 5/4
+  // decide). (1.0, 0.7) is outside the small ellipse (height 0.45 at x = 1)
+  // and every quarter (the outer ones reach 0.65): the quarters serve, the
+  // step on [0, 1] takes rho = 2's nodes. (0.9, 0.45) is inside the small
+  // ellipse (height 0.52 at x = 0.9) under the outer quarter [5/8, 5/4] x
+  // [0, 0.65], (0.3, 0.7) inside it (height 0.73) under the inner quarter
+  // [0, 5/8] x [0, 3/4]: the step must bisect, with more nodes. A quarter
+  // lower than the ellipse over it, or quarters that miss part of the half
+  // ellipse, accept these as well.
+  const long served = nodes_with_virtual_singularity(1.0, 0.7);
+  for (const auto& p : {std::pair<double, double>{0.9, 0.45}, std::pair<double, double>{0.3, 0.7}}) {
+    const long inside = nodes_with_virtual_singularity(p.first, p.second);
+    EXPECT_GT(inside, served) << "(" << p.first << ", " << p.second << "): " << inside << " nodes, outside: " << served;
+  }
 }
 
 TEST(Quadrature, AlgebraicEnds) {
