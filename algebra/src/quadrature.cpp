@@ -306,10 +306,11 @@ int gl_step(acb_ptr res, long* evals, Context& ctx, const acb_t a, const acb_t b
   // X = 5/4 did, with about half the nodes, and the quarters save
   // bisections where the small ellipse's halves fail: on bez-rat-space 12's
   // uniformity, 1836 nodes and 45 bisections a run with the bounding box
-  // alone, 1228 and 30 with the halves at both ellipses. (The quarters at X = 2 as well took
-  // 888 nodes and 20 bisections there, with fewer instructions, but cost
-  // 10% at degree 6, where the halves serve and every strip is a complex
-  // centred form; see docs/benchmarks.md, session 22.) Session 20's halves
+  // alone, 1228 and 30 with the halves at both ellipses. (The quarters at
+  // X = 2 as well took 888 nodes and 20 bisections there, with fewer
+  // instructions, but cost 10% at degree 6, where the halves serve and
+  // every strip is a complex centred form; see docs/benchmarks.md, session
+  // 22.) Session 20's halves
   // stopped once they had failed twice as often as they served; they are
   // now always tried: that record turned them off after the first,
   // hopeless, levels of the subdivision, where nothing serves.

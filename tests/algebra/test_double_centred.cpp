@@ -300,8 +300,10 @@ TEST(DoubleCentredForm, TheRoundingPartIsTheMajorantOfTheAbsoluteCoefficients) {
                                std::to_string(re) + " + " + std::to_string(im) + "i, r " + std::to_string(r);
       if (!form.eval(out[0], out[1], out[2], x.z, HUGE_VAL)) continue;  // (overflow)
       ++checked;
-      EXPECT_FALSE(form.eval(out[0], out[1], out[2], x.z, 0.999 * ratio)) << "rounding part below the majorant, " << what;
-      EXPECT_TRUE(form.eval(out[0], out[1], out[2], x.z, 1.001 * ratio)) << "rounding part above the majorant, " << what;
+      EXPECT_FALSE(form.eval(out[0], out[1], out[2], x.z, 0.999 * ratio))
+          << "rounding part below the majorant, " << what;
+      EXPECT_TRUE(form.eval(out[0], out[1], out[2], x.z, 1.001 * ratio))
+          << "rounding part above the majorant, " << what;
     }
   }
   EXPECT_GT(checked, iterations(80) * 2);

@@ -373,7 +373,8 @@ TEST(Quadrature, NoStripCoverServesWhereTheEllipseHoldsASingularity) {
   const long served = nodes_with_virtual_singularity(1.0, 0.7);
   for (const auto& p : {std::pair<double, double>{0.9, 0.45}, std::pair<double, double>{0.3, 0.7}}) {
     const long inside = nodes_with_virtual_singularity(p.first, p.second);
-    EXPECT_GT(inside, served) << "(" << p.first << ", " << p.second << "): " << inside << " nodes, outside: " << served;
+    EXPECT_GT(inside, served) << "(" << p.first << ", " << p.second << "): " << inside
+                              << " nodes, outside: " << served;
   }
 }
 
