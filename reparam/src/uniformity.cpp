@@ -136,6 +136,10 @@ namespace {
 void speed_integrals(const Speed& s, long bits, long max_prec, bool squares, Ball& mu, Ball& mean_square) {
   const RealAlgebraic zero(0), one(1);
   for (const SpeedZero& z : s.zeros()) z.t.refine(bits + 67);
+  // The tasks' quadratures start by asking for the singularity hints (one
+  // computation, shared): made here, its two root sets on two workers,
+  // instead of by the first task while the others wait.
+  s.singularity_hints(false);
   // At least two parts with squares: the two tasks of a curve without
   // zeros were mu and the integral of sigma^2 side by side, and a part is
   // about what the quadrature's first bisection makes anyway.

@@ -4,6 +4,7 @@
 // moderate degree converted to the power basis (large alternating
 // coefficients, where the centred form replaces Horner), plane and space,
 // polynomial and rational.
+#include <acb_poly.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "support/iterations.hpp"
+#include "uniparam/algebra/approx_roots.hpp"
 #include "uniparam/algebra/quadrature.hpp"
 #include "uniparam/uniparam.hpp"
 
@@ -581,6 +583,56 @@ double relative_value(const Poly& p, std::complex<double> h) {
 }
 
 }  // namespace
+
+// The exact Newton step |p(h) / p'(h)| at h (Arb at 512 bits on p's
+// integer coefficients): small when h is close to a simple root of p.
+double newton_step(const Poly& p, std::complex<double> h) {
+  acb_poly_t a;
+  acb_t z, v, d;
+  acb_poly_init(a);
+  acb_init(z);
+  acb_init(v);
+  acb_init(d);
+  acb_poly_set_fmpz_poly(a, p.get(), 512);
+  acb_set_d_d(z, h.real(), h.imag());
+  acb_poly_evaluate2(v, d, a, z, 512);
+  acb_div(v, v, d, 512);
+  const double r = std::hypot(arf_get_d(arb_midref(acb_realref(v)), ARF_RND_NEAR),
+                              arf_get_d(arb_midref(acb_imagref(v)), ARF_RND_NEAR));
+  acb_poly_clear(a);
+  acb_clear(z);
+  acb_clear(v);
+  acb_clear(d);
+  return r;
+}
+
+TEST(SpeedEval, SingularityHintsOfHighDegreeBezierCurvesComeFromTheCentredBasis) {
+  // At degree 12 a Bezier curve's D and sum K^2 lose more than 30 bits on
+  // [0, 1] in their own power basis (no hints from it); centred at 1/2 they
+  // still give every root, and those within 1/2 of [0, 1] (the ones the
+  // quadrature's boxes meet) are each within 1e-6 of a root by the exact
+  // Newton step (the roots of random curves are simple).
+  std::mt19937_64 rng(20261202u);
+  const long n = uniparam::test_support::iterations(4);
+  for (long it = 0; it < n; ++it) {
+    const Curve c = random_bezier(rng, 12, 3, true);
+    const Speed s(c, SpeedKind::Angular);
+    SCOPED_TRACE(c.str());
+    Poly sumK2(0);
+    for (const Poly& k : s.cofactors()) sumK2 = sumK2 + k * k;
+    const Poly& D = s.denominator();
+    ASSERT_GT(power_basis_loss(D), 30);
+    const auto& sg = s.singularity_hints(false);
+    ASSERT_EQ(static_cast<long>(sg.size()), D.degree() + sumK2.degree());
+    long near = 0;
+    for (const auto& h : sg) {
+      if (std::fabs(h.imag()) > 0.5 || h.real() < -0.5 || h.real() > 1.5) continue;
+      ++near;
+      EXPECT_LT(std::min(newton_step(D, h), newton_step(sumK2, h)), 1e-6) << h;
+    }
+    EXPECT_GT(near, 0);
+  }
+}
 
 TEST(SpeedEval, SingularityHintsApproximateThePolesAndBranchPoints) {
   // sigma^2's hints: the roots of D; sigma's: those and, where sigma has a

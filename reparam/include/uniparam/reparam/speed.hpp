@@ -156,14 +156,17 @@ class Speed {
   /// quadrature's NodeIntegrand). \return false, out unspecified, where
   /// eval_double_word would.
   bool eval_dd(DDBall& out, const DDBall& x, const PieceSigns& p, bool squared, long prec) const;
-  /// UNCERTIFIED approximations (approximate_complex_roots) of the complex
-  /// points where sigma (squared = false) or sigma^2 (squared = true) is not
-  /// analytic: the zeros of D (poles) and, for sigma with a square root
-  /// (space curves' angular speed, the parametric speed), of sum K^2
-  /// (branch points). For QuadratureOptions::singularity_hints only.
-  /// Computed on the first call (thread-safe; copies share them); empty
-  /// when D or sum K^2 has degree above 128 (the hints would cost more
-  /// than they save) or the approximation failed.
+  /// UNCERTIFIED approximations (approximate_roots_near_unit_interval) of
+  /// the complex points where sigma (squared = false) or sigma^2 (squared =
+  /// true) is not analytic: the zeros of D (poles) and, for sigma with a
+  /// square root (space curves' angular speed, the parametric speed), of
+  /// sum K^2 (branch points). For QuadratureOptions::singularity_hints only.
+  /// Computed on the first call (thread-safe; copies share them; the two
+  /// root sets on up to two workers); empty when D or sum K^2 has degree
+  /// above 128 (the hints would cost more than they save), when neither
+  /// its power basis nor the one centred at 1/2 loses at most 30 bits near
+  /// [0, 1] (the hints would mislead: sigma's are then empty, sigma^2's may
+  /// hold the poles) or the approximation failed.
   const std::vector<std::complex<double>>& singularity_hints(bool squared) const;
 
  private:
