@@ -173,6 +173,11 @@ constexpr long kEllipseCost = 4;
 /// replaces a bisection (two ellipses and two rules) near a singularity.
 constexpr long kSmallEllipseDegLimit = 46;
 
+/// Smallest X of the ellipse between X = 2 and the small one (5/4) that
+/// gl_step tries where X = 2 fails: the largest the singularity hints leave
+/// (below that it saves too few nodes against the small ellipse's).
+constexpr double kMidEllipseMin = 1.4;
+
 /// QuadratureOptions::singularity_hints: an ellipse is skipped when a hint
 /// lies in its bounding box enlarged by this factor. Arb's enclosures on a
 /// wide ball blow up well before a singularity is inside it: on the radical
@@ -242,8 +247,10 @@ int gl_degree(const std::vector<MagVar>& M, const mag_t rho, const std::vector<M
 ///   * the search stops once a larger ellipse could not save kEllipseCost
 ///     nodes even if |f| did not grow on it (so most steps no longer end on a
 ///     failing ellipse, the costliest kind of call);
-///   * where X = 2 fails, X = 5/4 (rho = 2) is tried with up to
-///     kSmallEllipseDegLimit nodes before the step fails (which bisects);
+///   * where X = 2 fails, the largest X the singularity hints leave (when
+///     it is at least kMidEllipseMin), then X = 5/4 (rho = 2), are tried
+///     with up to kSmallEllipseDegLimit nodes before the step fails (which
+///     bisects);
 ///   * with use_hints, an ellipse near a singularity hint is not evaluated
 ///     (counted as failing: QuadratureOptions::singularity_hints);
 ///   * nodes go to the NodeIntegrand first, when there is one, at prec <=
@@ -285,6 +292,19 @@ int gl_step(acb_ptr res, long* evals, Context& ctx, const acb_t a, const acb_t b
       if (std::fabs(h.real() - hm) <= bx && std::fabs(h.imag()) <= by) return true;
     return false;
   };
+  // The supremum of the X whose ellipse hinted() lets through: a hint h at
+  // u = |Re h - mid| / |delta|, v = |Im h| / |delta| stays out of the
+  // enlarged box while X < u / margin or sqrt(X^2 - 1) < v / margin.
+  // Infinity without hints.
+  auto hint_free_x = [&]() {
+    double x = std::numeric_limits<double>::infinity();
+    if (!use_hints || !ctx.hints || hd == 0) return x;
+    for (const std::complex<double>& h : *ctx.hints) {
+      const double u = std::fabs(h.real() - hm) / (kHintMargin * hd), v = std::fabs(h.imag()) / (kHintMargin * hd);
+      x = std::min(x, std::max(u, std::sqrt(1 + v * v)));
+    }
+    return x;
+  };
   // M_k = |delta| sup |f_k| on the ellipse X; false when f is not finite
   // there. f is bounded on the ellipse's bounding box first, as Arb does.
   // Where that is not finite and X <= 2, on a real interval (f real there),
@@ -315,7 +335,7 @@ int gl_step(acb_ptr res, long* evals, Context& ctx, const acb_t a, const acb_t b
   // now always tried: that record turned them off after the first,
   // hopeless, levels of the subdivision, where nothing serves.
   const bool real_interval = arb_is_zero(acb_imagref(mid.v)) && arb_is_zero(acb_imagref(delta.v));
-  auto bound_on = [&](const mag_t x) {
+  auto bound_on = [&](const mag_t x, bool quarters) {
     if (hinted(x)) return false;
     mag_mul(Y.v, x, x);  // Y = sqrt(X^2 - 1), an upper bound
     mag_one(t.v);
@@ -368,9 +388,9 @@ int gl_step(acb_ptr res, long* evals, Context& ctx, const acb_t a, const acb_t b
       }
       return true;
     };
-    // the halves; at X < 2 (the small ellipse, the last before a bisection)
-    // the quarters where they fail
-    return strips(2) || (mag_cmp_2exp_si(x, 1) < 0 && strips(4));
+    // the halves; with `quarters` (the small ellipse, the last before a
+    // bisection) the quarters where they fail
+    return strips(2) || (quarters && strips(4));
   };
   // best: the fewest nodes found so far, with the M_k and rho it was found with
   int best = -1;
@@ -387,10 +407,19 @@ int gl_step(acb_ptr res, long* evals, Context& ctx, const acb_t a, const acb_t b
   for (long Xexp = 0; Xexp < prec; Xexp += std::max(1L, Xexp)) {
     mag_one(X.v);
     mag_mul_2exp_si(X.v, X.v, Xexp + 1);
-    if (!bound_on(X.v)) {
-      if (Xexp == 0) {  // X = 2 failed: the small ellipse X = 5/4
-        mag_set_ui_2exp_si(X.v, 5, -2);
-        if (bound_on(X.v)) consider(std::max(deg_limit, kSmallEllipseDegLimit));
+    if (!bound_on(X.v, false)) {
+      if (Xexp == 0) {
+        // X = 2 failed: first the largest ellipse the hints leave, when it
+        // lies well between 5/4 and 2, then the small ellipse X = 5/4
+        const double xh = hint_free_x() * (1 - 0x1p-10);
+        if (xh >= kMidEllipseMin && xh < 2) {
+          mag_set_d(X.v, xh);
+          if (bound_on(X.v, false)) consider(std::max(deg_limit, kSmallEllipseDegLimit));
+        }
+        if (best < 0) {
+          mag_set_ui_2exp_si(X.v, 5, -2);
+          if (bound_on(X.v, true)) consider(std::max(deg_limit, kSmallEllipseDegLimit));
+        }
       }
       break;
     }

@@ -997,7 +997,7 @@ TEST(QuadratureNodes, AWrongNodePathIsCaughtByTheExactIntegral) {
 /// (analytic calls) and those that were not finite.
 struct PolePair {
   Rational a2;  // a^2
-  long ellipses = 0, failed = 0;
+  long ellipses = 0, failed = 0, points = 0;  // points: the calls off the ellipses
   Integrand f() {
     return [this](acb_t out, const acb_t z, bool analytic, long prec) {
       acb_t h;
@@ -1013,6 +1013,8 @@ struct PolePair {
       if (analytic) {
         ++ellipses;
         if (!acb_is_finite(out)) ++failed;
+      } else {
+        ++points;
       }
     };
   }
@@ -1056,6 +1058,32 @@ TEST(QuadratureHints, HintsAtThePolesSkipTheFailingEllipses) {
     EXPECT_LT(hinted.ellipses, plain.ellipses);
     arb_clear(ref);
   }
+}
+
+TEST(QuadratureHints, TheLargestEllipseTheHintsLeaveServesBetweenTheSmallOneAndX2) {
+  // Poles at 1/2 +- 1.2 i. The hints at the poles block X = 2 on [0, 1]
+  // (inside its box enlarged 1.75 times) but leave X ~ 1.69 (rho ~ 3.05):
+  // one step with fewer nodes than on the small ellipse X = 5/4 (rho = 2),
+  // which hints at 1/2 +- 0.8 i force (they leave only X ~ 1.36 < 1.4, not
+  // worth trying). Both hold the true integral.
+  const Rational a2(36, 25);
+  arb_t ref;
+  arb_init(ref);
+  pole_pair_reference(ref, a2);
+  PolePair mid{a2}, small{a2};
+  QuadratureOptions opt;
+  opt.rel_goal_bits = 53;
+  opt.singularity_hints = {{0.5, 1.2}, {0.5, -1.2}};
+  const Ball r1 = integrate(mid.f(), Rational(0), Rational(1), opt);
+  opt.singularity_hints = {{0.5, 0.8}, {0.5, -0.8}};
+  const Ball r2 = integrate(small.f(), Rational(0), Rational(1), opt);
+  EXPECT_TRUE(overlaps(r1, ref)) << r1.str(30);
+  EXPECT_TRUE(overlaps(r2, ref)) << r2.str(30);
+  EXPECT_TRUE(meets_rel(r1, 53)) << r1.str(30);
+  EXPECT_TRUE(meets_rel(r2, 53)) << r2.str(30);
+  EXPECT_EQ(mid.failed, 0);
+  EXPECT_LT(mid.points, small.points);
+  arb_clear(ref);
 }
 
 TEST(QuadratureHints, WrongHintsCostTimeNotCorrectness) {
