@@ -280,31 +280,22 @@ int gl_step(acb_ptr res, long* evals, Context& ctx, const acb_t a, const acb_t b
     mag_sqrt_lower(r, r);
     mag_add_lower(r, r, x);
   };
-  // True when a singularity hint lies in the (enlarged) bounding box of the
-  // ellipse X: its bound would not be finite, so it is not evaluated.
+  // The singularity hints, once per step: a hint h at u = |Re h - mid| /
+  // |delta|, v = |Im h| / |delta| lies in the bounding box of the ellipse X
+  // enlarged kHintMargin times iff X >= u / margin and sqrt(X^2 - 1) >=
+  // v / margin, i.e. X >= max(u / margin, sqrt(1 + (v / margin)^2)); x_free
+  // is the least such X over the hints (infinity without hints), so the
+  // ellipses X >= x_free are hinted: their bounds would not be finite, so
+  // they are not evaluated, and the largest one below it is known.
   const double hm = arf_get_d(arb_midref(acb_realref(mid.v)), ARF_RND_NEAR);
   const double hd = std::fabs(arf_get_d(arb_midref(acb_realref(delta.v)), ARF_RND_NEAR));
-  auto hinted = [&](const mag_t x) {
-    if (!use_hints || !ctx.hints || ctx.hints->empty()) return false;
-    const double xd = mag_get_d(x);
-    const double bx = kHintMargin * xd * hd, by = kHintMargin * std::sqrt(xd * xd - 1) * hd;
-    for (const std::complex<double>& h : *ctx.hints)
-      if (std::fabs(h.real() - hm) <= bx && std::fabs(h.imag()) <= by) return true;
-    return false;
-  };
-  // The supremum of the X whose ellipse hinted() lets through: a hint h at
-  // u = |Re h - mid| / |delta|, v = |Im h| / |delta| stays out of the
-  // enlarged box while X < u / margin or sqrt(X^2 - 1) < v / margin.
-  // Infinity without hints.
-  auto hint_free_x = [&]() {
-    double x = std::numeric_limits<double>::infinity();
-    if (!use_hints || !ctx.hints || hd == 0) return x;
+  double x_free = std::numeric_limits<double>::infinity();
+  if (use_hints && ctx.hints && hd > 0)
     for (const std::complex<double>& h : *ctx.hints) {
       const double u = std::fabs(h.real() - hm) / (kHintMargin * hd), v = std::fabs(h.imag()) / (kHintMargin * hd);
-      x = std::min(x, std::max(u, std::sqrt(1 + v * v)));
+      x_free = std::min(x_free, std::max(u, std::sqrt(1 + v * v)));
     }
-    return x;
-  };
+  auto hinted = [&](const mag_t x) { return mag_get_d(x) >= x_free; };
   // M_k = |delta| sup |f_k| on the ellipse X; false when f is not finite
   // there. f is bounded on the ellipse's bounding box first, as Arb does.
   // Where that is not finite and X <= 2, on a real interval (f real there),
@@ -330,10 +321,10 @@ int gl_step(acb_ptr res, long* evals, Context& ctx, const acb_t a, const acb_t b
   // X = 2 as well took 888 nodes and 20 bisections there, with fewer
   // instructions, but cost 10% at degree 6, where the halves serve and
   // every strip is a complex centred form; see docs/benchmarks.md, session
-  // 22.) Session 20's halves
-  // stopped once they had failed twice as often as they served; they are
-  // now always tried: that record turned them off after the first,
-  // hopeless, levels of the subdivision, where nothing serves.
+  // 22.) Session 20's halves stopped once they had failed twice as often as
+  // they served; they are now always tried: that record turned them off
+  // after the first, hopeless, levels of the subdivision, where nothing
+  // serves.
   const bool real_interval = arb_is_zero(acb_imagref(mid.v)) && arb_is_zero(acb_imagref(delta.v));
   auto bound_on = [&](const mag_t x, bool quarters) {
     if (hinted(x)) return false;
@@ -411,7 +402,7 @@ int gl_step(acb_ptr res, long* evals, Context& ctx, const acb_t a, const acb_t b
       if (Xexp == 0) {
         // X = 2 failed: first the largest ellipse the hints leave, when it
         // lies well between 5/4 and 2, then the small ellipse X = 5/4
-        const double xh = hint_free_x() * (1 - 0x1p-10);
+        const double xh = x_free * (1 - 0x1p-10);  // not hinted, after mag_set_d's rounding up
         if (xh >= kMidEllipseMin && xh < 2) {
           mag_set_d(X.v, xh);
           if (bound_on(X.v, false)) consider(std::max(deg_limit, kSmallEllipseDegLimit));

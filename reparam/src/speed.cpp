@@ -67,7 +67,7 @@ bool append_hints(const Poly& p, std::vector<std::complex<double>>& out) {
   if (own > kHintGoodLoss) {
     double loss = 0;
     const auto z = approximate_roots_near_unit_interval(p, std::min(kHintMaxLoss, own), &loss);
-    if (loss <= kHintMaxLoss && loss <= own) {
+    if (loss <= std::min(kHintMaxLoss, own)) {  // else refused: below, or no hints
       out.insert(out.end(), z.begin(), z.end());
       return true;
     }

@@ -1033,6 +1033,14 @@ void pole_pair_reference(arb_t ref, const Rational& a2) {  // (2 / a) atan(1 / (
   arb_clear(a);
 }
 
+/// p's integral over [0, 1] at a 53-bit goal, with these singularity hints.
+Ball integrate_hinted(PolePair& p, std::vector<std::complex<double>> hints) {
+  QuadratureOptions opt;
+  opt.rel_goal_bits = 53;
+  opt.singularity_hints = std::move(hints);
+  return integrate(p.f(), Rational(0), Rational(1), opt);
+}
+
 TEST(QuadratureHints, HintsAtThePolesSkipTheFailingEllipses) {
   // Poles close to [0, 1] (a = 1/8 .. 1/64): without hints most subintervals
   // near 1/2 try ellipses whose bounds are infinite; the true poles as hints
@@ -1043,12 +1051,9 @@ TEST(QuadratureHints, HintsAtThePolesSkipTheFailingEllipses) {
     arb_init(ref);
     pole_pair_reference(ref, a2);
     PolePair plain{a2}, hinted{a2};
-    QuadratureOptions opt;
-    opt.rel_goal_bits = 53;
-    const Ball r0 = integrate(plain.f(), Rational(0), Rational(1), opt);
+    const Ball r0 = integrate_hinted(plain, {});
     const double a = 1.0 / static_cast<double>(inv_a);
-    opt.singularity_hints = {{0.5, a}, {0.5, -a}};
-    const Ball r1 = integrate(hinted.f(), Rational(0), Rational(1), opt);
+    const Ball r1 = integrate_hinted(hinted, {{0.5, a}, {0.5, -a}});
     SCOPED_TRACE("a = 1/" + std::to_string(inv_a));
     EXPECT_TRUE(overlaps(r0, ref)) << r0.str(30);
     EXPECT_TRUE(overlaps(r1, ref)) << r1.str(30);
@@ -1071,12 +1076,8 @@ TEST(QuadratureHints, TheLargestEllipseTheHintsLeaveServesBetweenTheSmallOneAndX
   arb_init(ref);
   pole_pair_reference(ref, a2);
   PolePair mid{a2}, small{a2};
-  QuadratureOptions opt;
-  opt.rel_goal_bits = 53;
-  opt.singularity_hints = {{0.5, 1.2}, {0.5, -1.2}};
-  const Ball r1 = integrate(mid.f(), Rational(0), Rational(1), opt);
-  opt.singularity_hints = {{0.5, 0.8}, {0.5, -0.8}};
-  const Ball r2 = integrate(small.f(), Rational(0), Rational(1), opt);
+  const Ball r1 = integrate_hinted(mid, {{0.5, 1.2}, {0.5, -1.2}});
+  const Ball r2 = integrate_hinted(small, {{0.5, 0.8}, {0.5, -0.8}});
   EXPECT_TRUE(overlaps(r1, ref)) << r1.str(30);
   EXPECT_TRUE(overlaps(r2, ref)) << r2.str(30);
   EXPECT_TRUE(meets_rel(r1, 53)) << r1.str(30);
@@ -1097,16 +1098,11 @@ TEST(QuadratureHints, WrongHintsCostTimeNotCorrectness) {
   arb_init(ref);
   pole_pair_reference(ref, a2);
   PolePair none{a2};
-  QuadratureOptions plain;
-  plain.rel_goal_bits = 53;
-  EXPECT_TRUE(overlaps(integrate(none.f(), Rational(0), Rational(1), plain), ref));
+  EXPECT_TRUE(overlaps(integrate_hinted(none, {}), ref));
   for (const auto& hints : std::vector<std::vector<std::complex<double>>>{
            {{0.3, 0}}, {{0.5, 0}, {0.25, 1e-9}}, {{100, 100}}, {{0.5, 0.5}, {0.5, -0.5}}}) {
     PolePair p{a2};
-    QuadratureOptions opt;
-    opt.rel_goal_bits = 53;
-    opt.singularity_hints = hints;
-    const Ball r = integrate(p.f(), Rational(0), Rational(1), opt);
+    const Ball r = integrate_hinted(p, hints);
     SCOPED_TRACE("first hint " + std::to_string(hints[0].real()) + " + " + std::to_string(hints[0].imag()) + " i");
     EXPECT_TRUE(overlaps(r, ref)) << r.str(30);
     EXPECT_TRUE(meets_rel(r, 53)) << r.str(30);
