@@ -150,6 +150,94 @@ constexpr long kDirectDerivativeDegree = 64;
 /// with the exact steps).
 constexpr int kNewtonBisections = 8;
 
+/// Width (log2) above which refine_isolating_interval first looks for the
+/// root in double precision (centred_start) and tries to prove a narrow
+/// interval around it with one interval Newton step; and the degree from
+/// which it does (one exact Taylor shift of f per polynomial, see
+/// ScaledEvaluator::centred_cache).
+constexpr long kStartBits = 24;
+constexpr long kStartMinDegree = 16;
+
+/// q(s) = 2^n f((1 + s) / 2) (exact Taylor shift) as doubles, all scaled
+/// by one power of 2 (the scale cancels in Newton's ratio).
+std::vector<double> centred_doubles(const Poly& f) {
+  const long n = f.degree();
+  Poly r, q;
+  for (long k = 0; k <= n; ++k) {
+    fmpz_t a;
+    fmpz_init(a);
+    fmpz_mul_2exp(a, f.get()->coeffs + k, static_cast<ulong>(n - k));
+    fmpz_poly_set_coeff_fmpz(r.get(), k, a);
+    fmpz_clear(a);
+  }
+  {
+    fmpz_t one;
+    fmpz_init_set_ui(one, 1);
+    fmpz_poly_taylor_shift(q.get(), r.get(), one);
+    fmpz_clear(one);
+  }
+  const long top = std::labs(static_cast<long>(fmpz_poly_max_bits(q.get())));
+  std::vector<double> c(static_cast<std::size_t>(n + 1));
+  for (long k = 0; k <= n; ++k) {
+    slong e = 0;
+    const double m = fmpz_get_d_2exp(&e, q.get()->coeffs + k);
+    c[static_cast<std::size_t>(k)] = std::ldexp(m, static_cast<int>(e - top));
+  }
+  return c;
+}
+
+/// The root of f in (lo, hi) to about double precision, from Newton's
+/// iteration in IEEE double on f's basis centred at 1/2,
+/// q(s) = 2^n f((1 + s) / 2) (an exact Taylor shift): on [0, 1] its Horner
+/// terms are far smaller than the power basis's (the critical numerators of
+/// Bezier curves of degree 12, degree 114, lose 44-162 bits at their roots
+/// in the power basis, 25-48 in this one). Only a guess, nothing certified:
+/// on success g is a short dyadic with [g - d, g + d] inside (lo, hi) and d
+/// a power of 2 of at least 8 times the guess's estimated error (Horner's
+/// rounding over |f'|, and the last Newton step) and at most w / 8; false
+/// when the iteration leaves (lo, hi), does not settle, or d would be
+/// too wide to gain anything. c: centred_doubles(f).
+bool centred_start(const std::vector<double>& c, const Rational& lo, const Rational& hi, Rational& g, Rational& d) {
+  const long n = static_cast<long>(c.size()) - 1;
+  const double slo = 2 * fmpq_get_d(lo.get()) - 1, shi = 2 * fmpq_get_d(hi.get()) - 1;
+  double sx = 0.5 * (slo + shi), err = 1, step = 1;
+  for (int it = 0; it < 40; ++it) {
+    double v = c[static_cast<std::size_t>(n)], dv = 0, a = std::fabs(v);
+    const double as = std::fabs(sx);
+    for (long k = n - 1; k >= 0; --k) {
+      dv = dv * sx + v;
+      v = v * sx + c[static_cast<std::size_t>(k)];
+      a = a * as + std::fabs(c[static_cast<std::size_t>(k)]);
+    }
+    if (!(std::isfinite(v) && std::isfinite(dv)) || dv == 0) return false;
+    step = v / dv;
+    err = 2 * 0x1p-53 * a / std::fabs(dv);  // |s - root| from Horner's typical rounding
+    // damped where the step leaves the interval (a far start)
+    for (int damp = 0; damp < 8 && !(sx - step > slo && sx - step < shi); ++damp) step *= 0.5;
+    sx -= step;
+    if (!(sx > slo && sx < shi)) return false;
+    if (std::fabs(step) <= err) break;
+  }
+  if (!(std::fabs(step) <= 2 * err)) return false;
+  // in x = (1 + s) / 2: the error halves
+  const double ex = 0.5 * std::max(err, std::fabs(step)) + 0x1p-60;
+  int k = 0;
+  std::frexp(8.0 * ex, &k);  // 8 ex < 2^k
+  const Rational w = hi - lo;
+  if (k > floor_log2(w) - 3) return false;
+  d = pow2(k);
+  Rational x;
+  {
+    arf_t a;
+    arf_init(a);
+    arf_set_d(a, 0.5 * (1.0 + sx));  // exact
+    arf_get_fmpq(x.get(), a);
+    arf_clear(a);
+  }
+  g = grid_floor(x, k - 4);
+  return lo < g - d && g + d < hi;
+}
+
 /// One interval Newton step on the isolating interval (lo, hi) of a simple
 /// root r of f (see refine_isolating_interval): for a dyadic c in (lo, hi),
 /// f(c) = f'(xi) (c - r) with xi in (lo, hi), so r lies in N = c - f(c) / F,
@@ -168,12 +256,19 @@ constexpr int kNewtonBisections = 8;
 /// true when (lo, hi) was replaced by an interval at most half as wide;
 /// false (interval unchanged or narrowed less) when F holds 0 or the step
 /// gains less.
+/// With `centre` (a short dyadic in (lo, hi)), c is that point (no guess)
+/// and `inside` tells whether N, rounded and widened as above, lies
+/// strictly inside (lo, hi) before the clipping. Then f has a root in
+/// (lo, hi) even if none was known there (Moore's existence test: say F > 0
+/// and f(c) > 0; lo < c - f(c) / F_lo gives f(lo) <= f(c) - F_lo (c - lo)
+/// < 0 by the mean value theorem), which is in N.
 bool interval_newton_step(const Poly& f, const Poly& df, const ScaledEvaluator& sev, Rational& lo, Rational& hi,
-                          long target_bits, long mag) {
+                          long target_bits, long mag, const Rational* centre = nullptr, bool* inside = nullptr) {
+  if (inside) *inside = false;
   const Rational w = hi - lo;
   const long ew = floor_log2(w);
   const long bits = std::min(target_bits, 2 * std::max(0L, -ew) + 32);  // what this step can gain
-  const Rational m = grid_floor((lo + hi) * Rational(1, 2), ew - 4);
+  const Rational m = centre ? *centre : grid_floor((lo + hi) * Rational(1, 2), ew - 4);
   ArbVar X, M, v, F, lam, fm, N;
   {
     const Ball xb = interval_ball(lo, hi, 64);
@@ -213,7 +308,7 @@ bool interval_newton_step(const Poly& f, const Poly& df, const ScaledEvaluator& 
   const long prec = std::max({64L, terms + bits + 10 - e, rational_bits(m) + 8, bits + 16 + mag});
   arb_set_fmpq(M.v, m.get(), prec);  // exact: a short dyadic
   arb_fmpz_poly_evaluate_arb(fm.v, f.get(), M.v, prec);
-  if (ew < -kQuadraticNewtonBits) {
+  if (!centre && ew < -kQuadraticNewtonBits) {
     ArbVar fpm, g;
     arb_fmpz_poly_evaluate_arb(fpm.v, df.get(), M.v, terms + 2 * static_cast<long>(FLINT_BIT_COUNT(static_cast<ulong>(n))) + 64);
     if (arb_is_finite(fpm.v) && !arb_contains_zero(fpm.v)) {
@@ -242,6 +337,7 @@ bool interval_newton_step(const Poly& f, const Poly& df, const ScaledEvaluator& 
   arf_clear(b);
   ql = grid_floor(ql, s) - pow2(s);
   qh = grid_floor(qh, s) + pow2(s + 1);  // >= the ceiling plus one step
+  if (inside) *inside = lo < ql && qh < hi;
   Rational nl = lo < ql ? ql : lo, nh = qh < hi ? qh : hi;
   if (!(nl < nh)) return false;  // r is in both: only an evaluator breaking its contract gets here
   lo = std::move(nl);
@@ -295,6 +391,18 @@ int exact_sign(const Poly& f, const Rational& x) {
   return f.sign_at(x);  // exact rational evaluation
 }
 
+bool prove_root_near(const Poly& f, const ScaledEvaluator& sev, const Rational& g, const Rational& d, long bits,
+                     Rational& lo, Rational& hi) {
+  if (!(d.sign() > 0)) throw InvalidArgument("prove_root_near: the radius must be positive");
+  Rational l2 = g - d, h2 = g + d;
+  bool inside = false;
+  interval_newton_step(f, f.derivative(), sev, l2, h2, bits, magnitude_bits(l2, h2), &g, &inside);
+  if (!inside) return false;
+  lo = std::move(l2);
+  hi = std::move(h2);
+  return true;
+}
+
 bool refine_isolating_interval(const Poly& f, Rational& lo, Rational& hi, long bits, long* newton_log,
                                const ScaledEvaluator* sev) {
   if (lo == hi) return true;
@@ -329,6 +437,22 @@ bool refine_isolating_interval(const Poly& f, Rational& lo, Rational& hi, long b
     // until the interval is narrow, which the exact steps reach sooner.
     const int max_bisections = df.degree() > kDirectDerivativeDegree ? kNewtonBisections : 0;
     int bisections = 0;
+    // A start near the root, when it is far: a double-precision guess g
+    // and an interval (g - d, g + d) inside (lo, hi) that one interval
+    // Newton step proves holds a root (the one of (lo, hi)), and narrows.
+    // Where either fails, nothing changed.
+    if (f.degree() >= kStartMinDegree && floor_log2(w) > -kStartBits && bits + floor_log2(w) > kStartBits) {
+      // f's centred basis: one per polynomial, kept by the evaluator
+      std::shared_ptr<const std::vector<double>> c = std::atomic_load(&sev->centred_cache);
+      if (!c) {
+        c = std::make_shared<const std::vector<double>>(centred_doubles(f));
+        std::atomic_store(&sev->centred_cache, c);  // a racing copy computed the same
+      }
+      Rational g, d;
+      if (c->size() == static_cast<std::size_t>(f.degree() + 1) && centred_start(*c, lo, hi, g, d) &&
+          prove_root_near(f, *sev, g, d, bits, lo, hi))
+        w = hi - lo;
+    }
     while (w > target) {
       check_time_budget();
       if (!interval_newton_step(f, df, *sev, lo, hi, bits, mag)) {

@@ -46,6 +46,21 @@ int exact_sign(const Poly& f, const Rational& x);
 bool refine_isolating_interval(const Poly& f, Rational& lo, Rational& hi, long bits, long* newton_log = nullptr,
                                const ScaledEvaluator* sev = nullptr);
 
+/// Moore's existence test: one interval Newton step on X = [g - d, g + d]
+/// with centre g (a short dyadic), f' bounded on X by sev (as in the
+/// refinement's steps). When the step's interval N lies strictly inside X,
+/// X holds a root of f (f' keeps one sign on X and, say for f' > 0 and
+/// f(g) > 0, g - d < g - f(g) / F_lo gives f(g - d) <= f(g) - F_lo d < 0
+/// by the mean value theorem), that root lies in N, and the function sets
+/// (lo, hi) to N, rounded outward to a grid of 2^-(min(bits, 2 |log2 2d| +
+/// 32) + 8) and widened by a step (ends not roots, one sign change between
+/// them) and returns true. Otherwise, false with lo, hi unchanged (no root
+/// proven, not: no root). When (g - d, g + d) lies in an isolating interval
+/// of f, the root proven is that interval's. d > 0 (InvalidArgument
+/// otherwise); sev's contract is trusted.
+bool prove_root_near(const Poly& f, const ScaledEvaluator& sev, const Rational& g, const Rational& d, long bits,
+                     Rational& lo, Rational& hi);
+
 /// A ball containing the closed interval [lo, hi] (working precision prec).
 Ball interval_ball(const Rational& lo, const Rational& hi, long prec);
 

@@ -130,7 +130,7 @@ std::vector<RealAlgebraic> critical_points(const Speed& s) {
   // primitive part (not a proper factor of P)
   const Poly Pp = P.primitive();
   const auto sev = std::make_shared<const ScaledEvaluator>(
-      ScaledEvaluator{ev, Rational(P.leading()) / Rational(Pp.leading())});
+      ScaledEvaluator{ev, Rational(P.leading()) / Rational(Pp.leading()), nullptr});
   // The isolation is serial, and its callers run it next to mu's quadrature
   // (radical, reparam --target): the halves [0, 1/2] and [1/2, 1] side by
   // side keep both cores busy to the end. A fixed split, so the roots do

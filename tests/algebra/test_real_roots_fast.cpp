@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "root_refine.hpp"  // private to the algebra layer: detail::prove_root_near
 #include "support/iterations.hpp"
 #include "support/known_roots.hpp"
 #include "uniparam/algebra/algebraic.hpp"
@@ -448,9 +449,9 @@ TEST(RealRootsFast, ScaledEvaluatorRefinesLikeTheExactPath) {
                      std::to_string(bits));
         const long before = calls;
         fast.refine(bits);
-        // Interval Newton steps succeeded: a failing one stops the loop, so
-        // the first refinement (from 2^-12, several steps) makes >= 2 calls.
-        EXPECT_GE(calls - before, bits == 40 ? 2 : 1);
+        // The evaluator's steps ran: each takes one call (the first
+        // refinement, from 2^-12, may take only the double start's proof).
+        EXPECT_GE(calls - before, 1);
         expect_refined_like_exact(p, r, fast, exact, bits);
       }
     }
@@ -482,6 +483,53 @@ TEST(RealRootsFast, ScaledEvaluatorRefinesLikeTheExactPath) {
       EXPECT_EQ(compare(good, xs[k + 1]), 0);
     }
   }
+}
+
+/// Moore's existence test (root_refine.hpp), the proof the refinement's
+/// double-precision start needs before it is used: on a degree-~100
+/// product with five real roots in (0, 1), an interval around a random
+/// centre is accepted only when it holds a root (exact signs at the new
+/// ends differ, inside the old), and a narrow one around each root is
+/// accepted and narrowed. Fails when an interval is accepted unproven.
+TEST(RealRootsFast, ProveRootNearAcceptsOnlyIntervalsThatHoldARoot) {
+  std::mt19937_64 rng(777);
+  long accepted = 0, refused = 0, calls = 0;
+  for (long it = 0; it < iterations(3); ++it) {
+    std::vector<Poly> factors = five_real_roots_and_complex_pairs(rng, 5);
+    factors.push_back(bernstein(positive_bernstein(rng, 80, 1000)));
+    Poly p(1);
+    for (const Poly& f : factors) p = p * f;
+    ScaledEvaluator sev;
+    sev.ev = centred_product_evaluator(factors, Rational(3), &calls);
+    const Poly f = p.primitive();
+    sev.lambda = Rational(3) * Rational(p.leading()) / Rational(f.leading());
+    auto check = [&](const Rational& g, const Rational& d, bool must) {
+      SCOPED_TRACE("iteration " + std::to_string(it) + ", g = " + g.str() + ", d = " + d.str());
+      Rational lo(-7), hi(-7);
+      const bool ok = detail::prove_root_near(f, sev, g, d, 120, lo, hi);
+      if (must) EXPECT_TRUE(ok);
+      if (!ok) {
+        EXPECT_TRUE(lo == Rational(-7) && hi == Rational(-7));
+        ++refused;
+        return;
+      }
+      ++accepted;
+      EXPECT_TRUE(g - d <= lo && lo < hi && hi <= g + d);
+      EXPECT_EQ(f.sign_at(lo) * f.sign_at(hi), -1);
+      if (must) EXPECT_TRUE((hi - lo) * Rational(1L << 20) <= d);  // a narrow start gains > 20 bits
+    };
+    for (int k = 0; k < 60; ++k) {  // random centres on the grid 2^-24, radii 2^-4 .. 2^-30
+      const Rational g(static_cast<long>(rng() % (1L << 24)), 1L << 24);
+      check(g, detail::pow2(-4 - static_cast<long>(rng() % 27)), false);
+    }
+    for (const IsolatedRoot& r : isolate_real_roots(p, Rational(0), Rational(1))) {
+      RealAlgebraic x(r);
+      x.refine(70);
+      check(x.lo(), detail::pow2(-40), true);  // |x - lo| <= 2^-70
+    }
+  }
+  EXPECT_GT(accepted, 0);
+  EXPECT_GT(refused, 0);
 }
 
 TEST(RealRootsFast, ScaledEvaluatorRefinesAcrossZerosOfTheDerivative) {

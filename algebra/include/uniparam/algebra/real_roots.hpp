@@ -5,6 +5,7 @@
 #include <arb.h>
 
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "uniparam/core/number.hpp"
@@ -86,6 +87,12 @@ using PolyEvaluator = std::function<void(arb_t v, arb_t d, const arb_t x, long p
 struct ScaledEvaluator {
   PolyEvaluator ev;
   Rational lambda;
+  /// Left empty by callers: the refinement (root_refine.hpp) keeps here, on
+  /// first use, f's basis centred at 1/2 in IEEE double, for the start of
+  /// every root of f refined with this evaluator (one exact Taylor shift of
+  /// f instead of one per root). Read and written with the atomic
+  /// shared_ptr functions: safe across threads.
+  mutable std::shared_ptr<const std::vector<double>> centred_cache;
 };
 
 /// The roots of p in [a, b] as isolate_real_roots gives them (same
