@@ -190,11 +190,13 @@ Ball RealAlgebraic::to_ball(long prec) const {
     // not depend on the order of evaluations, e.g. on threads).
     // Radius 2^-(prec + 2) <= 2^-prec max(1, |x|).
     const long p = prec + 1;
-    // 32 bits beyond the grid: (lo, hi) then straddles a grid point only
-    // with odds ~2^-32, so the exact comparison below (a sign of the
-    // polynomial at a long rational: costly at high degree) is rare, and
-    // later calls at this or a lower precision need no refinement.
-    refine(p + 34);
+    // kToBallExtraBits - 1 bits beyond the grid: (lo, hi) then straddles a
+    // grid point only with odds ~2^-10, so the exact comparison below (one
+    // exact sign of the polynomial at a short dyadic, ~ one Arb evaluation)
+    // is rare, and later calls at this or a lower precision need no
+    // refinement. (Session 24: 34 bits cost a Newton step of refinement on
+    // most roots of the critical numerators, for comparisons that are cheap.)
+    refine(prec + kToBallExtraBits);
     fmpz_t klo, khi;
     fmpz_init(klo);
     fmpz_init(khi);

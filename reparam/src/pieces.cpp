@@ -16,6 +16,11 @@ namespace uniparam {
 
 namespace {
 
+/// Bits the piece integrals' ends are refined to before the workers start:
+/// what the first attempt's to_ball asks (working precision rel_goal_bits +
+/// 32, see piece_integrals).
+constexpr long kFirstEndBits = 32 + RealAlgebraic::kToBallExtraBits;
+
 // Numerator of (sigma^2)' / g, up to the positive factor 1/D^3:
 // (g^2 Q / D^2)' = g (2 g' Q D + g Q' D - 2 g Q D') / D^3 with Q = sum K^2.
 // Its roots in (0, 1) are the critical points of sigma that are not zeros.
@@ -359,9 +364,9 @@ std::vector<std::vector<PieceIntegrals>> all_piece_integrals(const Speed& s, con
   // two workers from refining one number at the same time. The enclosures
   // the integrals use depend on (t, prec) alone, not on how far t was
   // refined before (RealAlgebraic::to_ball), so nothing else changes. The
-  // integrands ask for rel_goal_bits + 67 bits at the first attempt when no
-  // cancellation raises it (working precision rel_goal_bits + 32, to_ball's
-  // refinement + 35).
+  // integrands ask for rel_goal_bits + 32 + RealAlgebraic::kToBallExtraBits
+  // bits at the first attempt when no cancellation raises it (working
+  // precision rel_goal_bits + 32, and to_ball's refinement).
   // The numbers are independent (each refinement is an exact root
   // refinement of its own), so they are refined on the workers too; a
   // number's copies share one locked state, so each is refined once.
@@ -369,13 +374,13 @@ std::vector<std::vector<PieceIntegrals>> all_piece_integrals(const Speed& s, con
   std::vector<std::pair<const RealAlgebraic*, long>> to_refine;
   for (const PieceJob& j : jobs) {
     for (const Breakpoint& b : j.T)
-      if (!b.t.is_rational()) to_refine.emplace_back(&b.t, j.rel_goal_bits + 67);
+      if (!b.t.is_rational()) to_refine.emplace_back(&b.t, j.rel_goal_bits + kFirstEndBits);
     most_bits = std::max(most_bits, j.rel_goal_bits);
   }
   if (!to_refine.empty())
     parallel_for(to_refine.size(), std::min(worker_count(), to_refine.size()),
                  [&](std::size_t, std::size_t i) { to_refine[i].first->refine(to_refine[i].second); });
-  for (const SpeedZero& z : s.zeros()) z.t.refine(most_bits + 67);  // mostly breakpoints already
+  for (const SpeedZero& z : s.zeros()) z.t.refine(most_bits + kFirstEndBits);  // mostly breakpoints already
   std::vector<Speed> speeds;
   std::vector<std::vector<PieceJob>> job_copies;
   for (std::size_t w = 1; w < workers; ++w) {

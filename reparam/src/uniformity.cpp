@@ -131,11 +131,11 @@ namespace {
 // before any starts. The zeros are refined once before the workers start
 // (copies share their refinement; this keeps two workers from refining one
 // number at once); value-neutral: RealAlgebraic::to_ball depends on (t, prec)
-// alone. The first attempt asks for bits + 67 bits (integrate's working
-// precision bits + 32, to_ball's refinement + 35).
+// alone. The first attempt asks for bits + 32 + RealAlgebraic::kToBallExtraBits
+// bits (integrate's working precision bits + 32, and to_ball's refinement).
 void speed_integrals(const Speed& s, long bits, long max_prec, bool squares, Ball& mu, Ball& mean_square) {
   const RealAlgebraic zero(0), one(1);
-  for (const SpeedZero& z : s.zeros()) z.t.refine(bits + 67);
+  for (const SpeedZero& z : s.zeros()) z.t.refine(bits + 32 + RealAlgebraic::kToBallExtraBits);
   // The tasks' quadratures start by asking for the singularity hints (one
   // computation, shared): made here, its two root sets on two workers,
   // instead of by the first task while the others wait.

@@ -367,6 +367,42 @@ TEST(Algebraic, CopiesShareRefinement) {
   }
 }
 
+// to_ball(prec) is the grid cell [k, k + 1] 2^-(prec+1) holding x, whatever
+// was refined before (not at all, or to more bits than to_ball refines to
+// itself), also where the isolating interval holds a grid point so that the
+// exact comparison decides: x = c + s 2^(1/3) 2^-200, the one real root of
+// (t - c)^3 - 2 s 2^-600, c a dyadic of 20 bits, s = +-1, given by an
+// interval of width 2^-(prec+19) around c. Fails when the comparison takes
+// the wrong cell or the refinement's depth changes the ball.
+TEST(Algebraic, ToBallIsTheGridCellWhateverWasRefinedBefore) {
+  std::mt19937_64 rng(2402);
+  for (long it = 0; it < iterations(40); ++it) {
+    const Rational c(static_cast<long>(1 + rng() % ((1L << 20) - 1)), 1L << 20);
+    const int side = rng() % 2 ? 1 : -1;
+    const long prec = 20 + static_cast<long>(rng() % 150);
+    // 2^599 ((t - c)^3 - 2 s 2^-600) with c = N / D, times D^3
+    const Integer N = c.num(), D = c.den();
+    std::vector<Integer> a{Integer(0) - N * N * N, Integer(3) * N * N * D, Integer(-3) * N * D * D, D * D * D};
+    for (Integer& v : a) fmpz_mul_2exp(v.get(), v.get(), 599);
+    a[0] = a[0] - Integer(side) * D * D * D;
+    IsolatedRoot r;  // as given (the constructor from (f, lo, hi) would isolate anew)
+    r.factor = Poly(a).primitive();
+    r.lo = c - pow2(-(prec + 20));
+    r.hi = c + pow2(-(prec + 20));
+    const RealAlgebraic fresh(r), deep(r);  // (ends checked exactly)
+    ASSERT_TRUE(fresh.lo() < c && c < fresh.hi());
+    deep.refine(prec + 60 + static_cast<long>(rng() % 200));
+    const Ball b0 = fresh.to_ball(prec), b1 = deep.to_ball(prec);
+    SCOPED_TRACE("iteration " + std::to_string(it) + ", c = " + c.str() + ", side " + std::to_string(side) +
+                 ", prec " + std::to_string(prec));
+    // the cell [c, c + 2^-p] (side +1) or [c - 2^-p, c] (side -1), p = prec + 1
+    Ball cell(c + pow2(-(prec + 2)) * Rational(side), prec + 64);
+    mag_set_ui_2exp_si(arb_radref(cell.get()), 1, -(prec + 2));
+    EXPECT_TRUE(arb_equal(b0.get(), cell.get())) << b0.str(30) << " vs " << cell.str(30);
+    EXPECT_TRUE(arb_equal(b1.get(), cell.get())) << b1.str(30) << " vs " << cell.str(30);
+  }
+}
+
 // Copies refined from several threads at once: every interval isolates the
 // root, and to_ball gives the same canonical ball on every copy.
 TEST(Algebraic, CopiesRefinedFromThreadsStayIsolating) {

@@ -68,8 +68,11 @@ class RealAlgebraic {
   /// Canonical: a function of (x, prec) alone, whatever was refined before
   /// (irrational x: the dyadic cell [k, k + 1] 2^-(prec+1) holding x, k
   /// decided exactly), so computations do not depend on evaluation order.
-  /// Memoised for the last precision asked.
+  /// Memoised for the last precision asked. Refines to
+  /// prec + kToBallExtraBits bits first (callers refining beforehand, e.g.
+  /// on worker threads, ask for that much).
   Ball to_ball(long prec) const;
+  static constexpr long kToBallExtraBits = 11;
   /// Exact sign.
   int sign() const;
   /// Decimal with `digits` significant digits, e.g. "0.438691337650831",
