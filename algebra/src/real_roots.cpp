@@ -599,14 +599,72 @@ struct Node {
   Cell cell;
 };
 
+/// Degree up to which descartes_bound tries IEEE double first ((1 + 1)^n
+/// times the largest coefficient stays far below the largest double).
+constexpr long kDoubleDescartesDegree = 800;
+
+/// The Descartes test of descartes_bound in IEEE double, with a rigorous
+/// bound on every coefficient's error: P's coefficients scaled by one power
+/// of 2 (each rounded: error <= 2^-52 of it, or below 2^-1073 when it
+/// underflows), then the n (n + 1) / 2 additions of the shift by 1, each
+/// adding its rounding (<= 2^-53 of its result) to the propagated bounds,
+/// themselves computed with a factor 1 + 2^-50 for their own rounding. A
+/// coefficient whose value exceeds its bound has a known sign. Returns 2
+/// when two sign changes among the known signs are certain (the exact
+/// sequence has at least as many), 0 or 1 when every sign is known (then
+/// exact), and -1 when it cannot tell (the caller shifts exactly).
+int descartes_bound_double(const Poly& P, int& sign_at_1) {
+  const slong n = P.degree();
+  const fmpz* p = P.get()->coeffs;
+  const long top = std::labs(static_cast<long>(fmpz_poly_max_bits(P.get())));
+  std::vector<double> a(static_cast<std::size_t>(n + 1)), e(static_cast<std::size_t>(n + 1));
+  for (slong k = 0; k <= n; ++k) {  // R = reverse(P): R_k = P_(n-k)
+    slong ex = 0;
+    const double m = fmpz_get_d_2exp(&ex, p + (n - k));
+    const double v = std::ldexp(m, static_cast<int>(std::max<slong>(ex - top, -1100)));
+    a[static_cast<std::size_t>(k)] = v;
+    e[static_cast<std::size_t>(k)] = std::fabs(v) * 0x1p-52 + 0x1p-1073 + (ex - top < -1070 ? std::ldexp(1.0, -1070) : 0.0);
+  }
+  constexpr double u = 0x1p-53, grow = 1 + 0x1p-50;
+  for (slong i = 0; i < n; ++i)
+    for (slong j = n - 1; j >= i; --j) {
+      const std::size_t J = static_cast<std::size_t>(j);
+      a[J] += a[J + 1];
+      e[J] = (e[J] + e[J + 1] + std::fabs(a[J]) * u) * grow;
+    }
+  int var = 0, last = 0;
+  bool all = true;
+  for (slong k = 0; k <= n; ++k) {
+    const std::size_t K = static_cast<std::size_t>(k);
+    if (!(std::isfinite(a[K]) && std::isfinite(e[K]))) return -1;
+    if (!(std::fabs(a[K]) > e[K])) {
+      all = false;
+      continue;
+    }
+    const int sg = a[K] > 0 ? 1 : -1;
+    if (last != 0 && sg != last && ++var >= 2) return 2;
+    last = sg;
+  }
+  if (!all) return -1;
+  sign_at_1 = a[0] > 0 ? 1 : -1;  // S_0 = R(1) = P(1)
+  return var;
+}
+
 /// Sign variations (capped at 2) of (x+1)^n P(1/(x+1)), whose positive roots
-/// are the roots of P in (0, 1); also sets P(1), its constant term.
-int descartes_bound(const Poly& P, Integer& p_at_1) {
+/// are the roots of P in (0, 1); also sets the sign of P(1), its constant
+/// term, when the result is 0 or 1 (the callers use it then only). In IEEE
+/// double with certified error bounds first (descartes_bound_double), exact
+/// where those cannot decide.
+int descartes_bound(const Poly& P, int& sign_at_1) {
+  if (P.degree() >= 1 && P.degree() <= kDoubleDescartesDegree) {
+    const int v = descartes_bound_double(P, sign_at_1);
+    if (v >= 0) return v;
+  }
   Poly R, S;
   fmpz_poly_reverse(R.get(), P.get(), P.degree() + 1);
   const Integer one(1);
   fmpz_poly_taylor_shift(S.get(), R.get(), one.get());
-  p_at_1 = S.coeff(0);
+  sign_at_1 = fmpz_sgn(S.get()->coeffs);
   int var = 0, last = 0;
   const fmpz* c = S.get()->coeffs;
   for (slong i = 0; i < S.get()->length; ++i) {
@@ -644,7 +702,7 @@ void vca_from(const Poly& G, Node start, std::vector<Cell>& leaves, std::vector<
   long nodes = 0;
   std::vector<Node> stack;
   stack.push_back(std::move(start));
-  Integer p1;
+  int p1 = 0;
   while (!stack.empty()) {
     Node nd = std::move(stack.back());
     stack.pop_back();
@@ -655,7 +713,7 @@ void vca_from(const Poly& G, Node start, std::vector<Cell>& leaves, std::vector<
                            std::to_string(depth_cap) + ")");
     const int v = descartes_bound(nd.P, p1);
     if (v == 0) continue;
-    if (v == 1 && !fmpz_is_zero(nd.P.get()->coeffs) && p1.sign() != 0) {
+    if (v == 1 && !fmpz_is_zero(nd.P.get()->coeffs) && p1 != 0) {
       leaves.push_back(std::move(nd.cell));
       continue;
     }
@@ -1136,10 +1194,10 @@ void isolate_factor(const Poly& f, int mult, const Rational& a, const Rational& 
   if (use_subdivision(G, method)) {
     // One Descartes test first: it settles factors with no root (or one) in
     // (0, 1) for the price of one exact shift.
-    Integer g1_shift;
-    const int v = descartes_bound(G, g1_shift);
+    int g1_sign = 0;
+    const int v = descartes_bound(G, g1_sign);
     std::vector<Cell> undecided;
-    if (v == 1 && !fmpz_is_zero(G.get()->coeffs) && g1_shift.sign() != 0) leaves.push_back({Integer(0), 0});
+    if (v == 1 && !fmpz_is_zero(G.get()->coeffs) && g1_sign != 0) leaves.push_back({Integer(0), 0});
     else if (v >= 1) subdivide(G, leaves, exact, undecided);
     for (Cell& cl : undecided) vca_from(G, {cell_poly(G, cl), cl}, leaves, exact);
   } else {
@@ -1349,5 +1407,11 @@ long count_real_roots(const Poly& p, const Rational& a, const Rational& b) {
     if (!(r.is_exact() && (r.lo == a || r.lo == b))) ++n;
   return n;
 }
+
+namespace detail {
+
+int descartes_test(const Poly& P, int& sign_at_1) { return descartes_bound(P, sign_at_1); }
+
+}  // namespace detail
 
 }  // namespace uniparam

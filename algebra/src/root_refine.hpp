@@ -61,6 +61,13 @@ bool refine_isolating_interval(const Poly& f, Rational& lo, Rational& hi, long b
 bool prove_root_near(const Poly& f, const ScaledEvaluator& sev, const Rational& g, const Rational& d, long bits,
                      Rational& lo, Rational& hi);
 
+/// Descartes' test of the root isolation: the sign variations, capped at 2,
+/// of (x + 1)^n P(1 / (x + 1)) (an upper bound, of the parity of the
+/// number of P's roots in (0, 1)); when the result is 0 or 1, sign_at_1 is
+/// the sign of P(1). IEEE double with certified error bounds first, the
+/// exact Taylor shift where those cannot decide. \pre deg P >= 1.
+int descartes_test(const Poly& P, int& sign_at_1);
+
 /// A ball containing the closed interval [lo, hi] (working precision prec).
 Ball interval_ball(const Rational& lo, const Rational& hi, long prec);
 

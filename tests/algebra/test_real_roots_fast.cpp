@@ -485,6 +485,76 @@ TEST(RealRootsFast, ScaledEvaluatorRefinesLikeTheExactPath) {
   }
 }
 
+/// Descartes' test (root_refine.hpp), double first, against the exact shift
+/// on polynomials whose shifted coefficients cancel by 100-400 bits: P =
+/// reverse(S(x - 1)) for S = prod (1000 x + a_i) (a_i in 1..5: no sign
+/// change), times (1000 x - b) for one, reverse((x - 1)^m +- c x^j) (exact
+/// doubles whose shift x^m +- c (x + 1)^j comes from partial sums ~2^50
+/// times larger), and random dense ones (mixed magnitudes up to 2^300).
+/// Fails when signs are taken as known without an error bound, or when a
+/// count with unknown signs is taken as final. (Either half of the bound,
+/// the inputs' rounding or the additions', covers the other's size on all
+/// of these: no test here tells them apart.)
+TEST(RealRootsFast, DescartesTestInDoubleAgreesWithTheExactShift) {
+  std::mt19937_64 rng(90210);
+  auto exact = [](const Poly& P, int& s1) {
+    Poly R, S;
+    fmpz_poly_reverse(R.get(), P.get(), P.degree() + 1);
+    fmpz_poly_taylor_shift(S.get(), R.get(), Integer(1).get());
+    s1 = fmpz_sgn(S.get()->coeffs);
+    int var = 0, last = 0;
+    for (slong i = 0; i < S.get()->length; ++i) {
+      const int sg = fmpz_sgn(S.get()->coeffs + i);
+      if (sg == 0) continue;
+      if (last != 0 && sg != last && ++var >= 2) return 2;
+      last = sg;
+    }
+    return var;
+  };
+  long low = 0;
+  for (long it = 0; it < iterations(300); ++it) {
+    Poly P;
+    const int kind = static_cast<int>(it % 4);
+    if (kind == 3) {
+      // R = (x - 1)^m + delta x^j, coefficients exact in double, so that
+      // S = R(x + 1) = x^m + delta (x + 1)^j: small integers the shift
+      // computes from partial sums of up to ~2^(m+20), by cancellation
+      const long m = 30 + static_cast<long>(rng() % 21), j = static_cast<long>(rng() % 20);
+      const long delta = (rng() % 2 ? 1 : -1) * (1 + static_cast<long>(rng() % 3));
+      Poly R = Poly(std::vector<long>{-1, 1}).pow(m) + Poly(delta) * Poly::t().pow(j);
+      fmpz_poly_reverse(P.get(), R.get(), R.degree() + 1);
+    } else if (kind < 2) {
+      const long m = 2 + static_cast<long>(rng() % 40);
+      Poly S(1);
+      for (long i = 0; i < m; ++i) S = S * Poly(std::vector<long>{1 + static_cast<long>(rng() % 5), 1000});
+      if (kind == 1) S = S * Poly(std::vector<long>{-(1 + static_cast<long>(rng() % 999)), 1000});
+      Poly R;
+      fmpz_poly_taylor_shift(R.get(), S.get(), Integer(-1).get());
+      fmpz_poly_reverse(P.get(), R.get(), R.degree() + 1);
+    } else {
+      const long n = 1 + static_cast<long>(rng() % 300);
+      std::vector<Integer> c;
+      for (long k = 0; k <= n; ++k) {
+        Integer v(static_cast<long>(rng() % 2001) - 1000);
+        fmpz_mul_2exp(v.get(), v.get(), rng() % 300);
+        c.push_back(v);
+      }
+      if (c.back().sign() == 0) c.back() = Integer(1);
+      P = Poly(c);
+    }
+    SCOPED_TRACE("iteration " + std::to_string(it) + ", kind " + std::to_string(kind) + ", degree " +
+                 std::to_string(P.degree()));
+    int s_fast = 9, s_exact = 9;
+    const int v_fast = detail::descartes_test(P, s_fast), v_exact = exact(P, s_exact);
+    EXPECT_EQ(v_fast, v_exact);
+    if (v_exact <= 1) {
+      EXPECT_EQ(s_fast, s_exact);
+      ++low;
+    }
+  }
+  EXPECT_GT(low, iterations(300) / 3);  // the products and the last kind: 0 or 1 sign change
+}
+
 /// Moore's existence test (root_refine.hpp), the proof the refinement's
 /// double-precision start needs before it is used: on a degree-~100
 /// product with five real roots in (0, 1), an interval around a random
