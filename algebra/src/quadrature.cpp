@@ -117,10 +117,17 @@ void direct_estimate(acb_ptr res, Context& ctx, const acb_t a, const acb_t b, lo
 constexpr long kGlSteps[] = {1, 2, 4, 6, 8, 12, 16, 22, 32, 46, 64, 90, 128, 182, 256, 362, 512, 724, 1024};
 constexpr int kGlStepCount = static_cast<int>(sizeof(kGlSteps) / sizeof(kGlSteps[0]));
 
+/// Precision rungs of the node cache: 64 2^r bits, r < kGlRungCount.
+constexpr int kGlRungCount = 12;
+
 /// The nodes x_k > 0 (k < (n + 1) / 2; the others are -x_k) and weights of
 /// the n-point Gauss-Legendre rule on [-1, 1], one cache per thread (the
-/// pool's threads are persistent), computed at the largest precision asked
-/// so far (Arb's arb_hypgeom_legendre_p_ui_root: rigorous balls).
+/// pool's threads are persistent), computed at the rung 64 2^r >= the
+/// precision asked (Arb's arb_hypgeom_legendre_p_ui_root: rigorous balls).
+/// The rung depends on the precision alone, never on what was asked
+/// before, so the nodes' balls, and with them every integral's, do not
+/// depend on the thread's history (which thread ran which piece, or what
+/// ran earlier in the process).
 struct GlRule {
   long prec = 0;
   arb_ptr x = nullptr, w = nullptr;
@@ -137,16 +144,18 @@ struct GlRule {
 };
 
 const GlRule& gl_rule(int step, long prec) {
-  thread_local GlRule rules[kGlStepCount];
-  GlRule& r = rules[step];
-  if (r.prec < prec) {
+  thread_local GlRule rules[kGlStepCount][kGlRungCount];
+  int rung = 0;
+  while (rung + 1 < kGlRungCount && (64L << rung) < prec) ++rung;
+  const long wp = std::max(prec, 64L << rung);  // beyond the last rung: prec itself
+  GlRule& r = rules[step][rung];
+  if (r.prec != wp) {
     const long n = kGlSteps[step];
     if (!r.x) {
       r.len = (n + 1) / 2;
       r.x = _arb_vec_init(r.len);
       r.w = _arb_vec_init(r.len);
     }
-    const long wp = std::max(prec, 2 * r.prec + 30);  // few recomputations as prec grows
     r.dx.assign(static_cast<std::size_t>(r.len), DDBall{});
     r.dw.assign(static_cast<std::size_t>(r.len), DDBall{});
     for (slong k = 0; k < r.len; ++k) {

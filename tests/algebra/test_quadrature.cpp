@@ -14,6 +14,7 @@
 #include <random>
 #include <set>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "support/iterations.hpp"
@@ -174,6 +175,38 @@ TEST(Quadrature, ArctanIntegralContainsQuarterPi) {
     // evaluation) both reach the Integrand, as analytic = true / false.
     EXPECT_GT(analytic_calls, 0);
     EXPECT_GT(plain_calls, 0);
+  }
+}
+
+// An integral's ball depends on the integrand, the ends and the goal only,
+// not on what the thread computed before: the Gauss-Legendre nodes are
+// cached per thread, at a precision that depends on the precision asked
+// alone. A fresh thread and one that integrated at 1200, 2 b and b + 20
+// bits first give the same ball at b = 53 and 150 bits (fails when the cache
+// hands out the nodes it holds at a higher precision).
+TEST(Quadrature, BallsDoNotDependOnWhatTheThreadComputedBefore) {
+  for (long bits : {53L, 150L}) {
+    SCOPED_TRACE("bits " + std::to_string(bits));
+    QuadratureOptions opt, high;
+    opt.rel_goal_bits = bits;
+    high.rel_goal_bits = 1200;
+    Ball fresh, warm, warm_high;
+    std::thread a([&] {
+      fresh = integrate(one_over_one_plus_square, Rational(0), Rational(1), opt);
+      flint_cleanup();
+    });
+    a.join();
+    std::thread b([&] {
+      for (long more : {1200L, 2 * bits, bits + 20}) {
+        high.rel_goal_bits = more;
+        warm_high = integrate(one_over_one_plus_square, Rational(0), Rational(1), high);
+        EXPECT_TRUE(meets_rel(warm_high, more));
+      }
+      warm = integrate(one_over_one_plus_square, Rational(0), Rational(1), opt);
+      flint_cleanup();
+    });
+    b.join();
+    EXPECT_TRUE(arb_equal(fresh.get(), warm.get())) << fresh.str(40) << " vs " << warm.str(40);
   }
 }
 
