@@ -1291,31 +1291,6 @@ std::vector<IsolatedRoot> isolate_real_roots(const Poly& p, const Rational& a, c
 
 namespace {
 
-/// True when p (degree >= 2) is proven squarefree: gcd(p, p') = 1 modulo a
-/// prime q not dividing lc(p). (A primitive common factor h over Z has
-/// lc(h) | lc(p), so it keeps its degree modulo q and divides both there.)
-/// False means unknown.
-bool provably_squarefree(const Poly& p) {
-  ulong q = UWORD(1) << 62;
-  for (int tries = 0; tries < 3; ++tries) {
-    q = n_nextprime(q, 1);
-    if (fmpz_fdiv_ui(p.get()->coeffs + p.degree(), q) == 0) continue;
-    nmod_poly_t f, df, g;
-    nmod_poly_init(f, q);
-    nmod_poly_init(df, q);
-    nmod_poly_init(g, q);
-    fmpz_poly_get_nmod_poly(f, p.get());
-    nmod_poly_derivative(df, f);
-    nmod_poly_gcd(g, f, df);
-    const bool one = nmod_poly_degree(g) == 0;
-    nmod_poly_clear(f);
-    nmod_poly_clear(df);
-    nmod_poly_clear(g);
-    if (one) return true;
-  }
-  return false;
-}
-
 /// Depth of the evaluator's subdivision (cells of 2^-30 of [a, b]) before a
 /// cell goes to the exact isolation.
 constexpr long kEvaluatorDepth = 30;

@@ -95,6 +95,55 @@ TEST(Squarefree, RandomProductsOfKnownFactors) {
   }
 }
 
+// High degree (48..200, the modular test's range): random dense p times a
+// signed content, and h^2 g. provably_squarefree is never true for h^2 g
+// (exactly: a square factor) and true for nearly every random p; the
+// factorisation is exact either way (fails when the fast path drops the
+// content's sign or its magnitude, or takes a square for squarefree).
+TEST(Squarefree, HighDegreeThroughTheModularTest) {
+  std::mt19937_64 rng(4848);
+  long proven = 0;
+  const long iters = iterations(60);
+  for (long it = 0; it < iters; ++it) {
+    SCOPED_TRACE("iteration " + std::to_string(it) + " (seed 4848)");
+    auto dense = [&](long n) {
+      std::vector<Integer> c;
+      for (long k = 0; k <= n; ++k) c.push_back(Integer(static_cast<long>(rng() % 2001) - 1000));
+      if (c.back().sign() == 0) c.back() = Integer(7);
+      return Poly(c);
+    };
+    const Integer content(static_cast<long>(1 + rng() % 90) * (rng() % 2 ? 1 : -1));
+    const bool square = it % 3 == 0;
+    const Poly h = dense(1 + static_cast<long>(rng() % 20)), g = dense(48 + static_cast<long>(rng() % 150));
+    const Poly p = constant(content) * (square ? h * h * g : g);
+    SCOPED_TRACE("degree " + std::to_string(p.degree()) + (square ? ", h^2 g" : ""));
+    const bool ps = provably_squarefree(p);
+    if (square) EXPECT_FALSE(ps);
+    if (ps) ++proven;
+    const SquarefreeFactorization sf = squarefree_factorization(p);
+    Poly back = constant(sf.content);
+    for (const auto& f : sf.factors) {
+      back = back * f.factor.pow(static_cast<unsigned long>(f.multiplicity));
+      EXPECT_EQ(f.factor, f.factor.primitive());
+      EXPECT_GT(f.factor.leading().sign(), 0);
+    }
+    EXPECT_EQ(back, p);
+    Integer c, ac;
+    fmpz_poly_content(c.get(), p.get());
+    fmpz_abs(ac.get(), sf.content.get());
+    EXPECT_EQ(ac, c);
+    if (square) {
+      bool has_square = false;
+      for (const auto& f : sf.factors) has_square = has_square || f.multiplicity >= 2;
+      EXPECT_TRUE(has_square);
+    } else if (ps) {
+      ASSERT_EQ(sf.factors.size(), 1u);
+      EXPECT_EQ(sf.factors[0].multiplicity, 1);
+    }
+  }
+  EXPECT_GT(proven, iters / 2);  // the random dense ones
+}
+
 TEST(Squarefree, Degenerate) {
   const SquarefreeFactorization z = squarefree_factorization(Poly());
   EXPECT_EQ(z.content, Integer(0));

@@ -19,7 +19,14 @@ struct SquarefreeFactorization {
   std::vector<SquarefreeFactor> factors;  ///< pairwise coprime; sorted by multiplicity, then degree
 };
 
-/// Squarefree factorisation of p.
+/// True when p (degree >= 1) is proven squarefree: gcd(p, p') = 1 modulo a
+/// prime q (one of three near 2^62) not dividing lc(p). (A primitive common
+/// factor h over Z has lc(h) | lc(p), so it keeps its degree modulo q and
+/// divides both there.) False means unknown, or p constant.
+bool provably_squarefree(const Poly& p);
+
+/// Squarefree factorisation of p (p itself, made primitive, when
+/// provably_squarefree(p); FLINT's otherwise).
 /// \post content * prod f_i^{m_i} == p exactly; the f_i are squarefree,
 ///       pairwise coprime, primitive, with positive leading coefficient, and
 ///       the multiplicities are distinct (one factor per multiplicity).
