@@ -1241,6 +1241,12 @@ void isolate_factor(const Poly& f, int mult, const Rational& a, const Rational& 
 }
 
 /// Refines overlapping closed intervals until pairwise disjoint.
+/// Degree from which make_disjoint separates touching cells of one factor
+/// by signs compared with the shared end's (below, halving both costs about
+/// as much, and the narrower intervals serve the refinements that follow:
+/// bez-plane 12 radical, degrees 10 and 31, took 4% more instructions).
+constexpr long kTouchingSignsDegree = 48;
+
 void make_disjoint(std::vector<Found>& roots, long cap) {
   auto by_lo = [](const Found& x, const Found& y) { return x.lo < y.lo; };
   for (long pass = 0;; ++pass) {
@@ -1249,6 +1255,37 @@ void make_disjoint(std::vector<Found>& roots, long cap) {
     for (std::size_t i = 0; i + 1 < roots.size(); ++i) {
       if (roots[i].hi < roots[i + 1].lo) continue;
       clean = false;
+      Found& x = roots[i];
+      Found& y = roots[i + 1];
+      if (x.lo < x.hi && y.lo < y.hi && x.hi == y.lo && x.factor == y.factor &&
+          x.factor.degree() >= kTouchingSignsDegree) {
+        // Neighbouring cells of one factor's isolation, touching at m (not
+        // a root): the sign at m, then bisections at the cells' short
+        // dyadic middles, each compared with it, until one root is proven
+        // away from m (~2.5 exact signs; refining both by halves took ~5).
+        const Rational m = x.hi;
+        const int sm = exact_sign(x.factor, m);
+        for (long step = 0, side = 0; x.hi == y.lo; ++step, side ^= 1) {
+          check_time_budget();
+          if (step > 2 * cap)  // each step halves a cell: the roots are 2^-cap apart at least
+            throw BudgetExceeded("could not separate two touching isolating intervals within " +
+                                 std::to_string(2 * cap) + " bisections");
+          Found& r = side == 0 ? x : y;
+          const Rational q = detail::grid_floor((r.lo + r.hi) * Rational(1, 2), detail::floor_log2(r.hi - r.lo) - 2);
+          const int sq = exact_sign(r.factor, q);
+          if (sq == 0) {
+            r.lo = r.hi = q;
+            r.factor = linear_poly(q);
+          } else if ((sq == sm) == (side == 0)) {
+            // f has m's sign between the roots: left, the root is below q
+            // (done); right, above q is the other sign, the root below q
+            r.hi = q;
+          } else {
+            r.lo = q;  // left: the root above q (still touching); right: above q (done)
+          }
+        }
+        continue;
+      }
       for (Found* r : {&roots[i], &roots[i + 1]}) {
         if (r->lo == r->hi) continue;
         const long bits = 1 - detail::floor_log2(r->hi - r->lo);  // halve the width
