@@ -623,7 +623,8 @@ int descartes_bound_double(const Poly& P, int& sign_at_1) {
     const double m = fmpz_get_d_2exp(&ex, p + (n - k));
     const double v = std::ldexp(m, static_cast<int>(std::max<slong>(ex - top, -1100)));
     a[static_cast<std::size_t>(k)] = v;
-    e[static_cast<std::size_t>(k)] = std::fabs(v) * 0x1p-52 + 0x1p-1073 + (ex - top < -1070 ? std::ldexp(1.0, -1070) : 0.0);
+    // |v - exact| <= 2^-52 |v| (rounding), or < 2^-1073 (subnormal or underflowed, the exponent clamped)
+    e[static_cast<std::size_t>(k)] = std::fabs(v) * 0x1p-52 + 0x1p-1073;
   }
   constexpr double u = 0x1p-53, grow = 1 + 0x1p-50;
   for (slong i = 0; i < n; ++i)
@@ -1240,13 +1241,13 @@ void isolate_factor(const Poly& f, int mult, const Rational& a, const Rational& 
   }
 }
 
-/// Refines overlapping closed intervals until pairwise disjoint.
 /// Degree from which make_disjoint separates touching cells of one factor
 /// by signs compared with the shared end's (below, halving both costs about
 /// as much, and the narrower intervals serve the refinements that follow:
 /// bez-plane 12 radical, degrees 10 and 31, took 4% more instructions).
 constexpr long kTouchingSignsDegree = 48;
 
+/// Refines overlapping closed intervals until pairwise disjoint.
 void make_disjoint(std::vector<Found>& roots, long cap) {
   auto by_lo = [](const Found& x, const Found& y) { return x.lo < y.lo; };
   for (long pass = 0;; ++pass) {
