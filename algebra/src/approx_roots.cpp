@@ -242,22 +242,7 @@ std::vector<C> approximate_complex_roots(const Poly& p, bool* converged, int max
 std::vector<C> approximate_roots_near_unit_interval(const Poly& p, double max_loss, double* loss, bool* converged) {
   if (p.is_zero()) throw InvalidArgument("approximate_roots_near_unit_interval: the zero polynomial has no finite root set");
   if (converged) *converged = false;
-  const long n = p.degree();
-  // q(s) = r(1 + s), r(u) = 2^n p(u / 2) = sum a_k 2^(n-k) u^k
-  Poly r, q;
-  for (long k = 0; k <= n; ++k) {
-    fmpz_t c;
-    fmpz_init(c);
-    fmpz_mul_2exp(c, p.get()->coeffs + k, static_cast<ulong>(n - k));
-    fmpz_poly_set_coeff_fmpz(r.get(), k, c);
-    fmpz_clear(c);
-  }
-  {
-    fmpz_t one;
-    fmpz_init_set_ui(one, 1);
-    fmpz_poly_taylor_shift(q.get(), r.get(), one);
-    fmpz_clear(one);
-  }
+  const Poly q = centred_at_half(p);  // q(s) = 2^n p((1 + s) / 2)
   const double l = horner_loss(q, -1);
   if (loss) *loss = l;
   if (!(l <= max_loss)) return {};

@@ -162,20 +162,7 @@ constexpr long kStartMinDegree = 16;
 /// by one power of 2 (the scale cancels in Newton's ratio).
 std::vector<double> centred_doubles(const Poly& f) {
   const long n = f.degree();
-  Poly r, q;
-  for (long k = 0; k <= n; ++k) {
-    fmpz_t a;
-    fmpz_init(a);
-    fmpz_mul_2exp(a, f.get()->coeffs + k, static_cast<ulong>(n - k));
-    fmpz_poly_set_coeff_fmpz(r.get(), k, a);
-    fmpz_clear(a);
-  }
-  {
-    fmpz_t one;
-    fmpz_init_set_ui(one, 1);
-    fmpz_poly_taylor_shift(q.get(), r.get(), one);
-    fmpz_clear(one);
-  }
+  const Poly q = centred_at_half(f);
   const long top = std::labs(static_cast<long>(fmpz_poly_max_bits(q.get())));
   std::vector<double> c(static_cast<std::size_t>(n + 1));
   for (long k = 0; k <= n; ++k) {

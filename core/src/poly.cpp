@@ -129,4 +129,19 @@ Poly divexact(const Poly& a, const Poly& b) {
   return q;
 }
 
+Poly centred_at_half(const Poly& p) {
+  if (p.is_zero()) return p;
+  const slong n = p.degree();
+  Poly r, q;  // r(u) = 2^n p(u / 2) = sum p_k 2^(n-k) u^k, q(s) = r(1 + s)
+  fmpz_poly_fit_length(r.get(), n + 1);
+  for (slong k = 0; k <= n; ++k)
+    fmpz_mul_2exp(r.get()->coeffs + k, p.get()->coeffs + k, static_cast<ulong>(n - k));
+  _fmpz_poly_set_length(r.get(), n + 1);
+  fmpz_t one;
+  fmpz_init_set_ui(one, 1);
+  fmpz_poly_taylor_shift(q.get(), r.get(), one);
+  fmpz_clear(one);
+  return q;
+}
+
 }  // namespace uniparam

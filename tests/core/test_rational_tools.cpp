@@ -80,6 +80,27 @@ TEST(PolySignAt, AgreesWithTheExactValue) {
   }
 }
 
+// centred_at_half(p)(2x - 1) = 2^n p(x) exactly, at random rationals, for
+// random p of degree 0..40 (and the zero polynomial); fails with a wrong
+// scale on any coefficient or a shift by other than 1.
+TEST(CentredAtHalf, IsTheScaledPolynomialInTheVariable2xMinus1) {
+  std::mt19937_64 rng(2424);
+  std::uniform_int_distribution<long> c(-1000, 1000), den(1, 1L << 20), deg(0, 40);
+  EXPECT_TRUE(centred_at_half(Poly()).is_zero());
+  for (long it = 0; it < test_support::iterations(200); ++it) {
+    std::vector<long> cs(static_cast<std::size_t>(deg(rng)) + 1);
+    for (long& x : cs) x = c(rng);
+    if (cs.back() == 0) cs.back() = 1;
+    const Poly p(cs);
+    const Poly q = centred_at_half(p);
+    ASSERT_EQ(q.degree(), p.degree());
+    const Rational x(c(rng), den(rng));
+    Rational scale(1);
+    for (long k = 0; k < p.degree(); ++k) scale = scale * Rational(2);
+    EXPECT_EQ(q(Rational(2) * x - Rational(1)), scale * p(x)) << p.str() << " at " << x.str();
+  }
+}
+
 TEST(MidRational, IsTheExactMidpoint) {
   Ball b(Rational(5, 8), 64);
   EXPECT_EQ(mid_rational(b), Rational(5, 8));

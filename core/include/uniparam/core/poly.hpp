@@ -67,5 +67,9 @@ class Poly {
 Poly gcd(const Poly& a, const Poly& b);
 /// Exact quotient a / b; throws DomainError if b does not divide a.
 Poly divexact(const Poly& a, const Poly& b);
+/// q(s) = 2^n p((1 + s) / 2), n = deg p, exactly: p in the basis centred at
+/// 1/2 and scaled to [-1, 1] (an exact Taylor shift of 2^n p(u / 2) by 1).
+/// The zero polynomial gives itself.
+Poly centred_at_half(const Poly& p);
 
 }  // namespace uniparam
