@@ -107,22 +107,6 @@ void all_newton_ratios(const std::vector<double>& c, const std::vector<C>& z, co
   }
 }
 
-/// The n + 1 integers a[0 .. n] as doubles scaled by one power of 2 (the
-/// largest to [1/2, 1)); those below 2^-2000 of it become 0.
-std::vector<double> scaled_coefficients(const fmpz* a, long n) {
-  std::vector<double> m(static_cast<std::size_t>(n + 1));
-  std::vector<slong> e(static_cast<std::size_t>(n + 1));
-  slong emax = std::numeric_limits<slong>::min();
-  for (long k = 0; k <= n; ++k) {
-    m[k] = fmpz_get_d_2exp(&e[k], a + k);
-    if (m[k] != 0) emax = std::max(emax, e[k]);
-  }
-  std::vector<double> c(static_cast<std::size_t>(n + 1));
-  for (long k = 0; k <= n; ++k)
-    c[k] = m[k] == 0 ? 0 : std::ldexp(m[k], static_cast<int>(std::max<slong>(e[k] - emax, -2000)));
-  return c;
-}
-
 /// The Aberth-Ehrlich iteration of approximate_complex_roots. With
 /// near_unit, a root is also settled once its correction is below
 /// kFarSettled times its distance from [-1, 1] (see
@@ -139,7 +123,8 @@ std::vector<C> aberth(const Poly& p, bool* converged, int max_sweeps, bool near_
     if (converged) *converged = true;
     return out;
   }
-  const std::vector<double> c = scaled_coefficients(a + v, n);  // p / t^v
+  std::vector<double> c = scaled_doubles(p);
+  c.erase(c.begin(), c.begin() + v);  // p / t^v
   if (c[n] == 0 || c[0] == 0) return {};  // a leading or trailing coefficient underflowed
   // Start on the circles of the Newton polygon (Bini's choice): the upper
   // convex hull of the points (k, log2 |c_k|); an edge from i to j holds
@@ -214,7 +199,7 @@ std::vector<C> aberth(const Poly& p, bool* converged, int max_sweeps, bool near_
 /// infinity when p vanishes at every point.
 double horner_loss(const Poly& p, int lo) {
   const long n = p.degree();
-  const std::vector<double> c = scaled_coefficients(p.get()->coeffs, n);
+  const std::vector<double> c = scaled_doubles(p);
   double sum = 0, peak = 0;
   for (double ck : c) sum += std::fabs(ck);
   const double step = lo < 0 ? 1.0 / 16 : 1.0 / 32;

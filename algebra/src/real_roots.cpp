@@ -158,21 +158,6 @@ constexpr int kNewtonBisections = 8;
 constexpr long kStartBits = 24;
 constexpr long kStartMinDegree = 16;
 
-/// q(s) = 2^n f((1 + s) / 2) (exact Taylor shift) as doubles, all scaled
-/// by one power of 2 (the scale cancels in Newton's ratio).
-std::vector<double> centred_doubles(const Poly& f) {
-  const long n = f.degree();
-  const Poly q = centred_at_half(f);
-  const long top = std::labs(static_cast<long>(fmpz_poly_max_bits(q.get())));
-  std::vector<double> c(static_cast<std::size_t>(n + 1));
-  for (long k = 0; k <= n; ++k) {
-    slong e = 0;
-    const double m = fmpz_get_d_2exp(&e, q.get()->coeffs + k);
-    c[static_cast<std::size_t>(k)] = std::ldexp(m, static_cast<int>(e - top));
-  }
-  return c;
-}
-
 /// The root of f in (lo, hi) to about double precision, from Newton's
 /// iteration in IEEE double on f's basis centred at 1/2,
 /// q(s) = 2^n f((1 + s) / 2) (an exact Taylor shift): on [0, 1] its Horner
@@ -183,7 +168,7 @@ std::vector<double> centred_doubles(const Poly& f) {
 /// a power of 2 of at least 8 times the guess's estimated error (Horner's
 /// rounding over |f'|, and the last Newton step) and at most w / 8; false
 /// when the iteration leaves (lo, hi), does not settle, or d would be
-/// too wide to gain anything. c: centred_doubles(f).
+/// too wide to gain anything. c: scaled_doubles(centred_at_half(f)).
 bool centred_start(const std::vector<double>& c, const Rational& lo, const Rational& hi, Rational& g, Rational& d) {
   const long n = static_cast<long>(c.size()) - 1;
   const double slo = 2 * fmpq_get_d(lo.get()) - 1, shi = 2 * fmpq_get_d(hi.get()) - 1;
@@ -378,16 +363,26 @@ int exact_sign(const Poly& f, const Rational& x) {
   return f.sign_at(x);  // exact rational evaluation
 }
 
-bool prove_root_near(const Poly& f, const ScaledEvaluator& sev, const Rational& g, const Rational& d, long bits,
-                     Rational& lo, Rational& hi) {
+namespace {
+
+/// prove_root_near with f' given (refine_isolating_interval has it).
+bool prove_root_near(const Poly& f, const Poly& df, const ScaledEvaluator& sev, const Rational& g, const Rational& d,
+                     long bits, Rational& lo, Rational& hi) {
   if (!(d.sign() > 0)) throw InvalidArgument("prove_root_near: the radius must be positive");
   Rational l2 = g - d, h2 = g + d;
   bool inside = false;
-  interval_newton_step(f, f.derivative(), sev, l2, h2, bits, magnitude_bits(l2, h2), &g, &inside);
+  interval_newton_step(f, df, sev, l2, h2, bits, magnitude_bits(l2, h2), &g, &inside);
   if (!inside) return false;
   lo = std::move(l2);
   hi = std::move(h2);
   return true;
+}
+
+}  // namespace
+
+bool prove_root_near(const Poly& f, const ScaledEvaluator& sev, const Rational& g, const Rational& d, long bits,
+                     Rational& lo, Rational& hi) {
+  return prove_root_near(f, f.derivative(), sev, g, d, bits, lo, hi);
 }
 
 bool refine_isolating_interval(const Poly& f, Rational& lo, Rational& hi, long bits, long* newton_log,
@@ -432,12 +427,12 @@ bool refine_isolating_interval(const Poly& f, Rational& lo, Rational& hi, long b
       // f's centred basis: one per polynomial, kept by the evaluator
       std::shared_ptr<const std::vector<double>> c = std::atomic_load(&sev->centred_cache);
       if (!c) {
-        c = std::make_shared<const std::vector<double>>(centred_doubles(f));
+        c = std::make_shared<const std::vector<double>>(scaled_doubles(centred_at_half(f)));
         std::atomic_store(&sev->centred_cache, c);  // a racing copy computed the same
       }
       Rational g, d;
       if (c->size() == static_cast<std::size_t>(f.degree() + 1) && centred_start(*c, lo, hi, g, d) &&
-          prove_root_near(f, *sev, g, d, bits, lo, hi))
+          prove_root_near(f, df, *sev, g, d, bits, lo, hi))
         w = hi - lo;
     }
     while (w > target) {
@@ -602,17 +597,10 @@ constexpr long kDoubleDescartesDegree = 800;
 /// exact), and -1 when it cannot tell (the caller shifts exactly).
 int descartes_bound_double(const Poly& P, int& sign_at_1) {
   const slong n = P.degree();
-  const fmpz* p = P.get()->coeffs;
-  const long top = std::labs(static_cast<long>(fmpz_poly_max_bits(P.get())));
-  std::vector<double> a(static_cast<std::size_t>(n + 1)), e(static_cast<std::size_t>(n + 1));
-  for (slong k = 0; k <= n; ++k) {  // R = reverse(P): R_k = P_(n-k)
-    slong ex = 0;
-    const double m = fmpz_get_d_2exp(&ex, p + (n - k));
-    const double v = std::ldexp(m, static_cast<int>(std::max<slong>(ex - top, -1100)));
-    a[static_cast<std::size_t>(k)] = v;
-    // |v - exact| <= 2^-52 |v| (rounding), or < 2^-1073 (subnormal or underflowed, the exponent clamped)
-    e[static_cast<std::size_t>(k)] = std::fabs(v) * 0x1p-52 + 0x1p-1073;
-  }
+  // R = reverse(P): R_k = P_(n-k); |v - exact| <= 2^-52 |v| or < 2^-1073 (scaled_doubles)
+  const std::vector<double> c = scaled_doubles(P);
+  std::vector<double> a(c.rbegin(), c.rend()), e(static_cast<std::size_t>(n + 1));
+  for (std::size_t k = 0; k < e.size(); ++k) e[k] = std::fabs(a[k]) * 0x1p-52 + 0x1p-1073;
   constexpr double u = 0x1p-53, grow = 1 + 0x1p-50;
   for (slong i = 0; i < n; ++i)
     for (slong j = n - 1; j >= i; --j) {

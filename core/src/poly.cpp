@@ -1,5 +1,10 @@
 #include "uniparam/core/poly.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
 #include <arb.h>
 #include <arb_fmpz_poly.h>
 
@@ -142,6 +147,23 @@ Poly centred_at_half(const Poly& p) {
   fmpz_poly_taylor_shift(q.get(), r.get(), one);
   fmpz_clear(one);
   return q;
+}
+
+std::vector<double> scaled_doubles(const Poly& p) {
+  const slong n = p.degree();
+  if (n < 0) return {};
+  const fmpz* a = p.get()->coeffs;
+  std::vector<double> m(static_cast<std::size_t>(n + 1));
+  std::vector<slong> e(static_cast<std::size_t>(n + 1));
+  slong emax = std::numeric_limits<slong>::min();
+  for (slong k = 0; k <= n; ++k) {
+    m[k] = fmpz_get_d_2exp(&e[k], a + k);
+    if (m[k] != 0) emax = std::max(emax, e[k]);
+  }
+  std::vector<double> c(static_cast<std::size_t>(n + 1));
+  for (slong k = 0; k <= n; ++k)
+    c[k] = m[k] == 0 ? 0 : std::ldexp(m[k], static_cast<int>(std::max<slong>(e[k] - emax, -2000)));
+  return c;
 }
 
 }  // namespace uniparam

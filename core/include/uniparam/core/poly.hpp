@@ -71,5 +71,10 @@ Poly divexact(const Poly& a, const Poly& b);
 /// 1/2 and scaled to [-1, 1] (an exact Taylor shift of 2^n p(u / 2) by 1).
 /// The zero polynomial gives itself.
 Poly centred_at_half(const Poly& p);
+/// The coefficients a[0 .. n] of p (n + 1 of them; none for 0) as IEEE
+/// doubles, all scaled by one power of 2 (the largest into [1/2, 1)): each
+/// within 2^-52 of itself, relatively, or below 2^-1073 (the ones below
+/// 2^-2000 of the largest become 0).
+std::vector<double> scaled_doubles(const Poly& p);
 
 }  // namespace uniparam
