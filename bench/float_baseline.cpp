@@ -206,7 +206,7 @@ Piece piece(const FloatCurve& c, SpeedKind kind, double a, double b, int side, i
     double s2 = speed_squared(c, kind, t), st = tt;
     if (side < 0) {
       s2 *= dt;
-    } else if (side == 0) {  // naive: sigma^2 / t~^mu (002 section 5)
+    } else if (side == 0) {  // naive: sigma^2 / t~^mu (Hong, Wang, Yang 2023, section 5)
       s2 *= dt / ((mu + 1) * std::pow(tt, mu));
       st = std::pow(tt, mu + 1);
     } else {

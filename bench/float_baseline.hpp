@@ -13,7 +13,7 @@
 // * adaptive Gauss-Kronrod G7/K15 quadrature with QUADPACK's error estimate
 //   (relative tolerance 1e-13, at most 4000 subintervals);
 // * the radical pieces' integrands sigma^2 / t~^mu evaluated naively (the
-//   instability of paper 002, section 5), since the zero is only known to
+//   instability of Hong, Wang, Yang 2023, section 5), since the zero is only known to
 //   double precision;
 // * the breakpoints of `reparam --pieces N` chosen by the library's own
 //   floating-point search (optimise_breakpoints, uniparam/reparam/
@@ -71,7 +71,7 @@ struct Radical {
   double mu = 0, u_before = 0, u_radical = 0, u_after = 0;
   bool converged = true;
 };
-/// Paper 002's Algorithm 1 in double (UNCERTIFIED).
+/// Algorithm 1 of Hong, Wang, Yang 2023 in double (UNCERTIFIED).
 Radical radical(const FloatCurve& c, SpeedKind kind);
 
 struct Moebius {

@@ -1,6 +1,6 @@
 // cli/cmd_bezier.cpp -- `uniparam bezier --control POINTS [--weights LIST]`:
 // the optimal bilinear reparameterization of a Bezier curve for the
-// parametric speed (paper 000, eqs. 21-22; MATH.md section 2).
+// parametric speed (Juettler 1997, eqs. 21-22; docs/math.md section 2).
 #include <iostream>
 
 #include "commands.hpp"
@@ -16,7 +16,7 @@ CommandSpec bezier_spec() {
   opts.push_back({"format", "F", "exact values (P, Q, alpha, weights): text, latex, maple (or json, the same as --json)", "text"});
   return {"bezier",
           "Optimal bilinear (Moebius) reparameterization of a Bezier curve for the parametric speed.",
-          "Integral curves (no --weights): P and Q of paper 000 eq. (21) as exact rationals,\n"
+          "Integral curves (no --weights): P and Q of Juettler 1997, eq. (21) as exact rationals,\n"
           "alpha, the root in (0, 1) of P (1-alpha)^2 + Q alpha^2 = 0, as an exact quadratic\n"
           "surd, and the new weights w_i = (1-alpha)^i alpha^(n-i) exactly. Rational curves\n"
           "(--weights): P, Q and alpha by certified quadrature, new weights v_i w_i.\n"

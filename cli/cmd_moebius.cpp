@@ -1,5 +1,5 @@
 // cli/cmd_moebius.cpp -- `uniparam moebius CURVE`: the optimal single Moebius
-// reparameterization (MATH.md section 2), or C0 piecewise Moebius with the
+// reparameterization (docs/math.md section 2), or C0 piecewise Moebius with the
 // breakpoints given by --breakpoints.
 #include <iostream>
 
@@ -51,7 +51,7 @@ CommandSpec moebius_spec() {
   return {"moebius",
           "Optimal Moebius reparameterization: alpha* = 1/(1+sqrt(C/A)) and u after.",
           "With --breakpoints T the pieces are C0 Moebius maps with the optimal alpha\n"
-          "and S for that T (MATH.md 3.1). Rational maps cannot lift zeros of the\n"
+          "and S for that T (docs/math.md (3.1)). Rational maps cannot lift zeros of the\n"
           "speed: for such curves see 'uniparam radical'.",
           {"CURVE"},
           opts};

@@ -1,4 +1,4 @@
-// cli/cmd_radical.cpp -- `uniparam radical CURVE`: paper 002, Algorithm 1.
+// cli/cmd_radical.cpp -- `uniparam radical CURVE`: Hong, Wang, Yang 2023, Algorithm 1.
 #include <iostream>
 #include <optional>
 
@@ -14,7 +14,7 @@ CommandSpec radical_spec() {
   opts.push_back({"format", "F", "formulas of the pieces: text, latex, maple (or json, the same as --json)", "text"});
   opts.push_back({"at", "Z", "also evaluate r(z), p(r(z)) and the new speed at a rational z in [0, 1]", ""});
   return {"radical",
-          "Optimal piecewise radical reparameterization r = phi o m (paper 002, Algorithm 1).",
+          "Optimal piecewise radical reparameterization r = phi o m (Hong, Wang, Yang 2023, Algorithm 1).",
           "T holds 0, 1 and every zero of sigma * sigma' in (0, 1); phi lifts the zeros\n"
           "of the speed by radicals (optimal S), m is the optimal piecewise Moebius map\n"
           "on top (optimal alpha and Z). Prints T, S, Z, alpha, L, A, B, C, M, the pieces\n"

@@ -30,7 +30,7 @@ fig() {  # fig NAME ARGS... : one picture, reported
   echo "make-figures.sh: wrote docs/img/$name.svg"
 }
 
-# Paper 002, Example 16: the running example under the radical method.
+# Hong, Wang, Yang 2023, Example 16: the running example under the radical method.
 fig example16-radical "(t, t^3)" --method radical --points 40
 # The slides' C0 figure: N = 3 pieces, 40 points.
 fig slide-c0-n3 "$slide" --method c0 --pieces 3 --points 40

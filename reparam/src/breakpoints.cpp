@@ -1,5 +1,5 @@
 // reparam/src/breakpoints.cpp -- the floating-point search for the breakpoints
-// of a C0 piecewise Moebius map (ImUp's ReparameterizationN; MATH.md
+// of a C0 piecewise Moebius map (ImUp's ReparameterizationN; docs/math.md
 // section 3). UNCERTIFIED: see the header.
 #include "uniparam/reparam/breakpoints.hpp"
 
@@ -18,7 +18,7 @@ struct PhiEval {
 };
 
 // Phi(T) and its gradient in closed form. For a piece [a, b], h = b - a, with
-// A, B, C the integrals over dt (MATH.md 2.2) and M = h (B + 2 sqrt(AC)), the
+// A, B, C the integrals over dt (docs/math.md (2.2)) and M = h (B + 2 sqrt(AC)), the
 // envelope theorem (alpha* is optimal) gives
 //   dM/db =   sqrt(C/A) B + 2 C + h sigma(b)^2 sqrt(A/C),
 //   dM/da = -(sqrt(A/C) B + 2 A + h sigma(a)^2 sqrt(C/A)).

@@ -1,5 +1,5 @@
 // reparam/src/moebius_c1.cpp -- ImUp's ReparameterizationU: a C1 piecewise
-// Moebius map refined until a target uniformity (MATH.md section 3).
+// Moebius map refined until a target uniformity (docs/math.md section 3).
 #include <algorithm>
 #include <array>
 #include <cmath>

@@ -1,5 +1,5 @@
 // reparam/src/moebius_opt.cpp -- ImUp's ReparameterizationN: the C0 piecewise
-// Moebius map with N pieces and optimised breakpoints (MATH.md section 3).
+// Moebius map with N pieces and optimised breakpoints (docs/math.md section 3).
 //
 // The breakpoints are *chosen* by a quasi-Newton method on Phi(T) = sum
 // sqrt M_i evaluated in floating point (uncertified: breakpoints.hpp, fed

@@ -167,7 +167,7 @@ std::vector<Breakpoint> critical_breakpoints(const Speed& s) {
     if (uniq.empty() || !(uniq.back() == t)) uniq.push_back(t);
   std::vector<Breakpoint> bp = mark_zeros(s, uniq);
   // Never two zeros of sigma in a row (Rolle excludes it inside (0, 1), but
-  // keep the rule of MATH.md section 4 unconditional).
+  // keep the rule of docs/math.md section 4 unconditional).
   std::vector<Breakpoint> out;
   for (auto& b : bp) {
     if (!out.empty() && out.back().multiplicity > 0 && b.multiplicity > 0) {

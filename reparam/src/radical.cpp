@@ -264,7 +264,7 @@ namespace {
 
 // [sigma_p(t) * Delta t * psi'(x)]^2 at t = t_i + Delta t psi(x), piece i, from
 // the local Moebius coordinate x. With a zero at an end the singular factors
-// cancel exactly (002, Theorem 7): the value is
+// cancel exactly (Hong, Wang, Yang 2023, Theorem 7): the value is
 // Shat(t) (Delta t^(mu+1) / (mu+1))^2 with Shat = sigma^2 / (t - gamma)^(2 mu).
 bool radical_speed_sq_local(acb_t out, const RadicalResult& r, const Speed& s, std::size_t i, const acb_t x,
                             bool analytic, long prec) {

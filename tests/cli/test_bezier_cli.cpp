@@ -47,7 +47,7 @@ TEST(CliBezier, IntegralQuadraticIsExact) {
   EXPECT_NE(t.out.find("\\frac{-3 + \\sqrt{33}}{8}"), std::string::npos) << t.out;
 }
 
-// The rational quadratic of the quarter circle: MATH.md section 6 reference
+// The rational quadratic of the quarter circle: docs/math.md section 6 reference
 // u after = 0.9977912002415711604419615, alpha = 2 - sqrt 2, mu = pi/2.
 TEST(CliBezier, QuarterCircleReachesReference) {
   auto r = run_uniparam({"bezier", "--control", kCircleControl, "--weights", kCircleWeights, "--json", "--digits", "22"});

@@ -1,7 +1,7 @@
-// Bezier curves and their optimal bilinear reparameterization (paper 000):
+// Bezier curves and their optimal bilinear reparameterization (Farouki 1997; Juettler 1997):
 // eq. (21) against exact integration in the power basis, eq. (22)'s exact
-// alpha against the general optimal Moebius map of MATH.md section 2, the new
-// weights against p o m, the quarter circle of MATH.md section 6, the exact
+// alpha against the general optimal Moebius map of docs/math.md section 2, the new
+// weights against p o m, the quarter circle of docs/math.md section 6, the exact
 // quadratic surds, and input validation.
 #include <gtest/gtest.h>
 
@@ -118,7 +118,7 @@ Ball pi_ball(long prec) {
 
 }  // namespace
 
-// Eq. (21) (Bernstein products) equals -A and C of MATH.md section 2 computed
+// Eq. (21) (Bernstein products) equals -A and C of docs/math.md section 2 computed
 // by exact integration in the power basis: checks the sign and normalisation
 // conventions (P = -A, Q = C on [0, 1], sigma = |p'|) and B.
 TEST(Bezier, EquationTwentyOneMatchesExactIntegration) {
@@ -188,7 +188,7 @@ TEST(Bezier, ExactAlphaSolvesEquationTwentyTwo) {
 }
 
 // Must show: alpha of eq. (22) equals the alpha of the general optimal
-// Moebius map (MATH.md section 2) for the parametric speed, for several
+// Moebius map (docs/math.md section 2) for the parametric speed, for several
 // degrees and dimensions; so do mu, u before and u after.
 TEST(Bezier, ExactAlphaInsideGeneralMoebiusBall) {
   std::mt19937_64 rng(2022);
@@ -221,7 +221,7 @@ TEST(Bezier, ExactAlphaInsideGeneralMoebiusBall) {
 
 // Must show: the rational quadratic Bezier of the quarter circle (weights
 // 1, 1, 2: the curve ((1-t^2)/(1+t^2), 2t/(1+t^2))) reaches the uniformity of
-// MATH.md section 6 after its optimal reparameterization; P = 2 - pi,
+// docs/math.md section 6 after its optimal reparameterization; P = 2 - pi,
 // Q = pi/2 - 1, alpha = 2 - sqrt 2 in closed form. Reversed, scaled and
 // translated copies reach the same u.
 TEST(Bezier, QuarterCircleReachesReferenceUniformity) {

@@ -140,7 +140,7 @@ TEST(Degenerate, CircleArcMatchesClosedForms) {
   EXPECT_TRUE(agrees(p.mu, mul(Ball(5), mu)));
   EXPECT_TRUE(agrees(p.mean_square, mul(Ball(25), ms)));
   EXPECT_TRUE(agrees(p.u, a.u));  // a circle's two speeds are proportional
-  // Quarter circle: the MATH.md section 6 values (alpha* = 2 - sqrt 2).
+  // Quarter circle: the docs/math.md section 6 values (alpha* = 2 - sqrt 2).
   const MoebiusResult m = moebius_optimal(parse_curve("((1-t^2)/(1+t^2), 2t/(1+t^2))"), SpeedKind::Angular);
   EXPECT_TRUE(agrees(m.alpha.at(0), sub(Ball(2), sqrt_of(Ball(2)))));
   EXPECT_TRUE(test_support::contains_ref(m.u_after, "0.9977912002415711604419615"));
@@ -192,7 +192,7 @@ TEST(Degenerate, RationalZerosTenToTheMinusThirtyApart) {
   const Ball ya = atan_of(eval(dy, exact(a))), yb = atan_of(eval(dy, exact(b))), y1 = atan_of(eval(dy, Ball(1)));
   const Ball mu = add(add(abs_of(ya), abs_of(sub(yb, ya))), abs_of(sub(y1, yb)));
   EXPECT_TRUE(agrees(u.mu, mu));
-  // Two zeros in a row get a breakpoint between them (MATH.md section 4).
+  // Two zeros in a row get a breakpoint between them (docs/math.md section 4).
   const RadicalResult r = radical(c, SpeedKind::Angular);
   EXPECT_TRUE(agrees(r.mu, mu));
   bool between = false;

@@ -1,5 +1,5 @@
 // C0 piecewise Moebius reparameterization with fixed breakpoints (ImUp's
-// MoebiusTransformation and ReparameterizationN): MATH.md section 6 values
+// MoebiusTransformation and ReparameterizationN): docs/math.md section 6 values
 // inside the certified balls, monotonicity of u, and input validation.
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
-// Piecewise radical reparameterization (paper 002): the running example
-// against MATH.md section 6, and a family of curves each checked against an
+// Piecewise radical reparameterization (Hong, Wang, Yang 2023): the running example
+// against docs/math.md section 6, and a family of curves each checked against an
 // independent direct integration of the reparameterized speed.
 #include <gtest/gtest.h>
 

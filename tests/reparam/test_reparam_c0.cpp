@@ -16,7 +16,7 @@ using namespace uniparam;
 
 namespace {
 
-// ImUp's slide curve (paper 003).
+// ImUp's slide curve (Yang, Wang, Hong 2014, ImUp).
 const char* kSlide =
     "((t^3-6t^2+9t-2)/(2t^4-16t^3+40t^2-32t+9), (t^2-4t+4)/(2t^4-16t^3+40t^2-32t+9))";
 

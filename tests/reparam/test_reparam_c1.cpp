@@ -105,7 +105,7 @@ TEST(ReparamC1, TargetReachedOnCurvesWithoutZerosOfTheSpeed) {
 }
 
 TEST(ReparamC1, StartsFromTheZerosOfTheSpeedDerivative) {
-  // (t, t^3): omega = 6t/(9t^4+1), omega' = 0 at t = 27^(-1/4) (MATH.md section 6)
+  // (t, t^3): omega = 6t/(9t^4+1), omega' = 0 at t = 27^(-1/4) (docs/math.md section 6)
   const MoebiusResult r = reparam_c1(parse_curve("(t, t^3)"), SpeedKind::Angular, Rational(1, 2), {});
   ASSERT_EQ(r.pieces(), 2u);  // u >= 1/2 already after the first construction
   EXPECT_EQ(r.T[1].t.poly(), Poly(std::vector<long>{-1, 0, 0, 0, 27}));

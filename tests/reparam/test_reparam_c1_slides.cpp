@@ -3,7 +3,7 @@
 // be a genuine sign change of the exact slides' equation of its piece, and
 // the certified result must be C1 and honest about the target.
 //
-// The oracle, derived from MATH.md section 3 / paper 003 (the slides),
+// The oracle, derived from docs/math.md section 3 (ImUp, Yang, Wang, Hong 2014),
 // independently of reparam/src/moebius_c1.cpp: on a piece [a, b] with
 // parameter alpha the slides' equation is
 //     F(t) = sigma'(t) (b - a) [alpha t~ + (1 - alpha)(1 - t~)] - 2 sigma(t) (1 - 2 alpha),

@@ -15,7 +15,7 @@ using namespace uniparam;
 
 namespace {
 
-const char* kCubic = "(t, t^3)";  // paper 002, Example 16: a zero of the angular speed at t = 0
+const char* kCubic = "(t, t^3)";  // Hong, Wang, Yang 2023, Example 16: a zero of the angular speed at t = 0
 const char* kInflection = "(t, (2t - 1)^3)";  // a zero at t = 1/2: radical pieces on both sides
 const char* kSlide =
     "((t^3-6t^2+9t-2)/(2t^4-16t^3+40t^2-32t+9), (t^2-4t+4)/(2t^4-16t^3+40t^2-32t+9))";  // ImUp's slides
@@ -73,7 +73,7 @@ Independent moebius_independent(const MoebiusResult& r, const Rational& s, long 
   return out;
 }
 
-// Paper 002's r = phi o m on piece i: x = m(u) (local Moebius), y = x^(1/k)
+// Hong, Wang, Yang 2023: r = phi o m on piece i: x = m(u) (local Moebius), y = x^(1/k)
 // (zero at the left end) or 1 - (1 - x)^(1/k) (right end), r = t_i + Dt y.
 Independent radical_independent(const RadicalResult& r, const Rational& z, long prec) {
   Independent out;
@@ -358,7 +358,7 @@ TEST(Sample, MethodNamesAndJoints) {
 TEST(Sample, SpeedAtAJointBallIsBothOneSidedSpeeds) {
   // At a joint ball eval_speed unites both one-sided speeds. For the C1 map
   // the two agree, so the union stays tight. For the radical map of (t, t^3)
-  // they differ (about 1.19 left and 1.06 right of Z_1, paper 002 Example
+  // they differ (about 1.19 left and 1.06 right of Z_1, Hong, Wang, Yang 2023, Example
   // 16): the union then contains the speeds just left and right of the joint.
   Options o;
   o.digits = 20;

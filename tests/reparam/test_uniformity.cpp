@@ -1,4 +1,4 @@
-// Certified uniformity: reference values of MATH.md section 6 (independent
+// Certified uniformity: reference values of docs/math.md section 6 (independent
 // 40-digit values), exact special cases, and invariance properties.
 #include <gtest/gtest.h>
 

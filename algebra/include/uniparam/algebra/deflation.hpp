@@ -1,5 +1,5 @@
 // uniparam/algebra/deflation.hpp -- exact removal of a known root
-// (MATH.md section 4; paper 002 section 5).
+// (docs/math.md section 4; Hong, Wang, Yang 2023, section 5).
 #pragma once
 
 #include "uniparam/algebra/algebraic.hpp"

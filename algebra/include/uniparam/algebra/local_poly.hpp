@@ -98,7 +98,7 @@ class LocalPoly {
   bool has_disk_form() const;
 
   /// Enclosure of p(z) / (z - gamma) for a real root gamma of p: the
-  /// removable singularity removed by deflation (MATH.md section 4), in the
+  /// removable singularity removed by deflation (docs/math.md section 4), in the
   /// local basis of each cell: p(c + w) = (w - (gamma - c)) Q(w) by exact
   /// synthetic division of the cell's coefficients (balls containing the
   /// exact ones) by an enclosure of gamma - c, so no division by z - gamma

@@ -1,14 +1,14 @@
 // uniparam/reparam/bezier.hpp -- Bezier curves (integral and rational, any
 // degree and dimension) and their optimal bilinear reparameterization for the
-// parametric speed (paper 000: Farouki 1997 as simplified by Juettler;
-// MATH.md section 2).
+// parametric speed (Farouki 1997 as simplified by Juettler 1997;
+// docs/math.md section 2).
 //
 // The Moebius map is (2.1), t = (1 - a) s / ((1 - a) s + a (1 - s)); applied to
 // a Bezier curve with weights v_i it gives the rational Bezier curve with the
-// same control points and weights v_i (1 - a)^i a^(n - i) (000, eq. 4). The
-// optimal a is the root in (0, 1) of P (1 - a)^2 + Q a^2 = 0 (000, eq. 22) with
+// same control points and weights v_i (1 - a)^i a^(n - i) (Juettler 1997, eq. 4). The
+// optimal a is the root in (0, 1) of P (1 - a)^2 + Q a^2 = 0 (Juettler 1997, eq. 22) with
 //     P = -int_0^1 (1 - t)^2 |p'(t)|^2 dt = -A,   Q = int_0^1 t^2 |p'(t)|^2 dt = C.
-// For an integral curve P and Q are exact rationals (000, eq. 21), so a is an
+// For an integral curve P and Q are exact rationals (Juettler 1997, eq. 21), so a is an
 // exact quadratic surd.
 #pragma once
 
@@ -111,7 +111,7 @@ class QuadraticSurd {
 };
 
 /// Exact A = int (1-t)^2 |p'|^2, B = int 2t(1-t) |p'|^2, C = int t^2 |p'|^2
-/// over [0, 1] for an integral Bezier curve, by Bernstein products (000, eq. 21):
+/// over [0, 1] for an integral Bezier curve, by Bernstein products (Juettler 1997, eq. 21):
 ///     A = n^2/(2n+1) sum_ij binom(n-1,i) binom(n-1,j) / binom(2n, i+j)   dp_i.dp_j,
 ///     B = n^2/(2n+1) sum_ij binom(n-1,i) binom(n-1,j) 2/binom(2n, i+j+1) dp_i.dp_j,
 ///     C = n^2/(2n+1) sum_ij binom(n-1,i) binom(n-1,j) / binom(2n, i+j+2) dp_i.dp_j,
@@ -126,7 +126,7 @@ BezierMoments bezier_moments(const BezierCurve& b);
 /// parametric speed.
 struct BezierResult {
   bool exact = false;  ///< integral curve: P, Q (and A, B, C) exact, alpha a quadratic surd
-  /// Exact data (set when exact): P = -A, Q = C of (000, eq. 21), B, and
+  /// Exact data (set when exact): P = -A, Q = C of Juettler 1997 (eq. 21), B, and
   /// int |p'|^2 = A + B + C.
   std::optional<Rational> P_exact, Q_exact, B_exact, mean_square_exact;
   /// alpha as a quadratic surd and as a real algebraic number (a root of the

@@ -1,5 +1,5 @@
 // uniparam/reparam/breakpoints.hpp -- the floating-point (UNCERTIFIED) choice
-// of the breakpoints of a C0 piecewise Moebius map (MATH.md section 3).
+// of the breakpoints of a C0 piecewise Moebius map (docs/math.md section 3).
 //
 // *** Nothing here is certified. *** reparam_c0 uses this optimiser to
 // *choose* T and then certifies everything it reports on the chosen T (a bad
@@ -17,7 +17,7 @@ namespace uniparam {
 /// The piece integrals of [a, b] over dt, with t~ = (t - a)/(b - a):
 ///   A = int sigma^2 (1 - t~)^2,  B = int sigma^2 2 t~ (1 - t~),  C = int sigma^2 t~^2.
 /// The optimal Moebius piece's contribution is M = (b - a)(B + 2 sqrt(AC))
-/// (MATH.md 2.2), and Phi(T) = sum_i sqrt M_i.
+/// (docs/math.md (2.2)), and Phi(T) = sum_i sqrt M_i.
 struct PieceMoments {
   double A = 0, B = 0, C = 0;
 };

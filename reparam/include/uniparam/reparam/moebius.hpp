@@ -1,6 +1,6 @@
 // uniparam/reparam/moebius.hpp -- the C0 piecewise Moebius reparameterization
 // with fixed breakpoints (ImUp's MoebiusTransformation for N = 1 and
-// ReparameterizationN with the breakpoints given; MATH.md sections 2-3).
+// ReparameterizationN with the breakpoints given; docs/math.md sections 2-3).
 #pragma once
 
 #include <vector>
@@ -43,7 +43,7 @@ struct MoebiusResult {
   Ball u_after;   ///< u(p o r) = mu^2 / (sum sqrt M)^2 (1 when identically_zero)
   bool identically_zero = false;  ///< angular speed of a line: u = 1, alpha = 1/2, r = id
   /// True when sigma has a zero in [0, 1] (Speed::zeros() not empty). Rational
-  /// pieces cannot lift such a zero (MATH.md section 3): the result is still
+  /// pieces cannot lift such a zero (docs/math.md section 3): the result is still
   /// the optimal C0 piecewise Moebius map for T, but u_after stays below 1.
   bool speed_vanishes = false;
 

@@ -1,5 +1,5 @@
 // uniparam/reparam/pieces.hpp -- breakpoints and the per-piece integrals
-// shared by the radical and the Moebius methods (MATH.md sections 2-4).
+// shared by the radical and the Moebius methods (docs/math.md sections 2-4).
 #pragma once
 
 #include <vector>
@@ -37,7 +37,7 @@ enum class ZeroSide { None, Left, Right };
 std::vector<RealAlgebraic> critical_points(const Speed& s);
 
 /// T = (0, every zero of sigma * sigma' in (0, 1), 1) in increasing order,
-/// zeros of sigma marked with their multiplicities (MATH.md section 4). Two
+/// zeros of sigma marked with their multiplicities (docs/math.md section 4). Two
 /// consecutive zeros of sigma get their rational midpoint inserted between
 /// them. For the angular speed of a line: T = (0, 1).
 std::vector<Breakpoint> critical_breakpoints(const Speed& s);
@@ -53,8 +53,8 @@ std::vector<Breakpoint> mark_zeros(const Speed& s, const std::vector<RealAlgebra
 /// Delta t / ((mu+1)(1 - t~)^mu), Delta t):
 ///     A = int sigma^2 rho (1 - s~)^2,  B = int sigma^2 rho 2 s~ (1 - s~),
 ///     C = int sigma^2 rho s~^2,        L = A + B + C = int sigma^2 rho.
-/// These are Delta s times the A_i, B_i, C_i of 002 section 3.4 (misprints
-/// corrected, MATH.md section 5), so they do not depend on S; for a piece
+/// These are Delta s times the A_i, B_i, C_i of Hong, Wang, Yang 2023, section 3.4 (misprints
+/// corrected, docs/math.md section 5), so they do not depend on S; for a piece
 /// without zeros they are Delta t times ImUp's A_i, B_i, C_i. Then
 /// M = B + 2 sqrt(A C) and alpha* = 1 / (1 + sqrt(C / A)).
 /// Every integrand is analytic on the closed piece: near a zero the removable

@@ -1,5 +1,5 @@
 // uniparam/reparam/radical.hpp -- piecewise radical reparameterization
-// (paper 002, Algorithm 1; MATH.md section 4): r = phi o m, with phi the
+// (Hong, Wang, Yang 2023, Algorithm 1; docs/math.md section 4): r = phi o m, with phi the
 // elementary piecewise radical map that lifts the zeros of the speed and m
 // the optimal piecewise Moebius map on top.
 #pragma once
@@ -18,7 +18,7 @@ struct RadicalResult {
   std::vector<PieceIntegrals> integrals; ///< per piece: L, A, B, C (times Delta s), M, alpha
   std::vector<Ball> S;                   ///< s_0 = 0 < ... < s_N = 1 (eq. 9: cumulative sqrt L)
   std::vector<Ball> Z;                   ///< z_0 = 0 < ... < z_N = 1 (cumulative sqrt M)
-  std::vector<Ball> A, B, C;             ///< 002's A_k, B_k, C_k (the integrals / Delta s_k)
+  std::vector<Ball> A, B, C;             ///< Hong, Wang, Yang 2023: A_k, B_k, C_k (the integrals / Delta s_k)
   Ball mu;                               ///< int_0^1 sigma (invariant)
   Ball u_before;                         ///< u(p)
   Ball u_radical;                        ///< u(p o phi) = mu^2 / (sum sqrt L)^2
@@ -32,7 +32,7 @@ struct RadicalResult {
   ZeroSide side(std::size_t i) const;
 };
 
-/// Runs Algorithm 1 of paper 002 with certified numbers.
+/// Runs Algorithm 1 of Hong, Wang, Yang 2023 with certified numbers.
 /// \post every Ball meets Options::digits; T exact.
 /// \throws as uniformity().
 RadicalResult radical(const Curve& c, SpeedKind kind, const Options& opt = {});

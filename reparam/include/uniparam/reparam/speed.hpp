@@ -1,5 +1,5 @@
 // uniparam/reparam/speed.hpp -- the angular and the parametric speed of a
-// curve, exactly and as certified ball evaluators (MATH.md section 1).
+// curve, exactly and as certified ball evaluators (docs/math.md section 1).
 #pragma once
 
 #include <acb.h>
@@ -116,7 +116,7 @@ class Speed {
   /// out = sigma(z)^2 / (side * (z - gamma))^power for a zero (gamma, mu) of
   /// sigma and 0 <= power <= 2 mu; side = +1 when the zero is the left end of
   /// the piece (z > gamma), -1 when it is the right end. The removable
-  /// singularity is removed exactly (MATH.md section 4): g = c h^mu g_1 with
+  /// singularity is removed exactly (docs/math.md section 4): g = c h^mu g_1 with
   /// h(t) = (t - gamma) h_gamma(t), h_gamma deflated in local Taylor bases
   /// (LocalPoly::eval_deflated: no division by t - gamma), so
   ///     out = (side (z - gamma))^(2 mu - power) h_gamma(z)^(2 mu) c^2 g_1(z)^2 sum K^2 / D^2,

@@ -1,5 +1,5 @@
 // uniparam/reparam/uniformity.hpp -- certified mean speed and uniformity
-// (MATH.md section 1): mu = int_0^1 sigma, u = mu^2 / int_0^1 sigma^2.
+// (docs/math.md section 1): mu = int_0^1 sigma, u = mu^2 / int_0^1 sigma^2.
 #pragma once
 
 #include <vector>
