@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# scripts/bench.sh -- builds Release, runs the benchmark table of issue 7
+# scripts/bench.sh -- builds Release, runs the benchmark table
 # (bench/bench_table.cpp, Google Benchmark) one process per benchmark, and
 # prints a Markdown table: curve, degree, operation, digits, certified time,
 # double time, ratio, correct digits of double, memory.
