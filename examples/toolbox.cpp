@@ -1,4 +1,4 @@
-// The library examples of README.md ("Library"), built against the installed
+// The library examples of docs/library.md, built against the installed
 // package by the test suite: piecewise Moebius (C0, C1, exact rational
 // output), Bezier curves and sampling.
 #include <iostream>
