@@ -194,8 +194,8 @@ Ball RealAlgebraic::to_ball(long prec) const {
     // grid point only with odds ~2^-10, so the exact comparison below (one
     // exact sign of the polynomial at a short dyadic, ~ one Arb evaluation)
     // is rare, and later calls at this or a lower precision need no
-    // refinement. (Session 24: 34 bits cost a Newton step of refinement on
-    // most roots of the critical numerators, for comparisons that are cheap.)
+    // refinement. (Many more extra bits would cost a Newton step of refinement
+    // on most roots of the critical numerators, for comparisons that are cheap.)
     refine(prec + kToBallExtraBits);
     fmpz_t klo, khi;
     fmpz_init(klo);

@@ -133,7 +133,7 @@ constexpr long kCoarsePrec = 64;
 // the cell; one level deeper is tried first (it holds a ball centred near
 // its cell's centre, e.g. an ellipse around a dyadic subinterval): a disc
 // about two thirds as large, so tighter bounds and fewer failed ellipses
-// (bez-rat-space 150 uniformity: 328 -> 266 quadrature steps).
+// (bez-rat-space 150 uniformity: 266 quadrature steps instead of 328).
 constexpr int kWideDeeper = 1;
 // Extra bits of the cells' working precision over the caller's: deep cells
 // are shifted from their parents, which costs a few bits per level.

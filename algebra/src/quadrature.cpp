@@ -254,7 +254,7 @@ int gl_degree(const std::vector<MagVar>& M, const mag_t rho, const std::vector<M
 /// (one call of f per node for all k). Arb tries X = 2, 4, 8, 32, ... until
 /// f is not finite, and fails the step when X = 2 does. Here:
 ///   * the search stops once a larger ellipse could not save kEllipseCost
-///     nodes even if |f| did not grow on it (so most steps no longer end on a
+///     nodes even if |f| did not grow on it (so most steps do not end on a
 ///     failing ellipse, the costliest kind of call);
 ///   * where X = 2 fails, the largest X the singularity hints leave (when
 ///     it is at least kMidEllipseMin), then X = 5/4 (rho = 2), are tried
@@ -327,13 +327,11 @@ int gl_step(acb_ptr res, long* evals, Context& ctx, const acb_t a, const acb_t b
   // bisections where the small ellipse's halves fail: on bez-rat-space 12's
   // uniformity, 1836 nodes and 45 bisections a run with the bounding box
   // alone, 1228 and 30 with the halves at both ellipses. (The quarters at
-  // X = 2 as well took 888 nodes and 20 bisections there, with fewer
+  // X = 2 as well would take 888 nodes and 20 bisections there, with fewer
   // instructions, but cost 10% at degree 6, where the halves serve and
-  // every strip is a complex centred form; see docs/benchmarks.md, session
-  // 22.) Session 20's halves stopped once they had failed twice as often as
-  // they served; they are now always tried: that record turned them off
-  // after the first, hopeless, levels of the subdivision, where nothing
-  // serves.
+  // every strip is a complex centred form.) The halves are always tried: a
+  // record of their failures would turn them off after the first,
+  // hopeless, levels of the subdivision, where nothing serves.
   const bool real_interval = arb_is_zero(acb_imagref(mid.v)) && arb_is_zero(acb_imagref(delta.v));
   auto bound_on = [&](const mag_t x, bool quarters) {
     if (hinted(x)) return false;

@@ -465,8 +465,8 @@ std::vector<RealAlgebraic> refine(SlidesEquation& eq, const std::vector<RealAlge
   for (std::size_t i = 0; i + 1 < T.size(); ++i) {
     out.push_back(T[i]);
     const Ball ab = T[i].to_ball(128), bb = T[i + 1].to_ball(128);
-    // The ends within 10^-12 of the piece's width: an absolute rounding (it
-    // was 10^-9) moves the roots by more than the 10^-6 width rounding below
+    // The ends within 10^-12 of the piece's width: an absolute rounding (say
+    // 10^-9) moves the roots by more than the 10^-6 width rounding below
     // on pieces narrower than ~10^-2 (tests/reparam/test_reparam_c1_slides.cpp).
     Ball hb;
     arb_sub(hb.get(), bb.get(), ab.get(), 128);

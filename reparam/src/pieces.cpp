@@ -40,7 +40,7 @@ Poly critical_numerator(const Speed& s) {
 // Gauss-Legendre nodes and the wider error-bound balls come at different
 // precisions). RealAlgebraic::to_ball remembers one precision only and its
 // enclosure depends on (x, prec) alone, so caching here gives exactly the
-// balls the integrands computed on every call before, without converting
+// balls the integrands would compute on every call, without converting
 // (and, for an irrational end, re-refining) the ends at every evaluation.
 class PieceEnds {
  public:

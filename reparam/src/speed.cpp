@@ -57,7 +57,7 @@ constexpr double kHintGoodLoss = 12;
 // and its power basis centred at 1/2 (approximate_roots_near_unit_interval)
 // that loses fewer, if at most kHintMaxLoss. Bezier curves' bases lose ~n
 // bits on [0, 1] (D and sum K^2 of bez-rat-space d = 12: 57 and > 100,
-// centred 10 and 16; they had no hints), while dense curves' roots, near the
+// centred 10 and 16), while dense curves' roots, near the
 // unit circle, settle in far fewer sweeps on their own basis (3 M
 // instructions a run against 19 M on dense-plane d = 50's D centred). False
 // when neither basis is good enough.
@@ -592,7 +592,7 @@ void Speed::eval(acb_t out, const acb_t z, const PieceSigns& p, bool analytic, l
   // of the benchmark curves' ellipses (any degree), so the factored form
   // alone is tried. Where it fails, sigma's branch points (the complex zeros
   // of sum K^2, which F shares) are in the ellipse or D's enclosure holds 0,
-  // and the components rarely do better (tried first, they succeeded on 1
+  // and the components rarely do better (they succeed on only 1
   // of 143 ellipses at d = 6, 34 of 352 at d = 150): the ellipse is refused
   // at once (4-14% fewer instructions, same values). Plane curves' ellipses
   // succeed more often from the components, where the factored form costs

@@ -96,7 +96,7 @@ Case random_case(std::mt19937_64& rng, int variant) {
 // absolute) -- each ~1e-12 h, so 1e-7 h leaves 10^5 for ill-conditioned
 // roots. A root of a wrong equation is generically off by a fraction of h.
 // (Measured: at most 1.0e-6 h over 2700 breakpoints. With the ends rounded
-// within 1e-9 absolute, as before this test, 1.2e-6 h on a piece of width
+// within 1e-9 absolute instead, 1.2e-6 h on a piece of width
 // 0.04: seed 5086 at UNIPARAM_TEST_MULTIPLIER=30.)
 //
 // Also: the draft's alpha for the returned T agrees with the certified one
