@@ -1,4 +1,4 @@
-// Google Benchmark: the table of issue 7. For every curve family of
+// Google Benchmark: the table of docs/benchmarks.md. For every curve family of
 // bench_curves.hpp at degrees 6, 12, 50, 100, 150, 300 and every operation
 // (uniformity, radical, reparam --pieces 3 = reparam_c0 with N = 3 and its
 // breakpoint optimiser, reparam --target 0.99 = reparam_c1), registers

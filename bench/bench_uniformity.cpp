@@ -1,6 +1,6 @@
 // Google Benchmark: certified uniformity and radical reparameterization on
 // the running example and on deterministic polynomial plane curves of
-// growing degree. Speed targets (issue 7) are tracked here, never in tests.
+// growing degree. Speed targets (docs/benchmarks.md) are tracked here, never in tests.
 #include <benchmark/benchmark.h>
 
 #include <string>

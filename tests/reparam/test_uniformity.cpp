@@ -161,7 +161,7 @@ TEST(UniformityProperty, MeanIsInvariantUnderMoebiusReparameterization) {
   std::mt19937_64 rng(20261122);
   const int iters = test_support::iterations(8);
   // Moebius maps with alpha in [0.3, 0.6]: stronger compressions create
-  // near-singular speeds whose certified integration is slow (see issue 7).
+  // near-singular speeds whose certified integration is slow (see docs/benchmarks.md).
   std::uniform_int_distribution<long> ad(3, 6);
   for (int it = 0; it < iters; ++it) {
     const long deg = 2 + it % 4;
