@@ -3,7 +3,9 @@
 // every command succeeds with either speed, from a formula or from Bezier
 // control points, and the C1 target finishes and is certified.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -55,6 +57,18 @@ TEST(CliCusp, EveryCommandSucceedsOnCuspsWithEitherSpeed) {
       }
 }
 
+TEST(CliCusp, PlotSucceedsOnACusp) {
+  char name[] = "/tmp/uniparam_cusp_plot_XXXXXX";
+  const int fd = mkstemp(name);
+  ASSERT_GE(fd, 0);
+  close(fd);
+  const std::string path = std::string(name) + ".svg";
+  const auto r = run_uniparam({"plot", "((t-1/2)^2, (t-1/2)^3)", "-o", path, "--timeout", "120"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  std::remove(name);
+  std::remove(path.c_str());
+}
+
 TEST(CliCusp, EveryCommandSucceedsOnABezierCusp) {
   for (const char* cmd : {"uniformity", "radical", "moebius", "reparam", "sample"}) {
     std::vector<std::string> args{cmd, "--control", kBezierCusp, "--timeout", "120"};
@@ -67,14 +81,15 @@ TEST(CliCusp, EveryCommandSucceedsOnABezierCusp) {
   }
 }
 
-// The C1 refinement on cusps (at the right end, where the uncancelled speed
-// in double is noise near t = 1, and inside) finishes and certifies the
-// target, as on (t^2, t^3).
+// The C1 refinement on cusps (at the right end and inside, rational and
+// irrational: the optimiser's double evaluations of the uncancelled speed
+// are 0/0 noise near them) finishes and certifies the target, as on
+// (t^2, t^3).
 TEST(CliCusp, TargetFinishesAndIsCertifiedOnCusps) {
   const std::vector<std::string> curves = {
       "((t-1)^2, (t-1)^3)",        "((t-1)^3, (t-1)^4)",     "((t-1)^2, (t-1)^3, (t-1)^4)",
       "(t^2, t^3)",                "((t-1/2)^2, (t-1/2)^3)", "((t-1/3)^3, (t-1/3)^4 + (t-1/3)^5)",
-      "((t-5/7)^4, (t-5/7)^5)",    "((t-3/8)^2, (t-3/8)^3, (t-3/8)^4)"};
+      "((t-5/7)^4, (t-5/7)^5)",    "((t-3/8)^2, (t-3/8)^3, (t-3/8)^4)", "((t^2-1/2)^2, (t^2-1/2)^3)"};
   for (const std::string& c : curves) {
     for (const char* target : {"0.99", "0.999"}) {
       const auto r = run_uniparam({"reparam", c, "--target", target, "--json", "--timeout", "120"});

@@ -89,7 +89,7 @@ Ball speed_at(const Speed& s, const Speed::PieceSigns& p, const Rational& t, boo
 struct Pair {
   const char* cusp;     // p'(c) = 0 at a rational c in [0, 1]
   const char* reduced;  // a curve with q' parallel to p' and no common factor
-  Rational c;           // the cusp
+  Rational c;           // the cusp where it is rational (the C0 check's breakpoint where it is inside)
   bool omega_vanishes;  // omega has a zero in [0, 1] (then no C1 target)
 };
 
@@ -106,6 +106,9 @@ std::vector<Pair> pairs() {
       {"((t-1/4)^3, (t-1/4)^5)", "(3*t, 5*(t-1/4)^3/3)", Rational(1, 4), true},
       // a rational cusp at t = 2/3: (u^2, u^3) o m with m = t / (2 - t), u = m - 1/2
       {"((t/(2-t)-1/2)^2, (t/(2-t)-1/2)^3)", "(2*t/(2-t), 3*(t/(2-t)-1/2)^2/2)", Rational(2, 3), false},
+      // an irrational cusp at t = 1/sqrt(2): (f^2, f^3), f = t^2 - 1/2, p' = f f' (2, 3 f);
+      // omega vanishes at t = 0 (an inflection of the direction)
+      {"((t^2-1/2)^2, (t^2-1/2)^3)", "(2*t, t^3 - 3*t/2)", Rational(0), true},
   };
 }
 
