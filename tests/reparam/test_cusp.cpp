@@ -265,3 +265,126 @@ TEST(Cusp, ParametricSpeedVanishesAtTheCuspAndIsLifted) {
     EXPECT_NO_THROW(reparam_c0(p, SpeedKind::Parametric, 3));
   }
 }
+
+namespace {
+
+// L int_0^t f_i for integer polynomials f_i, with L = lcm(1, ..., top + 1)
+// (top the largest degree) so that every result is an integer polynomial: a
+// common scale, which the angular speed does not see and which multiplies
+// the parametric one by L.
+std::vector<Poly> scaled_integrals(const std::vector<Poly>& fs, Integer& L) {
+  long top = 0;
+  for (const Poly& f : fs) top = std::max(top, f.degree());
+  fmpz_one(L.get());
+  for (long i = 1; i <= top + 1; ++i) fmpz_lcm(L.get(), L.get(), Integer(i).get());
+  std::vector<Poly> out;
+  for (const Poly& f : fs) {
+    Poly r;
+    Integer c;
+    for (long i = 0; i <= f.degree(); ++i) {
+      fmpz_poly_get_coeff_fmpz(c.get(), f.get(), i);
+      fmpz_mul(c.get(), c.get(), L.get());
+      fmpz_divexact_si(c.get(), c.get(), i + 1);
+      fmpz_poly_set_coeff_fmpz(r.get(), i + 1, c.get());
+    }
+    out.push_back(r);
+  }
+  return out;
+}
+
+Curve curve_of(const std::vector<Poly>& ps) {
+  std::vector<RatFunc> comps;
+  for (const Poly& p : ps) comps.emplace_back(p);
+  return Curve(comps);
+}
+
+}  // namespace
+
+// Random cusps: p' = h Y with h = (b t - a)^m (a cusp of order m at c = a / b
+// in [0, 1]) and a random primitive direction Y (plane or space, degree 1 to
+// 3). The exact oracle at rational points comes from Y alone: omega^2 =
+// sum_{i<j} (Y_i' Y_j - Y_i Y_j')^2 / (sum Y_i^2)^2 (plane: omega itself,
+// with the sign of each piece between zeros from piece_signs) and |p'|^2 =
+// L^2 h^2 sum Y_i^2; mu and u agree with those of the curve int Y.
+TEST(Cusp, RandomCuspsMatchTheirDirectionExactly) {
+  std::mt19937_64 rng(424242);
+  std::uniform_int_distribution<long> coef(-5, 5), deg(1, 3), den(1, 12), mult(1, 3), dim(2, 3);
+  const long n = test_support::iterations(10);
+  for (long it = 0; it < n; ++it) {
+    const long b = den(rng), a = std::uniform_int_distribution<long>(0, b)(rng), m = mult(rng);
+    const Rational c(a, b);
+    std::vector<Poly> Y;
+    bool ok = false;
+    while (!ok) {
+      Y.clear();
+      const long d = dim(rng);
+      for (long i = 0; i < d; ++i) {
+        std::vector<long> k;
+        for (long j = 0, e = deg(rng); j <= e; ++j) k.push_back(coef(rng));
+        Y.emplace_back(k);
+      }
+      Poly g;
+      for (const Poly& y : Y) g = gcd(g, y);
+      ok = !g.is_zero() && g.degree() == 0;
+      bool turns = false;  // not a straight line: some Y_i' Y_j - Y_i Y_j' != 0
+      for (std::size_t i = 0; i < Y.size(); ++i)
+        for (std::size_t j = i + 1; j < Y.size(); ++j)
+          turns = turns || !(Y[i].derivative() * Y[j] - Y[i] * Y[j].derivative()).is_zero();
+      ok = ok && turns;
+    }
+    const Poly h = Poly(std::vector<long>{-a, b}).pow(static_cast<unsigned long>(m));
+    std::vector<Poly> f;
+    for (const Poly& y : Y) f.push_back(h * y);
+    Integer L, L0;
+    const Curve p = curve_of(scaled_integrals(f, L)), q = curve_of(scaled_integrals(Y, L0));
+    std::string text = p.str();
+    SCOPED_TRACE(text + ", cusp of order " + std::to_string(m) + " at " + c.str());
+    ASSERT_GE(common_factor_degree(p), m);
+    const Speed sa(p, SpeedKind::Angular), sp(p, SpeedKind::Parametric);
+
+    std::vector<Rational> ts{Rational(0), Rational(1), c};
+    if (c - Rational(1, 997) > Rational(0)) ts.push_back(c - Rational(1, 997));
+    if (c + Rational(1, 997) < Rational(1)) ts.push_back(c + Rational(1, 997));
+    for (int k = 0; k < 5; ++k) ts.push_back(random_position(rng));
+    const bool plane = Y.size() == 2;
+    for (const Rational& t : ts) {
+      SCOPED_TRACE("t = " + t.str());
+      Rational F(0), S(0);
+      for (std::size_t i = 0; i < Y.size(); ++i) {
+        S = S + Y[i](t) * Y[i](t);
+        for (std::size_t j = i + 1; j < Y.size(); ++j) {
+          const Rational e = Y[i].derivative()(t) * Y[j](t) - Y[i](t) * Y[j].derivative()(t);
+          F = F + e * e;
+        }
+      }
+      const Rational w2 = F / (S * S);
+      const Ball v2 = speed_at(sa, Speed::PieceSigns{}, t, true);
+      EXPECT_TRUE(v2.is_finite() && v2.contains(w2)) << v2.str(30);
+      const double d = sa.squared_double(to_double(t));
+      EXPECT_TRUE(std::isfinite(d) && d >= 0) << d;
+      const Rational Lr(L), ht = h(t);
+      const Ball s2 = speed_at(sp, Speed::PieceSigns{}, t, true);
+      EXPECT_TRUE(s2.is_finite() && s2.contains(Lr * Lr * ht * ht * S)) << s2.str(30);
+      if (!plane) continue;
+      // omega = |Y_1' Y_2 - Y_1 Y_2'| / S on the piece between zeros holding t
+      const RealAlgebraic at(t);
+      RealAlgebraic lo(0), hi(1);
+      bool on_zero = false;
+      for (const SpeedZero& z : sa.zeros()) {
+        if (z.t == at) on_zero = true;
+        else if (z.t < at) lo = z.t;
+        else if (at < z.t && z.t < hi) hi = z.t;
+      }
+      if (on_zero) continue;
+      const Rational e = Y[0].derivative()(t) * Y[1](t) - Y[0](t) * Y[1].derivative()(t);
+      const Rational w = (e.sign() < 0 ? -e : e) / S;
+      Speed::PieceSigns sg;
+      ASSERT_NO_THROW(sg = sa.piece_signs(lo, hi));
+      const Ball v = speed_at(sa, sg, t, false);
+      EXPECT_TRUE(v.is_finite() && v.contains(w)) << v.str(30);
+    }
+    const UniformityResult up = uniformity(p, SpeedKind::Angular), uq = uniformity(q, SpeedKind::Angular);
+    EXPECT_TRUE(agrees(up.mu, uq.mu));
+    EXPECT_TRUE(agrees(up.u, uq.u));
+  }
+}
