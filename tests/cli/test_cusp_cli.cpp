@@ -1,7 +1,8 @@
 // `uniparam` on cusp curves (p'(c) = 0 at a rational c inside [0, 1] or at an
 // end; the angular speed is finite and nonzero there after cancellation):
-// every command succeeds with either speed, from a formula or from Bezier
-// control points, and the C1 target finishes and is certified.
+// every command succeeds (exit 0, nothing on stderr) with either speed, from a
+// formula or from Bezier control points, and the C1 target finishes and is
+// certified.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -54,6 +55,7 @@ TEST(CliCusp, EveryCommandSucceedsOnCuspsWithEitherSpeed) {
         for (const char* a : {"--speed", speed, "--timeout", "120"}) args.push_back(a);
         const auto r = run_uniparam(args);
         EXPECT_EQ(r.exit_code, 0) << cmd[0] << " " << c << " " << speed << ": " << r.err;
+        EXPECT_TRUE(r.err.empty()) << cmd[0] << " " << c << " " << speed << ": " << r.err;
       }
 }
 
@@ -78,6 +80,7 @@ TEST(CliCusp, EveryCommandSucceedsOnABezierCusp) {
     }
     const auto r = run_uniparam(args);
     EXPECT_EQ(r.exit_code, 0) << cmd << ": " << r.err;
+    EXPECT_TRUE(r.err.empty()) << cmd << ": " << r.err;
   }
 }
 
