@@ -337,7 +337,10 @@ Rational short_rational(const Ball& x, const Rational& w) {
 // exact isolation per piece and round, or even their local expansions, cost
 // seconds); instead
 //   E(t) = (sigma^2)'(t) l(t) - k2 sigma^2(t) = sigma^2 F / (g S D) = g S F / D^3
-// is evaluated from the curve's components (degree n) by truncated Taylor
+// is evaluated from the components of the speed's evaluation curve
+// (speed.hpp: the curve itself, or for the angular speed of a curve whose p'
+// has a common factor the polynomial curve along p' with it cancelled, so
+// A = |p'|^2 below does not vanish at a cusp) by truncated Taylor
 // series: the jets of x_i = N_i / Q_i to order 5 (N, N', N'' and N''',
 // N'''', N''''' from the LocalPoly expansions of N and of its third
 // derivative, in double) give sigma^2 to order 3 (angular: sigma^2 =

@@ -84,6 +84,52 @@ Poly gcd_all(const std::vector<Poly>& ps) {
   return g;
 }
 
+// A polynomial curve q with q' = c Y for a constant c > 0: q_i = c int_0^t
+// Y_i, with c the least positive rational that makes every coefficient of
+// every q_i an integer (c = lcm of the denominators k + 1, divided by the
+// content common to all q_i). The angular speed of a curve depends only on
+// the direction of its derivative (p' = h Y with a scalar h != 0 gives
+// x'y'' - x''y' = h^2 (Y_1 Y_2' - Y_1' Y_2), |p'|^2 = h^2 |Y|^2), so q has the
+// angular speed of every curve whose derivative is parallel to Y.
+// \pre Y non-empty, not all zero.
+std::vector<RatFunc> direction_curve(const std::vector<Poly>& Y) {
+  long top = 0;
+  for (const auto& y : Y) top = std::max(top, y.degree());
+  fmpz_t l, c, k;
+  fmpz_init_set_ui(l, 1);
+  fmpz_init(c);
+  fmpz_init(k);
+  for (long i = 1; i <= top + 1; ++i) {
+    fmpz_set_si(k, i);
+    fmpz_lcm(l, l, k);
+  }
+  std::vector<Poly> q;
+  for (const auto& y : Y) {
+    Poly r;
+    for (long i = 0; i <= y.degree(); ++i) {
+      fmpz_poly_get_coeff_fmpz(c, y.get(), i);
+      fmpz_mul(c, c, l);
+      fmpz_divexact_si(c, c, i + 1);
+      fmpz_poly_set_coeff_fmpz(r.get(), i + 1, c);
+    }
+    q.push_back(std::move(r));
+  }
+  fmpz_zero(c);
+  for (const auto& r : q) {
+    fmpz_poly_content(k, r.get());
+    fmpz_gcd(c, c, k);
+  }
+  std::vector<RatFunc> out;
+  for (auto& r : q) {
+    if (!fmpz_is_zero(c) && !fmpz_is_one(c)) fmpz_poly_scalar_divexact_fmpz(r.get(), r.get(), c);
+    out.emplace_back(r);
+  }
+  fmpz_clear(l);
+  fmpz_clear(c);
+  fmpz_clear(k);
+  return out;
+}
+
 // p(z) on a complex ball z, from local expansions (LocalPoly).
 void poly_eval(acb_t out, const LocalPoly& p, const acb_t z, long prec) { p.eval(out, z, prec); }
 
@@ -106,11 +152,28 @@ struct SpeedDD {
 }  // namespace detail
 
 Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
+  const auto& X = c.derivative_numerators();
+  std::vector<Poly> Y;
+  // The curve whose components the evaluations take (comp_, dd_, piece_signs'
+  // exact x', x''): the curve itself, except for the angular speed when the
+  // numerators of p' share a factor of positive degree gx (a cusp where gx
+  // has a real root). omega depends on the direction of p' only, and p' = (gx
+  // / W) Y, so omega is that of the polynomial curve q with q' = Y (up to a
+  // positive scale: direction_curve): the same speed with the factor
+  // cancelled. The components of p itself would give 0/0 at every real root
+  // of gx, and x'y'' - x''y' vanishes there while omega does not.
+  std::vector<RatFunc> reduced;
+  if (kind == SpeedKind::Angular) {
+    Poly gx = gcd_all(X);
+    for (const auto& x : X) Y.push_back(divexact(x, gx));
+    if (gx.degree() > 0) reduced = direction_curve(Y);
+  }
+  const std::vector<RatFunc>& comps = reduced.empty() ? c.components() : reduced;
   // The exact x', x'' fix the sign of a plane curve's angular speed
   // (piece_signs); elsewhere they are not needed (and cost two exact
   // quotient rules on high-degree rational functions).
-  const bool exact_derivatives = kind == SpeedKind::Angular && c.components().size() == 2;
-  for (const auto& x : c.components()) {
+  const bool exact_derivatives = kind == SpeedKind::Angular && comps.size() == 2;
+  for (const auto& x : comps) {
     Component k;
     Poly n = x.num(), q = x.den();
     k.N = LocalPoly(n);
@@ -138,15 +201,15 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
     // them). The components over one common denominator L (the lcm of the
     // Q_i; L = 1 for a polynomial curve): x_i = M_i / L, M_i = N_i L / Q_i.
     auto dd = std::make_shared<detail::SpeedDD>();
-    bool ok = c.components().size() <= 3;  // eval_dd's bound
+    bool ok = comps.size() <= 3;  // eval_dd's bound
     Poly L(1);
-    for (const auto& x : c.components()) {
+    for (const auto& x : comps) {
       if (!ok) break;
       L = divexact(L * x.den(), gcd(L, x.den()));
       ok = L.degree() <= kDDMaxDegree;
     }
     std::vector<Poly> Ms;  // M_i, exactly
-    for (const auto& x : c.components()) {
+    for (const auto& x : comps) {
       if (!ok) break;
       Ms.push_back(x.num() * divexact(L, x.den()));
       ok = Ms.back().degree() <= kDDMaxDegree;
@@ -175,12 +238,6 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
       }
     }
     if (ok) dd_ = std::move(dd);
-  }
-  const auto& X = c.derivative_numerators();
-  std::vector<Poly> Y;
-  if (kind == SpeedKind::Angular) {
-    Poly gx = gcd_all(X);
-    for (const auto& x : X) Y.push_back(divexact(x, gx));
   }
   // Two independent halves, side by side (the construction is serial
   // otherwise, ~10% of radical's time at degree 150): D and (parametric

@@ -54,6 +54,18 @@ struct SpeedZero {
 /// the multiplicities of g. sigma^2 = g^2 sum K^2 / D^2 is also kept exactly.
 /// Evaluations use the factors (g's squarefree factors, K_k, Y_i or W), never
 /// the expanded sigma^2.
+///
+/// The evaluation curve: the components that the evaluations, the exact
+/// signs of piece_signs and component_numerator / component_denominator take
+/// are those of the curve itself, except for the angular speed of a curve
+/// whose p' numerators X_i share a factor gx of positive degree (a cusp or a
+/// higher-order stationary point where gx has a real root). There they are
+/// the polynomial curve q with q' = c Y (Y = X / gx, a constant c > 0): omega
+/// depends only on the direction of p', so q has the same angular speed with
+/// gx cancelled, and no value, sign or zero inside a piece comes from the
+/// uncancelled x'y'' - x''y' or |p'|^2 (both vanish at a real root of gx,
+/// where omega need not). The parametric speed keeps the curve's own
+/// components: there gx divides g, and its real roots are zeros of sigma.
 class Speed {
  public:
   /// \throws DomainError if the speed is infinite somewhere in [0, 1]
@@ -78,18 +90,23 @@ class Speed {
   /// K_1, ..., K_m and D of the factored form.
   const std::vector<Poly>& cofactors() const { return K_; }
   const Poly& denominator() const { return D_; }
-  /// The local expansions of component i's numerator and denominator (copies
-  /// share the caches this speed's evaluations fill; equal denominators are
-  /// one). \pre i < component_count() (std::out_of_range otherwise).
+  /// The local expansions of the evaluation curve's (see above) component i's
+  /// numerator and denominator (copies share the caches this speed's
+  /// evaluations fill; equal denominators are one). \pre i < component_count() (std::out_of_range otherwise).
   const LocalPoly& component_numerator(std::size_t i) const { return comp_.at(i).N; }
   const LocalPoly& component_denominator(std::size_t i) const { return comp_.at(i).Q; }
   std::size_t component_count() const { return comp_.size(); }
 
   /// Signs that fix sigma's analytic continuation on one piece (a, b) free of
-  /// zeros of sigma (\pre a < b, checked: DomainError).
+  /// zeros of sigma, taken exactly at one rational point inside from g, D and
+  /// (plane angular) the evaluation curve's x'y'' - x''y', which vanish on
+  /// (a, b) only at zeros of sigma.
+  /// \pre a < b (checked: DomainError); (a, b) holds no zero of sigma
+  ///      (DomainError where the point taken is one).
   struct PieceSigns {
     int g = 1;          ///< sigma = g_sign * g * sqrt(sum K^2) / D on (a, b)
-    int component = 1;  ///< plane angular: sigma = component * (x'y'' - x''y') / (x'^2 + y'^2)
+    int component = 1;  ///< plane angular: sigma = component * (x'y'' - x''y') / (x'^2 + y'^2),
+                        ///< x, y the evaluation curve's components
   };
   PieceSigns piece_signs(const RealAlgebraic& a, const RealAlgebraic& b) const;
 
@@ -109,9 +126,11 @@ class Speed {
   /// p'(z) . p'(z) != 0).
   /// double_word as in eval.
   void eval_squared(acb_t out, const acb_t z, long prec, bool double_word = true) const;
-  /// UNCERTIFIED: sigma(t)^2 in IEEE double from the components' local
-  /// expansions (LocalPoly::eval_double). For floating-point search only
-  /// (the optimiser's breakpoints); NaN or inf where p'(t) = 0 (cusps).
+  /// UNCERTIFIED: sigma(t)^2 in IEEE double from the evaluation curve's
+  /// components' local expansions (LocalPoly::eval_double). For
+  /// floating-point search only (the optimiser's breakpoints); NaN or inf
+  /// where the evaluation curve's q'(t) = 0 (the parametric speed's zeros,
+  /// never at a cusp of the angular speed: see the evaluation curve above).
   double squared_double(double t) const;
   /// out = sigma(z)^2 / (side * (z - gamma))^power for a zero (gamma, mu) of
   /// sigma and 0 <= power <= 2 mu; side = +1 when the zero is the left end of
