@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <iostream>
 #include <stdexcept>
 
@@ -166,8 +165,155 @@ void equal_aspect(Range& x, Range& y, double w, double h) {
   }
 }
 
+// ---- The trace: the curve itself, sampled in its own geometry ----------
+//
+// Equal steps of t can miss most of a curve (a circle with weights [1, 8e40,
+// 1e82] runs its whole arc for t below 1e-39). The trace starts from seeds
+// spread in t and in the curve's geometry (t_j = j/64 and r(j/64), r the
+// uniformizing map), then bisects each piece [a, b] in t until the chord
+// p(a)p(b) is at most kChordPx pixels long and p at a quarter, half and three
+// quarters of the piece lies within kFlatPx pixels of it. Parameters are exact
+// dyadic numbers (so pieces near t = 1 stay resolved), and each point is
+// evaluated with the precision raised until its ball is below kEvalPx pixels.
+
+constexpr double kPanelPx = 330;   // the curve panels' size
+constexpr double kChordPx = 8;     // longest segment of the trace
+constexpr double kFlatPx = 0.2;    // largest distance of a tested point from its segment
+constexpr double kEvalPx = 0.02;   // accuracy of a trace point
+constexpr int kMaxBisections = 1100;
+constexpr long kMaxTraceEvaluations = 200000;
+
+// The midpoint of an exact ball, as an exact ball clamped to [0, 1].
+Ball exact_unit(const Ball& b) {
+  Ball t;
+  arf_set(arb_midref(t.get()), arb_midref(b.get()));
+  if (arf_sgn(arb_midref(t.get())) < 0) arf_zero(arb_midref(t.get()));
+  if (arf_cmp_si(arb_midref(t.get()), 1) > 0) arf_one(arb_midref(t.get()));
+  return t;
+}
+
+Ball exact_middle(const Ball& a, const Ball& b) {
+  Ball m;
+  arb_add(m.get(), a.get(), b.get(), ARF_PREC_EXACT);
+  arb_mul_2exp_si(m.get(), m.get(), -1);
+  return m;
+}
+
+// p(t) projected, for an exact t, with balls below `tol` (data units; for
+// tol <= 0 below 2^-40 of the point's size). False when no finite point
+// came out within max_prec.
+bool trace_point(const Curve& c, const Projection& proj, const Ball& t, double tol, long max_prec, Point& out) {
+  const long bits = static_cast<long>(arf_bits(arb_midref(t.get())));
+  for (long prec = bits + 64;; prec *= 2) {
+    const std::vector<Ball> v = c.eval(t, prec);
+    std::vector<double> m;
+    double rad = 0, size = 0;
+    bool finite = true;
+    for (const auto& b : v) {
+      finite = finite && b.is_finite();
+      m.push_back(mid_double(b));
+      rad = std::max(rad, mag_get_d(arb_radref(b.get())));
+      size = std::max(size, std::fabs(m.back()));
+    }
+    out = proj(m);
+    // a projection adds at most 1.7 x the largest radius (isometric Y)
+    const bool good = finite && std::isfinite(out.first) && std::isfinite(out.second) &&
+                      1.7 * rad <= (tol > 0 ? tol : std::ldexp(size, -40));
+    if (good) return true;
+    if (prec >= std::max(max_prec, bits + 64)) return finite && std::isfinite(out.first) && std::isfinite(out.second);
+  }
+}
+
+double segment_distance(Point p, Point a, Point b) {
+  const double dx = b.first - a.first, dy = b.second - a.second;
+  const double l2 = dx * dx + dy * dy;
+  double u = l2 > 0 ? ((p.first - a.first) * dx + (p.second - a.second) * dy) / l2 : 0;
+  u = std::min(1.0, std::max(0.0, u));
+  return std::hypot(p.first - a.first - u * dx, p.second - a.second - u * dy);
+}
+
+/// The trace of c (projected) for the curve panels: a polyline from p(0) to
+/// p(1) whose segments are at most kChordPx pixels long and within about
+/// kFlatPx pixels of the curve at the scale of the panels (see above).
+/// \pre r was computed for c. Checks the time budget (BudgetExceeded).
+std::vector<Point> trace_curve(const Curve& c, const Reparameterization& r, const Projection& proj, long max_prec) {
+  // Seeds: equal steps of t and of s (through r), sorted, without repeats.
+  std::vector<Ball> seeds;
+  const int n = 64;
+  for (int j = 0; j <= n; ++j) seeds.push_back(Ball(Rational(j, n), 64));  // dyadic: exact
+  for (int j = 1; j < n; ++j) {
+    check_time_budget();
+    seeds.push_back(exact_unit(r.eval_r(Ball(Rational(j, n), 128), 128)));
+  }
+  std::sort(seeds.begin(), seeds.end(),
+            [](const Ball& a, const Ball& b) { return arf_cmp(arb_midref(a.get()), arb_midref(b.get())) < 0; });
+  seeds.erase(std::unique(seeds.begin(), seeds.end(),
+                          [](const Ball& a, const Ball& b) { return arf_equal(arb_midref(a.get()), arb_midref(b.get())); }),
+              seeds.end());
+  std::vector<Ball> ts;
+  std::vector<Point> ps;
+  Range xr, yr;
+  for (const auto& t : seeds) {
+    Point p;
+    if (!trace_point(c, proj, t, 0, max_prec, p)) continue;
+    ts.push_back(t);
+    ps.push_back(p);
+    xr.add(p.first);
+    yr.add(p.second);
+  }
+  if (ps.size() < 2) return ps;
+  double extent = std::max(xr.hi - xr.lo, yr.hi - yr.lo);
+  if (!(extent > 0)) extent = std::max({1.0, std::fabs(xr.lo), std::fabs(yr.lo)});
+  const double px = extent * 1.12 / kPanelPx;  // data per pixel (the panels pad by 6% a side)
+  const double chord = kChordPx * px, flat = kFlatPx * px, tol = kEvalPx * px;
+
+  struct Piece {
+    Ball ta, tb;
+    Point pa, pb;
+    int depth = 0;
+    bool has_mid = false;
+    Ball tm;
+    Point pm;
+  };
+  std::vector<Point> out = {ps.front()};
+  long evaluations = 0;
+  std::vector<Piece> stack;
+  for (std::size_t i = ps.size() - 1; i > 0; --i) stack.push_back({ts[i - 1], ts[i], ps[i - 1], ps[i], 0, false, {}, {}});
+  while (!stack.empty()) {
+    Piece q = std::move(stack.back());
+    stack.pop_back();
+    check_time_budget();
+    if (q.depth >= kMaxBisections || evaluations >= kMaxTraceEvaluations) {
+      out.push_back(q.pb);
+      continue;
+    }
+    if (!q.has_mid) {
+      q.tm = exact_middle(q.ta, q.tb);
+      ++evaluations;
+      if (!trace_point(c, proj, q.tm, tol, max_prec, q.pm)) { out.push_back(q.pb); continue; }
+    }
+    const Ball t1 = exact_middle(q.ta, q.tm), t3 = exact_middle(q.tm, q.tb);
+    Point p1, p3;
+    evaluations += 2;
+    if (!trace_point(c, proj, t1, tol, max_prec, p1) || !trace_point(c, proj, t3, tol, max_prec, p3)) {
+      out.push_back(q.pb);
+      continue;
+    }
+    const bool done = std::hypot(q.pb.first - q.pa.first, q.pb.second - q.pa.second) <= chord &&
+                      segment_distance(p1, q.pa, q.pb) <= flat && segment_distance(q.pm, q.pa, q.pb) <= flat &&
+                      segment_distance(p3, q.pa, q.pb) <= flat;
+    if (done) {
+      out.push_back(q.pb);
+      continue;
+    }
+    stack.push_back({q.tm, q.tb, q.pm, q.pb, q.depth + 1, true, t3, p3});
+    stack.push_back({q.ta, q.tm, q.pa, q.pm, q.depth + 1, true, t1, p1});
+  }
+  return out;
+}
+
 struct PlotData {
-  std::vector<Point> trace;                 // the curve, dense (projected)
+  std::vector<Point> trace;                 // the curve (projected), trace_curve
   std::vector<Point> before, after;         // the K samples (projected)
   std::vector<Point> breakpoints;           // p(t_i), interior i
   std::vector<Point> speed_before;          // (t, sigma_p(t)), dense
@@ -177,14 +323,14 @@ struct PlotData {
 };
 
 PlotData collect(const Curve& c, const Speed& sp, const Reparameterization& r, const Samples& smp,
-                 const Projection& proj) {
+                 const Projection& proj, long max_prec) {
   const long prec = 64;
   PlotData d;
+  d.trace = trace_curve(c, r, proj, max_prec);
   const Reparameterization id = Reparameterization::identity(r.mu(), r.u_before());
   const int dense = 800;
   for (int j = 0; j <= dense; ++j) {
     const Ball t(Rational(j, dense), prec);
-    d.trace.push_back(proj(mids(id.eval_point(c, t, prec))));
     d.speed_before.push_back({static_cast<double>(j) / dense, mid_double(id.eval_speed(sp, t, prec))});
   }
   for (const auto& p : smp.before) d.before.push_back(proj(mids(p.point)));
@@ -413,6 +559,23 @@ int run_plot(int argc, char** argv) {
   const bool png = ends_with(".png");
   if (out != "-" && !png && !ends_with(".svg"))
     throw InvalidArgument("-o: the file name must end in .svg or .png (or be - for SVG on stdout), got '" + out + "'");
+  // The output is checked before any computing: a file that cannot be
+  // written, or PNG without rsvg-convert, fails at once.
+  if (out != "-") {
+    try {
+      svg::check_writable(out);
+    } catch (const std::runtime_error& e) {
+      throw InvalidArgument(e.what());
+    }
+    if (png) {
+      try {
+        svg::find_rsvg_convert();
+      } catch (const std::runtime_error& e) {
+        std::cerr << "uniparam plot: " << e.what() << "\n";
+        return 1;
+      }
+    }
+  }
   // 15 digits (no --digits): the drawing evaluates r next to its joints (1e-9
   // of a piece inside), so the joints must be known far better than that.
   const Options opt = read_options(a);
@@ -424,7 +587,7 @@ int run_plot(int argc, char** argv) {
   const Speed sp(c, kind);
   // The dots need only drawing accuracy; they are certified to 6 digits anyway.
   const Samples smp = sample(c, sp, r, K, std::min<long>(6, opt.digits), opt.max_prec);
-  const PlotData d = collect(c, sp, r, smp, proj);
+  const PlotData d = collect(c, sp, r, smp, proj, opt.max_prec);
   const std::string text = render(c, kind, r, d, proj, K, a);
   if (out == "-") {
     std::cout << text;
@@ -434,10 +597,7 @@ int run_plot(int argc, char** argv) {
     if (png) {
       svg::write_png(text, out, 2);
     } else {
-      std::ofstream f(out, std::ios::binary);
-      f << text;
-      f.close();
-      if (!f) throw std::runtime_error("cannot write " + out);
+      svg::write_file(out, text);
     }
   } catch (const std::runtime_error& e) {
     if (dynamic_cast<const Error*>(&e)) throw;
