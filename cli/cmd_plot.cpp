@@ -373,31 +373,35 @@ std::string method_title(const Reparameterization& r, const Args& a) {
   return "Optimal C0 piecewise M\u00f6bius reparameterization (" + pieces + ")";
 }
 
-std::string elide(const std::string& s, std::size_t max_chars) {
-  // counts bytes; the pretty curve text is mostly ASCII
-  if (s.size() <= max_chars) return s;
-  std::size_t keep = max_chars / 2 - 2;
-  // do not cut a UTF-8 sequence
-  std::size_t a = keep, b = s.size() - keep;
-  while (a > 0 && (static_cast<unsigned char>(s[a]) & 0xC0) == 0x80) --a;
-  while (b < s.size() && (static_cast<unsigned char>(s[b]) & 0xC0) == 0x80) ++b;
-  return s.substr(0, a) + " \u2026 " + s.substr(b);
-}
-
 std::string render(const Curve& c, SpeedKind kind, const Reparameterization& r, const PlotData& d,
                    const Projection& proj, long K, const Args& a) {
-  const double col = 430, plot = 330, left0 = 78, top = proj.caption.empty() ? 84 : 102;
-  const double W = 3 * col + 20, H = top + plot + 168;
+  const double col = 430, plot = 330, left0 = 78;
+  const double W = 3 * col + 20;
+  // Title, subtitle (the curve) and projection, wrapped to the page: the
+  // curve panels start below them.
+  const double text_w = W - 40;
+  const auto title = svg::wrap_text(
+      method_title(r, a) + ", " + (kind == SpeedKind::Angular ? "angular" : "parametric") + " speed", 18, text_w, true, 2);
+  const auto subtitle = svg::wrap_text("p(t) = " + pretty(c.str()), 13, text_w, false, 4);
+  const auto projection =
+      proj.caption.empty() ? std::vector<std::string>{} : svg::wrap_text("drawn in the " + proj.caption, 12, text_w, false, 2);
+  double y = 30;
+  std::vector<std::pair<double, std::string>> title_at, subtitle_at, projection_at;
+  for (std::size_t i = 0; i < title.size(); ++i) title_at.push_back({y += i ? 22 : 0, title[i]});
+  y += 24;
+  for (std::size_t i = 0; i < subtitle.size(); ++i) subtitle_at.push_back({y += i ? 17 : 0, subtitle[i]});
+  if (!projection.empty()) y += 20;
+  for (std::size_t i = 0; i < projection.size(); ++i) projection_at.push_back({y += i ? 15 : 0, projection[i]});
+  const double top = y + (projection.empty() ? 30 : 28);
+  const double H = top + plot + 168;
   svg::Document doc(W, H);
   doc.comment("uniparam plot: p(t) = " + c.str() + "; speed " + to_string(kind) + "; method " + r.method() + "; " +
               std::to_string(r.pieces()) + " pieces; u before " + r.u_before().mid_decimal(10) + ", u after " +
               r.u_after().mid_decimal(10));
-  // Title and subtitle
   doc.begin_group("title");
-  doc.text({W / 2, 30}, method_title(r, a) + ", " + (kind == SpeedKind::Angular ? "angular" : "parametric") + " speed",
-           18, Anchor::Middle, "#111", true);
-  doc.text({W / 2, 54}, "p(t) = " + elide(pretty(c.str()), 190), 13, Anchor::Middle, "#333");
-  if (!proj.caption.empty()) doc.text({W / 2, 74}, "drawn in the " + proj.caption, 12, Anchor::Middle, "#555");
+  for (const auto& [yy, line] : title_at) doc.text({W / 2, yy}, line, 18, Anchor::Middle, "#111", true);
+  for (const auto& [yy, line] : subtitle_at) doc.text({W / 2, yy}, line, 13, Anchor::Middle, "#333");
+  for (const auto& [yy, line] : projection_at) doc.text({W / 2, yy}, line, 12, Anchor::Middle, "#555");
   doc.end_group();
 
   const bool angular = kind == SpeedKind::Angular;

@@ -491,7 +491,7 @@ void draw_axes(Document& d, const Panel& p, const Ticks& xt, const Ticks& yt, co
   if (!yl.note.empty()) d.text({p.left, p.top - 6}, yl.note, 11, Anchor::Start, "#333");
   d.text({p.left + p.width / 2, p.top + p.height + 38}, xlabel, 13, Anchor::Middle, "#222");
   // the rotated label reaches 10 px left of its x and 3 px right of it
-  const double ylabel_x = p.left - std::max(46.0, 8 + widest + 6 + 3);
+  const double ylabel_x = p.left - std::max(46.0, 8 + widest + 2 + 3);
   d.text({ylabel_x, p.top + p.height / 2}, ylabel, 13, Anchor::Middle, "#222", false, -90);
   d.end_group();
 }
