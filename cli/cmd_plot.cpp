@@ -243,7 +243,14 @@ std::vector<Point> trace_curve(const Curve& c, const Reparameterization& r, cons
   for (int j = 0; j <= n; ++j) seeds.push_back(Ball(Rational(j, n), 64));  // dyadic: exact
   for (int j = 1; j < n; ++j) {
     check_time_budget();
-    seeds.push_back(exact_unit(r.eval_r(Ball(Rational(j, n), 128), 128)));
+    try {
+      const Ball t = r.eval_r(Ball(Rational(j, n), 128), 128);
+      if (arf_is_finite(arb_midref(t.get()))) seeds.push_back(exact_unit(t));
+    } catch (const BudgetExceeded&) {
+      throw;
+    } catch (const Error&) {
+      // a seed is only a starting point: the equal steps of t remain
+    }
   }
   std::sort(seeds.begin(), seeds.end(),
             [](const Ball& a, const Ball& b) { return arf_cmp(arb_midref(a.get()), arb_midref(b.get())) < 0; });
