@@ -1,7 +1,8 @@
 // cli/cmd_plot.cpp -- `uniparam plot CURVE -o FILE.svg|FILE.png`: ImUp's
 // three panels (ImUpPlotN / ImUpPlotU): p sampled at equal steps of t, p o r
-// sampled at equal steps of s, and the two speed functions, with axes, the
-// breakpoints and the certified uniformities in the captions.
+// sampled at equal steps of s (over the curve's adaptively sampled trace),
+// and the two speed functions, with axes, the breakpoints and the certified
+// uniformities in the captions.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -31,8 +32,10 @@ CommandSpec plot_spec() {
           "the reparameterized curve p o r at K equal steps of s, and the speed of p (against t)\n"
           "and of p o r (against s). The breakpoints p(t_i) are marked, the joints s_i of r\n"
           "drawn in the speed panel, and the captions give the certified u before and after.\n"
-          "Space curves are drawn in a projection, named in the picture. PNG output is\n"
-          "rendered from the SVG by rsvg-convert (Debian package librsvg2-bin) at 2x size.\n"
+          "The grey curve is p itself, sampled adaptively along it. Space curves are drawn\n"
+          "in a projection, named in the picture. PNG output is rendered from the SVG by\n"
+          "rsvg-convert (Debian package librsvg2-bin) at 2x size. The output file is checked\n"
+          "before computing (exit 2 with the reason when it cannot be written).\n"
           "When --method c1 misses its target, the best map is drawn and the exit status is 4.",
           {"CURVE"},
           opts};
