@@ -252,3 +252,30 @@ TEST(ReparamTarget, AMissedTargetShowsAUBelowItAndAdviceThatCanBeFollowed) {
   EXPECT_EQ(cap.err.find("raise --max-pieces"), std::string::npos) << cap.err;
   EXPECT_NE(cap.err.find("lower --target"), std::string::npos) << cap.err;
 }
+
+TEST(Timeout, ADeadlineAnywhereInTheEngineIsReportedAsTime) {
+  // Budgets that end in different phases (root isolation, quadrature,
+  // precision loops, the C1 refinement): whatever stops the computation is
+  // the time limit, never a precision or other budget message.
+  using namespace uniparam;
+  const Curve dense = Curve::parse(dense_curve(200));
+  const Curve cusp = Curve::parse("((t-1)^2, (t-1)^3)");
+  Options opt;
+  opt.digits = 40;
+  int stopped = 0;
+  for (const double seconds : {0.01, 0.05, 0.15, 0.4}) {
+    for (int job = 0; job < 3; ++job) {
+      try {
+        const TimeBudget budget(seconds);
+        if (job == 0) (void)radical(dense, SpeedKind::Angular, opt);
+        if (job == 1) (void)reparam_c1(cusp, SpeedKind::Angular, Rational(999, 1000), opt, 64);
+        if (job == 2) (void)uniformity(dense, SpeedKind::Parametric, opt);
+      } catch (const BudgetExceeded& e) {
+        ++stopped;
+        EXPECT_NE(dynamic_cast<const TimeLimitExceeded*>(&e), nullptr) << "job " << job << ": " << e.what();
+        EXPECT_NE(std::string(e.what()).find("time limit exceeded"), std::string::npos) << e.what();
+      }
+    }
+  }
+  EXPECT_GT(stopped, 0);
+}
