@@ -23,7 +23,7 @@ constexpr long kMaxThreads = 64;
 /// The backstop of --timeout. The engine checks its TimeBudget cooperatively
 /// in every long loop, but a single Arb or FLINT call (one product or gcd of
 /// huge polynomials, say) runs to its end without looking at the clock. If
-/// the command is still running kWatchdogGrace after its deadline, this
+/// the command is still running watchdog_grace() after its deadline, this
 /// thread reports the budget error and ends the process with exit code 4
 /// (stdout stays empty: main() writes the answer only after the command has
 /// returned, cli/output.hpp).

@@ -38,7 +38,8 @@ const char* kMainHelp =
     "Run 'uniparam COMMAND --help' for the options of a command.\n"
     "Exit codes: 0 ok, 2 invalid input or option, 3 curve not regular on [0,1],\n"
     "4 a budget exceeded (precision, degree, size, length, depth or time: the\n"
-    "message names the option that raises it), 1 other error.\n";
+    "message names the option that raises it), 1 other error (among them an\n"
+    "answer that could not be written: a full disk, a closed pipe).\n";
 
 /// Runs the command of argv (or the main help); its answer goes to std::cout
 /// (captured by main), errors to stderr. An exception discards what the
