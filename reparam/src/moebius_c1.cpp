@@ -206,9 +206,12 @@ FloatPiece panel(const Speed& s, double a, double h, double l, double r) {
 
 // Adaptive bisection until both the sigma^2 moments and the length of [l, r]
 // change by at most 1e-13 of the piece's first estimates. sigma is smooth on
-// [l, r] (zeros of sigma, where |g| has a kink, are panel ends).
+// [l, r] (zeros of sigma, where |g| has a kink, are panel ends). Next to a
+// zero of sigma the bisection can go 30 levels deep (up to 2^30 panels), so
+// the time budget is checked every 4 levels: at most 31 calls between checks.
 FloatPiece adapt(const Speed& s, double a, double h, double l, double r, const FloatPiece& whole,
                  double scale2, double scale1, int depth) {
+  if (depth % 4 == 0) check_time_budget();
   const double m = (l + r) / 2;
   const FloatPiece left = panel(s, a, h, l, m), right = panel(s, a, h, m, r), both = left + right;
   const double d2 = std::fabs(both.A - whole.A) + std::fabs(both.B - whole.B) + std::fabs(both.C - whole.C);

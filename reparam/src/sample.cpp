@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "uniparam/core/ball_poly.hpp"
+#include "uniparam/core/budget.hpp"
 #include "uniparam/core/error.hpp"
 
 namespace uniparam {
@@ -137,6 +138,7 @@ SamplePoint sample_one(const Curve& c, const Speed& sp, const Reparameterization
     if (r.joints_s()[i].contains(s)) out.at_joint = true;
   double last = HUGE_VAL;
   for (long prec = digits_to_bits(digits) + 32;; prec *= 2) {
+    check_time_budget();  // up to a million samples, each a few precision steps
     const Ball sb(s, prec);
     out.t = r.eval_r(sb, prec);
     out.point = r.eval_point(c, sb, prec);
