@@ -288,7 +288,14 @@ int QuadraticSurd::sign() const {
 
 std::string QuadraticSurd::str(Format f) const {
   if (is_rational()) return format_rational(x_, f);
-  const Integer A = a(), Bv = b(), Dv = d();
+  // d = lcm of the denominators once; a = x d and b = y d by exact division
+  // (the same integers as a(), b(), d(), without a gcd per coordinate).
+  const Integer Dv = d();
+  Integer A, Bv;
+  fmpz_divexact(A.get(), Dv.get(), fmpq_denref(x_.get()));
+  fmpz_mul(A.get(), A.get(), fmpq_numref(x_.get()));
+  fmpz_divexact(Bv.get(), Dv.get(), fmpq_denref(y_.get()));
+  fmpz_mul(Bv.get(), Bv.get(), fmpq_numref(y_.get()));
   const bool latex = f == Format::Latex;
   Integer absb = Bv;
   fmpz_abs(absb.get(), absb.get());
