@@ -2,6 +2,8 @@
 #include "uniparam/core/parallel.hpp"
 
 #include <flint/flint.h>
+#include <pthread.h>
+#include <time.h>
 
 #include <algorithm>
 #include <atomic>
@@ -31,6 +33,20 @@ std::size_t worker_count() {
 
 namespace {
 
+std::atomic<std::uint64_t> g_dispatched{0};  // parallel_dispatches()
+
+/// CPU time (ns) of the thread whose CPU clock is `clock`; 0 when unknown.
+std::int64_t cpu_ns(clockid_t clock) {
+  timespec ts{};
+  if (clock_gettime(clock, &ts) != 0) return 0;
+  return static_cast<std::int64_t>(ts.tv_sec) * 1000000000 + ts.tv_nsec;
+}
+
+std::int64_t wall_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
 /// One parallel_for call: the items, the task and the first error.
 struct Job {
   Job(std::size_t n_, std::size_t workers_, const std::function<void(std::size_t, std::size_t)>& task_)
@@ -42,6 +58,11 @@ struct Job {
   std::atomic<bool> failed{false};
   std::exception_ptr error;
   std::mutex error_mutex;
+  // The calling thread's CPU clock and its reading, and the wall clock, when
+  // the job was published (set before publication, then only read).
+  clockid_t caller_clock = CLOCK_THREAD_CPUTIME_ID;
+  std::int64_t start_cpu = 0, start_wall = 0;
+  bool dispatched = false;  // pool threads may join (guarded by the pool's mutex)
 
   /// Worker `worker` takes items until none is left or one failed.
   void work(std::size_t worker) {
@@ -58,46 +79,49 @@ struct Job {
       }
     }
   }
+
+  /// Long enough to pay for threads: the caller spent kInlineCpu of CPU
+  /// on it, or kInlineWall went by (a task that blocks, or a caller that is
+  /// descheduled for long).
+  bool due(std::int64_t now_wall) const;
 };
+
+/// The work a job does on the calling thread alone before the pool threads
+/// are woken. Waking a blocked thread costs a futex call and a reschedule
+/// (tens of microseconds on an idle VM, a time slice on a busy machine),
+/// more than a whole job at low degree; a job that ends within this much
+/// CPU time never touches another thread, so it costs what it costs on one.
+/// CPU time, not wall time: a caller descheduled on a busy machine has not
+/// done more work, and threads would not make it faster.
+constexpr std::int64_t kInlineCpu = 500000;      // ns
+constexpr std::int64_t kInlineWall = 20000000;   // ns
+/// How often the dispatcher looks at the published jobs, while there are any.
+constexpr std::chrono::microseconds kTick{250};
+
+bool Job::due(std::int64_t now_wall) const {
+  if (next.load() >= n) return false;  // every item taken: threads cannot help
+  if (now_wall - start_wall >= kInlineWall) return true;
+  return cpu_ns(caller_clock) - start_cpu >= kInlineCpu;
+}
 
 /// The number of pools: a parallel_for made inside a task of another (an
 /// operation's steps side by side, each with its own parallel loops) takes
 /// the next pool, whose threads are as persistent as the first's. Deeper
-/// nesting gets threads of its own.
+/// nesting runs on the calling thread.
 constexpr int kPools = 4;
 thread_local int t_pool = -1;  // the pool this thread belongs to (-1: none)
 
-/// How long a pool thread that finished its items, and a caller waiting for
-/// the pool threads, poll before they block on a condition variable. A
-/// blocked thread takes a futex wake-up and a reschedule to start (tens of
-/// microseconds on a VM), which is the whole run time of a low-degree job;
-/// the jobs of one operation follow each other within far less than this.
-/// The poll yields the processor every 64 rounds, so an oversubscribed
-/// machine loses little to it.
-constexpr std::chrono::microseconds kSpin{500};
-
-/// Polls ready() for at most kSpin; true as soon as it holds.
-template <class Ready>
-bool spin_until(Ready ready) {
-  const auto until = std::chrono::steady_clock::now() + kSpin;
-  for (unsigned round = 0;; ++round) {
-    if (ready()) return true;
-    if ((round & 63) == 63) {
-      if (std::chrono::steady_clock::now() >= until) return false;
-      std::this_thread::yield();
-    }
-  }
-}
-
-/// Persistent worker threads, started on first use and kept until the
-/// process exits. Their FLINT/Arb thread-local caches (Gauss-Legendre nodes
-/// above all: computing them costs more than a low-degree quadrature) then
-/// live from one parallel_for to the next, as the calling thread's do,
-/// instead of being rebuilt by fresh threads at every call. Pool thread k
-/// (k >= 1) is worker k of every job that uses at least k + 1 workers.
-/// One job at a time: a call that finds the pool in use (from another
-/// thread, or from inside a task) takes the next pool (parallel_for), and
-/// threads of its own when all kPools are.
+/// Persistent worker threads, started when a job is first dispatched and
+/// kept until the process exits. Their FLINT/Arb thread-local caches
+/// (Gauss-Legendre nodes above all: computing them costs more than a
+/// low-degree quadrature) then live from one parallel_for to the next, as
+/// the calling thread's do. Pool thread k (k >= 1) is worker k of every
+/// dispatched job that uses at least k + 1 workers. A job is published
+/// without waking anyone; the calling thread works on it, and the
+/// dispatcher (Dispatcher) wakes the pool threads only once the job is due
+/// (Job::due). Threads block on a condition variable; nothing spins. One
+/// job at a time: a call that finds the pool in use (from another thread,
+/// or from inside a task) takes the next pool (parallel_for).
 class Pool {
  public:
   /// Pool k (0 <= k < kPools); pool k's threads know they belong to it.
@@ -106,40 +130,29 @@ class Pool {
     return pools[k];
   }
 
-  /// Runs job on the calling thread (worker 0) and pool threads 1..workers-1;
-  /// false (nothing run) when the pool is in use.
-  bool run(Job& job) {
-    bool expected = false;
-    if (!in_use_.compare_exchange_strong(expected, true)) return false;
-    struct Release {
-      std::atomic<bool>& flag;
-      ~Release() { flag.store(false); }
-    } release{in_use_};
-    {
-      std::lock_guard<std::mutex> lock(m_);
-      while (threads_.size() + 1 < job.workers) {
-        const std::size_t k = threads_.size() + 1;
-        threads_.emplace_back([this, k] { loop(k); });
-      }
-      job_ = &job;
-      pending_ = job.workers - 1;
-      pending_count_.store(pending_, std::memory_order_release);
-      generation_.fetch_add(1, std::memory_order_release);
-    }
-    wake_.notify_all();
-    job.work(0);
-    spin_until([this] { return pending_count_.load(std::memory_order_acquire) == 0; });
+  /// Runs job on the calling thread (worker 0) and, once it is due, on pool
+  /// threads 1..workers-1; false (nothing run) when the pool is in use.
+  bool run(Job& job);
+
+  /// Dispatches the current job if it is due (the dispatcher's tick); true
+  /// when the pool has a job that is not yet dispatched.
+  bool poll(std::int64_t now_wall) {
     std::unique_lock<std::mutex> lock(m_);
-    done_.wait(lock, [this] { return pending_ == 0; });
-    job_ = nullptr;
-    return true;
+    if (!job_ || job_->dispatched) return false;
+    if (!job_->due(now_wall)) return true;
+    dispatch_locked();
+    lock.unlock();
+    wake_.notify_all();
+    return false;
   }
+
+  /// A job is published and not yet dispatched (read without the lock).
+  bool waiting() const { return waiting_.load(); }
 
   ~Pool() {
     {
       std::lock_guard<std::mutex> lock(m_);
       stop_ = true;
-      stop_flag_.store(true);
     }
     wake_.notify_all();
     for (auto& t : threads_) t.join();
@@ -148,18 +161,33 @@ class Pool {
  private:
   explicit Pool(int level) : level_(level) {}
 
+  /// \pre m_ held, job_ set and not dispatched.
+  void dispatch_locked() {
+    while (threads_.size() + 1 < job_->workers) {
+      const std::size_t k = threads_.size() + 1;
+      threads_.emplace_back([this, k] { loop(k); });
+    }
+    job_->dispatched = true;
+    waiting_.store(false);
+    ++generation_;
+    g_dispatched.fetch_add(1);
+  }
+
   void loop(std::size_t k) {
     t_pool = level_;
     std::uint64_t seen = 0;
     for (;;) {
       Job* job = nullptr;
-      spin_until([&] { return generation_.load(std::memory_order_acquire) != seen || stop_flag_.load(); });
       {
         std::unique_lock<std::mutex> lock(m_);
-        wake_.wait(lock, [&] { return stop_ || generation_.load() != seen; });
+        wake_.wait(lock, [&] { return stop_ || generation_ != seen; });
         if (stop_) break;
-        seen = generation_.load();
-        if (job_ && k < job_->workers) job = job_;  // null: a job this thread sat out ended
+        seen = generation_;
+        // null: the job this generation dispatched has ended, or needs fewer workers
+        if (job_ && job_->dispatched && k < job_->workers) {
+          job = job_;
+          ++joined_;
+        }
       }
       if (!job) continue;
       {
@@ -169,45 +197,117 @@ class Pool {
       bool last;
       {
         std::lock_guard<std::mutex> lock(m_);
-        last = --pending_ == 0;
-        pending_count_.store(pending_, std::memory_order_release);
+        last = --joined_ == 0;
       }
-      if (last) done_.notify_one();
+      if (last) done_.notify_all();
     }
     flint_cleanup();  // this thread's FLINT/Arb caches
   }
 
   int level_;                        // this pool's index (Pool::instance)
   std::atomic<bool> in_use_{false};  // a parallel_for is using the pool
-  std::mutex m_;    // guards everything below
+  std::atomic<bool> waiting_{false};  // job_ set and not dispatched
+  std::mutex m_;  // guards everything below
   std::condition_variable wake_, done_;
   std::vector<std::thread> threads_;
   Job* job_ = nullptr;
-  std::size_t pending_ = 0;  // pool threads of the current job still working
-  std::atomic<std::uint64_t> generation_{0};  // written under m_; read by the spinning threads
+  std::size_t joined_ = 0;  // pool threads working on job_ (or on the job before it)
+  std::uint64_t generation_ = 0;  // bumped by every dispatch
   bool stop_ = false;
-  // Copies of pending_ and stop_ for the spinning threads (written under m_).
-  std::atomic<std::size_t> pending_count_{0};
-  std::atomic<bool> stop_flag_{false};
 };
 
-/// The pool is busy: threads of this call's own, released when it returns.
-void run_on_fresh_threads(Job& job) {
-  std::vector<std::thread> threads;
-  threads.reserve(job.workers - 1);
-  for (std::size_t w = 1; w < job.workers; ++w)
-    threads.emplace_back([&job, w] {
-      {
-        const ScopedDeadline inherit(job.deadline);
-        job.work(w);
+/// One thread that wakes the pool threads for the jobs that are due: every
+/// kTick while any pool has a published job, blocked otherwise (a parallel_for
+/// that finds it blocked wakes it). It never runs items itself.
+class Dispatcher {
+ public:
+  static Dispatcher& instance() {
+    static Dispatcher d;
+    return d;
+  }
+
+  /// A job was just published on some pool.
+  void arm() {
+    if (!idle_.load()) return;
+    std::lock_guard<std::mutex> lock(m_);
+    if (idle_.load()) {
+      idle_.store(false);
+      cv_.notify_one();
+    }
+  }
+
+  ~Dispatcher() {
+    {
+      std::lock_guard<std::mutex> lock(m_);
+      stop_ = true;
+    }
+    cv_.notify_one();
+    thread_.join();
+  }
+
+ private:
+  Dispatcher() : thread_([this] { loop(); }) {}
+
+  void loop() {
+    std::unique_lock<std::mutex> lock(m_);
+    int quiet = 0;  // ticks without a waiting job
+    while (!stop_) {
+      bool any = false;
+      for (int k = 0; k < kPools; ++k) any = Pool::instance(k).poll(wall_ns()) || any;
+      quiet = any ? 0 : quiet + 1;
+      if (quiet >= 8) {
+        // Block until a job is published. Set idle_ first, then look again:
+        // a job published meanwhile either sees idle_ (and wakes us) or is
+        // seen here.
+        idle_.store(true);
+        bool waiting = false;
+        for (int k = 0; k < kPools; ++k) waiting = waiting || Pool::instance(k).waiting();
+        if (waiting) {
+          idle_.store(false);
+        } else {
+          cv_.wait(lock, [this] { return stop_ || !idle_.load(); });
+        }
+        quiet = 0;
+        continue;
       }
-      flint_cleanup();  // this thread's FLINT/Arb caches (Gauss-Legendre nodes, ...)
-    });
+      cv_.wait_for(lock, kTick, [this] { return stop_; });
+    }
+  }
+
+  std::mutex m_;
+  std::condition_variable cv_;
+  std::atomic<bool> idle_{false};
+  bool stop_ = false;
+  std::thread thread_;  // last: started once the members above exist
+};
+
+bool Pool::run(Job& job) {
+  bool expected = false;
+  if (!in_use_.compare_exchange_strong(expected, true)) return false;
+  struct Release {
+    std::atomic<bool>& flag;
+    ~Release() { flag.store(false); }
+  } release{in_use_};
+  if (pthread_getcpuclockid(pthread_self(), &job.caller_clock) != 0) job.caller_clock = CLOCK_THREAD_CPUTIME_ID;
+  job.start_cpu = cpu_ns(job.caller_clock);
+  job.start_wall = wall_ns();
+  {
+    std::lock_guard<std::mutex> lock(m_);
+    job_ = &job;
+    waiting_.store(true);
+  }
+  Dispatcher::instance().arm();
   job.work(0);
-  for (auto& t : threads) t.join();
+  std::unique_lock<std::mutex> lock(m_);
+  job_ = nullptr;  // threads woken from now on sit this job out
+  waiting_.store(false);
+  done_.wait(lock, [this] { return joined_ == 0; });
+  return true;
 }
 
 }  // namespace
+
+std::uint64_t parallel_dispatches() { return g_dispatched.load(); }
 
 void parallel_for(std::size_t n, std::size_t max_workers, const std::function<void(std::size_t, std::size_t)>& task) {
   const std::size_t workers = std::min(std::max<std::size_t>(max_workers, 1), n);
@@ -221,7 +321,7 @@ void parallel_for(std::size_t n, std::size_t max_workers, const std::function<vo
   // the job it belongs to).
   bool ran = false;
   for (int k = t_pool + 1; k < kPools && !ran; ++k) ran = Pool::instance(k).run(job);
-  if (!ran) run_on_fresh_threads(job);
+  if (!ran) job.work(0);  // every pool busy: the machine's threads are too
   if (job.error) std::rethrow_exception(job.error);
 }
 
