@@ -27,8 +27,13 @@ std::size_t worker_count() {
     const long v = std::strtol(e, &end, 10);
     if (end != e && *end == '\0' && v >= 1) return static_cast<std::size_t>(std::min(v, 64L));
   }
-  const unsigned hw = std::thread::hardware_concurrency();
-  return hw == 0 ? 1 : std::min<std::size_t>(hw, 8);
+  // Read once: hardware_concurrency() opens a file in /sys (~10 us), and
+  // callers ask before every parallel loop.
+  static const std::size_t hw = [] {
+    const unsigned n = std::thread::hardware_concurrency();
+    return n == 0 ? std::size_t{1} : std::min<std::size_t>(n, 8);
+  }();
+  return hw;
 }
 
 namespace {
@@ -49,28 +54,36 @@ std::int64_t wall_ns() {
 
 /// One parallel_for call: the items, the task and the first error.
 struct Job {
-  Job(std::size_t n_, std::size_t workers_, const std::function<void(std::size_t, std::size_t)>& task_)
-      : n(n_), workers(workers_), task(task_), deadline(current_deadline()) {}
+  Job(std::size_t n_, std::size_t workers_, const std::function<void(std::size_t, std::size_t)>& task_,
+      const std::function<void(std::size_t)>& prepare_)
+      : n(n_), workers(workers_), task(task_), prepare(prepare_), deadline(current_deadline()) {}
   const std::size_t n, workers;
   const std::function<void(std::size_t, std::size_t)>& task;
+  const std::function<void(std::size_t)>& prepare;  // may be empty
   const Deadline deadline;
   std::atomic<std::size_t> next{0};
   std::atomic<bool> failed{false};
   std::exception_ptr error;
   std::mutex error_mutex;
-  // The calling thread's CPU clock and its reading, and the wall clock, when
-  // the job was published (set before publication, then only read).
+  // The calling thread's CPU clock, its reading and the wall clock when the
+  // job was published (set before publication, then only read).
   clockid_t caller_clock = CLOCK_THREAD_CPUTIME_ID;
   std::int64_t start_cpu = 0, start_wall = 0;
   bool dispatched = false;  // pool threads may join (guarded by the pool's mutex)
+  // The job is due and has a prepare step: the caller runs it between two
+  // items and dispatches then.
+  std::atomic<bool> requested{false};
 
-  /// Worker `worker` takes items until none is left or one failed.
-  void work(std::size_t worker) {
+  /// Worker `worker` takes items until none is left or one failed. Worker
+  /// 0 calls between_items() after each of its items (may be empty).
+  template <class F>
+  void work(std::size_t worker, F between_items) {
     for (;;) {
       const std::size_t i = next.fetch_add(1);
       if (i >= n || failed.load()) return;
       try {
         task(worker, i);
+        between_items();
       } catch (...) {
         std::lock_guard<std::mutex> lock(error_mutex);
         if (!error) error = std::current_exception();
@@ -79,10 +92,13 @@ struct Job {
       }
     }
   }
+  void work(std::size_t worker) {
+    work(worker, [] {});
+  }
 
   /// Long enough to pay for threads: the caller spent kInlineCpu of CPU
   /// on it, or kInlineWall went by (a task that blocks, or a caller that is
-  /// descheduled for long).
+  /// descheduled for long), with items left.
   bool due(std::int64_t now_wall) const;
 };
 
@@ -95,12 +111,16 @@ struct Job {
 /// done more work, and threads would not make it faster.
 constexpr std::int64_t kInlineCpu = 500000;      // ns
 constexpr std::int64_t kInlineWall = 20000000;   // ns
-/// How often the dispatcher looks at the published jobs, while there are any.
-constexpr std::chrono::microseconds kTick{250};
+/// How often the dispatcher looks at the published jobs, while there are
+/// any: a long job waits at most this much beyond kInlineCpu for the pool
+/// threads; each look is a wake-up of the dispatcher (microseconds).
+constexpr std::chrono::microseconds kTick{1000};
 
 bool Job::due(std::int64_t now_wall) const {
   if (next.load() >= n) return false;  // every item taken: threads cannot help
-  if (now_wall - start_wall >= kInlineWall) return true;
+  const std::int64_t wall = now_wall - start_wall;
+  if (wall >= kInlineWall) return true;
+  if (wall < kInlineCpu) return false;  // CPU time <= wall time: no system call
   return cpu_ns(caller_clock) - start_cpu >= kInlineCpu;
 }
 
@@ -138,8 +158,13 @@ class Pool {
   /// when the pool has a job that is not yet dispatched.
   bool poll(std::int64_t now_wall) {
     std::unique_lock<std::mutex> lock(m_);
-    if (!job_ || job_->dispatched) return false;
+    if (!job_ || job_->dispatched || job_->requested.load()) return false;
     if (!job_->due(now_wall)) return true;
+    if (job_->prepare) {  // the caller prepares and dispatches (Pool::run)
+      job_->requested.store(true);
+      waiting_.store(false);
+      return false;
+    }
     dispatch_locked();
     lock.unlock();
     wake_.notify_all();
@@ -255,7 +280,7 @@ class Dispatcher {
       bool any = false;
       for (int k = 0; k < kPools; ++k) any = Pool::instance(k).poll(wall_ns()) || any;
       quiet = any ? 0 : quiet + 1;
-      if (quiet >= 8) {
+      if (quiet >= 4) {
         // Block until a job is published. Set idle_ first, then look again:
         // a job published meanwhile either sees idle_ (and wakes us) or is
         // seen here.
@@ -297,7 +322,16 @@ bool Pool::run(Job& job) {
     waiting_.store(true);
   }
   Dispatcher::instance().arm();
-  job.work(0);
+  job.work(0, [&] {
+    if (!job.requested.load(std::memory_order_relaxed) || job.next.load() >= job.n) return;
+    job.requested.store(false);
+    job.prepare(job.workers);  // no task runs now: the caller is between items
+    {
+      std::lock_guard<std::mutex> lock(m_);
+      dispatch_locked();
+    }
+    wake_.notify_all();
+  });
   std::unique_lock<std::mutex> lock(m_);
   job_ = nullptr;  // threads woken from now on sit this job out
   waiting_.store(false);
@@ -309,13 +343,14 @@ bool Pool::run(Job& job) {
 
 std::uint64_t parallel_dispatches() { return g_dispatched.load(); }
 
-void parallel_for(std::size_t n, std::size_t max_workers, const std::function<void(std::size_t, std::size_t)>& task) {
+void parallel_for(std::size_t n, std::size_t max_workers, const std::function<void(std::size_t, std::size_t)>& task,
+                  const std::function<void(std::size_t)>& prepare) {
   const std::size_t workers = std::min(std::max<std::size_t>(max_workers, 1), n);
   if (workers <= 1) {
     for (std::size_t i = 0; i < n; ++i) task(0, i);
     return;
   }
-  Job job(n, workers, task);
+  Job job(n, workers, task, prepare);
   // A free pool after the calling thread's own (the caller is worker 0 of
   // whatever job it is running; the pools before its own may be busy with
   // the job it belongs to).

@@ -130,11 +130,11 @@ TEST(Parallel, NestedCallsRunOnPersistentThreads) {
   for (int round = 0; round < rounds; ++round)
     parallel_for(2, 2, [&](std::size_t w, std::size_t) {
       if (w != 0) {  // the calling thread's task nests a loop (this one keeps the other item)
-        burn_cpu(5000000);
+        burn_cpu(12000000);
         return;
       }
       parallel_for(2, 2, [&](std::size_t v, std::size_t) {
-        burn_cpu(2000000);  // both workers get an item
+        burn_cpu(5000000);  // both workers get an item
         if (v != 1) return;
         const long seen = ++t_items;
         std::lock_guard<std::mutex> lock(m);

@@ -11,7 +11,7 @@ namespace uniparam {
 /// Number of worker threads parallel_for uses: the environment variable
 /// UNIPARAM_THREADS when set to a positive integer (1 = everything on the
 /// calling thread), otherwise std::thread::hardware_concurrency() capped
-/// at 8 (1 when unknown).
+/// at 8 (1 when unknown), read once per process.
 std::size_t worker_count();
 
 /// Runs task(worker, i) for every i in [0, n), on at most min(workers, n)
@@ -22,8 +22,8 @@ std::size_t worker_count();
 /// become free.
 /// Small jobs run on the calling thread alone: the call publishes the job
 /// and starts on it; the other workers are woken only once the calling
-/// thread has spent 0.5 ms of CPU time on it (or 20 ms have gone by) with
-/// items left, so a job shorter than that costs what it costs on one thread
+/// thread has spent 0.5 ms of CPU time on it, or 20 ms have gone by, with
+/// items left (a dispatcher thread looks every millisecond while jobs run), so a job shorter than that costs what it costs on one thread
 /// and never waits for another. Waiting threads block on a condition
 /// variable (no spinning).
 /// Worker threads inherit the calling thread's time budget (the same
@@ -36,11 +36,20 @@ std::size_t worker_count();
 /// of their own) takes the next of four such pools, equally persistent, and
 /// when all are busy runs on the calling thread alone. Which thread runs
 /// which item is not fixed, so tasks must not depend on it beyond `worker`.
+/// `prepare` (may be empty) makes the state workers 1.. need, e.g. their
+/// own copies of objects with mutable caches: prepare(k) runs on the calling
+/// thread, between two of its items (no task is running then), right
+/// before workers 1..k-1 (k = min(workers, n)) are woken, and never for a
+/// job that stays on the calling thread, so a small job does not pay for
+/// copies it does not use. A job with a prepare step is dispatched when the
+/// calling thread finishes the item it is running once the job is due.
+/// An exception from prepare is treated as one from a task.
 /// \post all items ran, or the first exception thrown by a task is rethrown
 ///       here after every worker has stopped (items not yet started are
 ///       skipped).
 void parallel_for(std::size_t n, std::size_t workers,
-                  const std::function<void(std::size_t worker, std::size_t i)>& task);
+                  const std::function<void(std::size_t worker, std::size_t i)>& task,
+                  const std::function<void(std::size_t workers)>& prepare = {});
 
 /// Work counter (tests, benchmarks): the number of jobs whose pool threads
 /// parallel_for has woken, since the process started (all threads).
