@@ -69,9 +69,9 @@ struct Job {
   // job was published (set before publication, then only read).
   clockid_t caller_clock = CLOCK_THREAD_CPUTIME_ID;
   std::int64_t start_cpu = 0, start_wall = 0;
-  bool dispatched = false;  // pool threads may join (guarded by the pool's mutex)
-  // The job is due and has a prepare step: the caller runs it between two
-  // items and dispatches then.
+  std::atomic<bool> dispatched{false};  // pool threads may join (written under the pool's mutex)
+  // The dispatcher found the job due and it has a prepare step: the caller
+  // runs it between two items and dispatches then.
   std::atomic<bool> requested{false};
 
   /// Worker `worker` takes items until none is left or one failed. Worker
@@ -137,9 +137,9 @@ thread_local int t_pool = -1;  // the pool this thread belongs to (-1: none)
 /// low-degree quadrature) then live from one parallel_for to the next, as
 /// the calling thread's do. Pool thread k (k >= 1) is worker k of every
 /// dispatched job that uses at least k + 1 workers. A job is published
-/// without waking anyone; the calling thread works on it, and the
-/// dispatcher (Dispatcher) wakes the pool threads only once the job is due
-/// (Job::due). Threads block on a condition variable; nothing spins. One
+/// without waking anyone; the calling thread works on it, and the pool
+/// threads are woken only once the job is due (Job::due), by the calling
+/// thread between two items or by the dispatcher (Dispatcher) during one. Threads block on a condition variable; nothing spins. One
 /// job at a time: a call that finds the pool in use (from another thread,
 /// or from inside a task) takes the next pool (parallel_for).
 class Pool {
@@ -192,7 +192,7 @@ class Pool {
       const std::size_t k = threads_.size() + 1;
       threads_.emplace_back([this, k] { loop(k); });
     }
-    job_->dispatched = true;
+    job_->dispatched.store(true);
     waiting_.store(false);
     ++generation_;
     g_dispatched.fetch_add(1);
@@ -241,15 +241,24 @@ class Pool {
   bool stop_ = false;
 };
 
-/// One thread that wakes the pool threads for the jobs that are due: every
-/// kTick while any pool has a published job, blocked otherwise (a parallel_for
-/// that finds it blocked wakes it). It never runs items itself.
+/// One thread that wakes the pool threads for the jobs that are due while
+/// their calling thread is inside an item (e.g. an operation's two long
+/// steps side by side): it looks every kTick while any pool has a published
+/// job, and blocks otherwise (a parallel_for that finds it blocked wakes
+/// it). It never runs items itself. Started by the first job found long
+/// (start()), so a process that only runs small jobs has no thread besides
+/// its own (the allocator's single-thread fast paths stay on, and nothing
+/// wakes up); the calling thread dispatches between items by itself.
 class Dispatcher {
  public:
-  static Dispatcher& instance() {
+  /// The dispatcher, started on first call.
+  static Dispatcher& start() {
     static Dispatcher d;
+    started_.store(&d);
     return d;
   }
+  /// The dispatcher if started, else null.
+  static Dispatcher* started() { return started_.load(); }
 
   /// A job was just published on some pool.
   void arm() {
@@ -304,7 +313,10 @@ class Dispatcher {
   std::atomic<bool> idle_{false};
   bool stop_ = false;
   std::thread thread_;  // last: started once the members above exist
+  static std::atomic<Dispatcher*> started_;
 };
+
+std::atomic<Dispatcher*> Dispatcher::started_{nullptr};
 
 bool Pool::run(Job& job) {
   bool expected = false;
@@ -321,17 +333,27 @@ bool Pool::run(Job& job) {
     job_ = &job;
     waiting_.store(true);
   }
-  Dispatcher::instance().arm();
+  if (Dispatcher* d = Dispatcher::started()) d->arm();
+  // Between its items the caller dispatches a job that is due itself (the
+  // dispatcher may not run yet, and cannot run a prepare step).
   job.work(0, [&] {
-    if (!job.requested.load(std::memory_order_relaxed) || job.next.load() >= job.n) return;
+    if (job.dispatched.load() || job.next.load() >= job.n) return;
+    if (!job.requested.load() && !job.due(wall_ns())) return;
     job.requested.store(false);
-    job.prepare(job.workers);  // no task runs now: the caller is between items
+    Dispatcher::start();
+    if (job.prepare) job.prepare(job.workers);  // no task runs now: the caller is between items
     {
       std::lock_guard<std::mutex> lock(m_);
+      if (job.dispatched.load()) return;
       dispatch_locked();
     }
     wake_.notify_all();
   });
+  // A long job, even one the caller had to finish alone (its last item
+  // took the time): later ones get the dispatcher.
+  if (!Dispatcher::started() && wall_ns() - job.start_wall >= kInlineCpu &&
+      cpu_ns(job.caller_clock) - job.start_cpu >= kInlineCpu)
+    Dispatcher::start();
   std::unique_lock<std::mutex> lock(m_);
   job_ = nullptr;  // threads woken from now on sit this job out
   waiting_.store(false);

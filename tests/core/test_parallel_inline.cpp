@@ -63,8 +63,10 @@ TEST(ParallelInline, LongJobsUseThePool) {
 }
 
 // Two long items (an operation's steps side by side): the second does not
-// wait for the first, it goes to a pool thread while the first runs.
+// wait for the first, it goes to a pool thread while the first runs (once
+// the process has seen a long job, which starts the dispatcher).
 TEST(ParallelInline, TwoLongItemsRunSideBySide) {
+  parallel_for(4, 2, [](std::size_t, std::size_t) { burn(1000000); });
   std::atomic<long> elsewhere{0};
   parallel_for(2, 2, [&](std::size_t w, std::size_t) {
     if (w != 0) ++elsewhere;

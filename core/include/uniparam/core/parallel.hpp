@@ -23,7 +23,10 @@ std::size_t worker_count();
 /// Small jobs run on the calling thread alone: the call publishes the job
 /// and starts on it; the other workers are woken only once the calling
 /// thread has spent 0.5 ms of CPU time on it, or 20 ms have gone by, with
-/// items left (a dispatcher thread looks every millisecond while jobs run), so a job shorter than that costs what it costs on one thread
+/// items left: by the calling thread between two items, or during one by a
+/// dispatcher thread that looks every millisecond while jobs run (started
+/// by the first job found long: until then a job can only be dispatched
+/// between items, and a process of small jobs starts no thread at all), so a job shorter than that costs what it costs on one thread
 /// and never waits for another. Waiting threads block on a condition
 /// variable (no spinning).
 /// Worker threads inherit the calling thread's time budget (the same
