@@ -110,7 +110,7 @@ struct Job {
 /// CPU time, not wall time: a caller descheduled on a busy machine has not
 /// done more work, and threads would not make it faster.
 constexpr std::int64_t kInlineCpu = 500000;      // ns
-constexpr std::int64_t kInlineWall = 20000000;   // ns
+constexpr std::int64_t kInlineWall = 100000000;  // ns
 /// How often the dispatcher looks at the published jobs, while there are
 /// any: a long job waits at most this much beyond kInlineCpu for the pool
 /// threads; each look is a wake-up of the dispatcher (microseconds).

@@ -22,7 +22,7 @@ std::size_t worker_count();
 /// become free.
 /// Small jobs run on the calling thread alone: the call publishes the job
 /// and starts on it; the other workers are woken only once the calling
-/// thread has spent 0.5 ms of CPU time on it, or 20 ms have gone by, with
+/// thread has spent 0.5 ms of CPU time on it, or 0.1 s has gone by, with
 /// items left: by the calling thread between two items, or during one by a
 /// dispatcher thread that looks every millisecond while jobs run (started
 /// by the first job found long: until then a job can only be dispatched
