@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "moebius_detail.hpp"
+#include "uniparam/core/budget.hpp"
 #include "uniparam/core/error.hpp"
 #include "uniparam/reparam/moebius.hpp"
 
@@ -31,6 +32,38 @@ std::vector<Rational> round_sequence(const std::vector<Rational>& mids, const Ra
   }
   out.push_back(Rational(1));
   return out;
+}
+
+// The exact ends of the ball b as rationals.
+Rational lower_rational(const Ball& b) {
+  Ball lo;
+  arb_get_lbound_arf(arb_midref(lo.get()), b.get(), ARF_PREC_EXACT);
+  return mid_rational(lo);
+}
+Rational upper_rational(const Ball& b) {
+  Ball hi;
+  arb_get_ubound_arf(arb_midref(hi.get()), b.get(), ARF_PREC_EXACT);
+  return mid_rational(hi);
+}
+
+// The simplest rational q certainly within tol * m(x) of the value x the
+// ball b encloses, for every x in b: |q - x| <= tol * m(x), with
+// m(x) = x for a positive quantity (`unit` false) and m(x) = min(x, 1 - x)
+// for one in (0, 1) (`unit` true), so q keeps the sign and, for a quantity in
+// (0, 1), stays in (0, 1). tol < 1. Empty (false) when b is not certainly
+// inside the domain or too wide for that window (its width above tol * m
+// at b's worst end): the caller refines b.
+bool round_relative(const Ball& b, const Rational& tol, bool unit, Rational& q) {
+  if (!b.is_finite()) return false;
+  const Rational lo = lower_rational(b), hi = upper_rational(b);
+  if (lo <= Rational(0) || (unit && hi >= Rational(1))) return false;
+  Rational m = lo;  // a lower bound of m(x) over b
+  if (unit && Rational(1) - hi < m) m = Rational(1) - hi;
+  const Rational w = tol * m;
+  // every x in [lo, hi] is within w of every q in [hi - w, lo + w]
+  if (hi - lo > w) return false;  // keep at least half the window
+  q = Rational::simplest_between(hi - w, lo + w);
+  return true;
 }
 
 }  // namespace
@@ -77,23 +110,49 @@ MoebiusResult make_rational(const Curve& c, const MoebiusResult& in, long ration
     return r;
   }
 
+  // C0: each piece's alpha rounded to the simplest rational certainly within
+  // tol * min(alpha, 1 - alpha) of the optimal alpha (so 0 < alpha < 1 and
+  // k = (1 - alpha) / alpha keeps the relative accuracy tol), the optimal
+  // alphas of in.T refined until their balls are narrow enough for that.
+  std::vector<Rational> alpha_q;
+  if (in.continuity == Continuity::C0) {
+    std::vector<Ball> ab = in.alpha;
+    for (long bits = digits_to_bits(opt.digits + rational_digits) + 8;; bits *= 2) {
+      alpha_q.assign(N, Rational(0));
+      bool ok = true;
+      for (std::size_t i = 0; i < N && ok; ++i) ok = round_relative(ab[i], tol, true, alpha_q[i]);
+      if (ok) break;
+      if (bits > opt.max_prec)
+        throw BudgetExceeded("could not certify the optimal alpha to the relative accuracy 10^-" +
+                             std::to_string(rational_digits) + " of --rational-digits within " +
+                             std::to_string(opt.max_prec) + " bits of working precision (raise it with --max-prec)");
+      check_time_budget();
+      const std::vector<PieceIntegrals> pi = all_piece_integrals(s, in.T, bits, opt.max_prec);
+      for (std::size_t i = 0; i < N; ++i) ab[i] = pi[i].alpha;
+    }
+  }
+
   for (long bits = digits_to_bits(opt.digits) + 8;; bits += 32) {
     const long prec = 2 * bits + 64;
     r.integrals = all_piece_integrals(s, r.T, bits, opt.max_prec);
     std::vector<Rational> k(N);
     if (in.continuity == Continuity::C0) {
-      for (std::size_t i = 0; i < N; ++i) {
-        const Rational a = Rational::simplest_between(mid_rational(in.alpha[i]) - tol, mid_rational(in.alpha[i]) + tol);
-        k[i] = (Rational(1) - a) / a;
-      }
+      for (std::size_t i = 0; i < N; ++i) k[i] = (Rational(1) - alpha_q[i]) / alpha_q[i];
     } else {
       // C1: the optimal free parameter for the rounded T and S, rounded; the
       // rest follows exactly from rho_i / k_i = rho_{i+1} k_{i+1}.
       std::vector<Ball> Sb;
       for (const auto& q : Sq) Sb.emplace_back(q, prec);
       const detail::C1Data d = detail::c1_from_pieces(T, Sb, r.integrals, r.mu, prec);
-      const Rational k0 = mid_rational(d.k[0]);
-      k[0] = Rational::simplest_between(k0 - k0 * tol, k0 + k0 * tol);
+      // k_0 > 0 rounded relative to itself; a ball too wide for that waits
+      // for the next, more precise round
+      if (!round_relative(d.k[0], tol, false, k[0])) {
+        if (bits > opt.max_prec)
+          throw BudgetExceeded("could not certify the C1 free parameter to the relative accuracy 10^-" +
+                               std::to_string(rational_digits) + " of --rational-digits within " +
+                               std::to_string(opt.max_prec) + " bits of working precision (raise it with --max-prec)");
+        continue;
+      }
       for (std::size_t i = 0; i + 1 < N; ++i) {
         const Rational rho_i = (Tq[i + 1] - Tq[i]) / (Sq[i + 1] - Sq[i]);
         const Rational rho_j = (Tq[i + 2] - Tq[i + 1]) / (Sq[i + 2] - Sq[i + 1]);

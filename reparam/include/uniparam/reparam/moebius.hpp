@@ -160,19 +160,24 @@ MoebiusResult reparam_c1_traced(const Curve& c, SpeedKind kind, const Rational& 
 }  // namespace detail
 
 /// Exact rational output: rounds T, S and the alphas of r to the simplest
-/// rationals within 10^-rational_digits (relative to the neighbouring gaps for
-/// T and S) and certifies the u of *that* map, which has rational
-/// coefficients. T is rounded when a method chose it (reparam_c0,
-/// reparam_c1); rational breakpoints given to moebius_c0 stay exact
-/// (irrational ones are rounded). C0: each alpha rounded. C1: the free
-/// parameter rounded, the other alphas solved exactly from the C1 condition
-/// on the rational T and S, so r' is continuous exactly.
+/// rationals within the relative accuracy tol = 10^-rational_digits and
+/// certifies the u of *that* map, which has rational coefficients. T and S:
+/// within tol times the smaller neighbouring gap. T is rounded when a method
+/// chose it (reparam_c0, reparam_c1); rational breakpoints given to
+/// moebius_c0 stay exact (irrational ones are rounded). C0: each alpha is the
+/// simplest rational certainly within tol * min(alpha, 1 - alpha) of the
+/// optimal alpha of r's T (its ball refined until that window is certain), so
+/// 0 < alpha < 1 however close alpha is to 0 or 1. C1: the free parameter
+/// k_0 > 0 rounded within tol * k_0 the same way, the other alphas solved
+/// exactly from the C1 condition on the rational T and S, so r' is
+/// continuous exactly.
 /// \pre r was computed for c; 1 <= rational_digits <= 100 (InvalidArgument).
 /// \post rational == true; T_exact, S_exact, alpha_exact are the map's data;
 ///       T, S, alpha, integrals and u_after describe that exact map (u_after
 ///       meets Options::digits); target.reached re-checked; optimiser.phi is
 ///       cleared (it described the unrounded map).
-/// \throws as moebius_c0.
+/// \throws as moebius_c0 (BudgetExceeded also when alpha or k_0 cannot be
+///         certified to the relative accuracy within Options::max_prec).
 MoebiusResult make_rational(const Curve& c, const MoebiusResult& r, long rational_digits = 8,
                             const Options& opt = {});
 
