@@ -246,9 +246,15 @@ Ball radical_eval_r(const RadicalResult& r, const Ball& z, long prec) {
     moebius(x, nullptr, zc, r.integrals[i].alpha.get(), prec);
     psi(y, x, r.side(i), r.root_index(i), false, prec);
     Ball v;
-    arb_set(v.get(), acb_realref(y));
-    arb_mul(v.get(), v.get(), dt.get(), prec);
-    arb_add(v.get(), v.get(), ta.get(), prec);
+    // an exact end maps to its breakpoint exactly (psi and the Moebius map fix
+    // 0 and 1); t_i + 1 * (t_{i+1} - t_i) would add t_i's radius twice
+    if (arb_is_zero(zt.get())) v = ta;
+    else if (arb_is_one(zt.get())) v = tb;
+    else {
+      arb_set(v.get(), acb_realref(y));
+      arb_mul(v.get(), v.get(), dt.get(), prec);
+      arb_add(v.get(), v.get(), ta.get(), prec);
+    }
     if (!any) result = v;
     else arb_union(result.get(), result.get(), v.get(), prec);
     any = true;
