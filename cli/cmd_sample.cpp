@@ -3,7 +3,6 @@
 // --method options shared with `uniparam plot`.
 #include <algorithm>
 #include <iostream>
-#include <stdexcept>
 #include <string>
 
 #include "commands.hpp"
@@ -102,12 +101,18 @@ int run_sample(int argc, char** argv) {
   const std::size_t n = c.dimension();
   const long pd = printed_digits(opt.digits);
   std::ostream& out = std::cout;
-  // A failed write (full disk, closed pipe) ends the command: the output
-  // would be incomplete.
-  auto check = [&out](long k) {
-    if (!out) throw std::runtime_error("cannot write the samples (" + std::to_string(k) + " rows written)");
+  // A failed write (full disk, closed pipe) ends the command with status 1:
+  // the output is incomplete.
+  struct WriteFailed {};
+  auto check = [&out](long) {
+    if (!out) throw WriteFailed{};
   };
   long written = 0;
+  auto write_failed = [&]() {
+    std::cerr << "uniparam sample: cannot write the output (" << written << " of " << K
+              << " rows written; the output is incomplete)\n";
+    return 1;
+  };
   auto incomplete = [&](const BudgetExceeded& e) {
     return BudgetExceeded("the output is incomplete (" + std::to_string(written) +
                           " of " + std::to_string(K) + " rows written): " + e.what());
@@ -158,10 +163,12 @@ int run_sample(int argc, char** argv) {
     } catch (const BudgetExceeded& e) {
       out.flush();
       throw incomplete(e);
+    } catch (const WriteFailed&) {
+      return write_failed();
     }
     out << "\n  ]\n}\n";
     out.flush();
-    check(K);
+    if (!out) return write_failed();
     return target_status(r, "sample");
   }
   out << "s,t";
@@ -180,9 +187,11 @@ int run_sample(int argc, char** argv) {
   } catch (const BudgetExceeded& e) {
     out.flush();
     throw incomplete(e);
+  } catch (const WriteFailed&) {
+    return write_failed();
   }
   out.flush();
-  check(K);
+  if (!out) return write_failed();
   return target_status(r, "sample");
 }
 
