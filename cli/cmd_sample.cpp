@@ -71,7 +71,11 @@ CommandSpec sample_spec() {
           "Where s falls on a joint of r whose side cannot be decided, the speed is\n"
           "two-sided: CSV leaves it empty, JSON gives the union and \"at_joint\": true.\n"
           "--method none samples the original p (s = t). When --method c1 misses its\n"
-          "target, the best map is sampled and the exit status is 4.",
+          "target, the best map is sampled and the exit status is 4.\n"
+          "The map is certified before the first row; the rows then stream out as they\n"
+          "are certified (r's data refined where a row needs it). A row that cannot be\n"
+          "certified within --max-prec or --timeout ends the output with an error\n"
+          "naming the rows written (exit 4).",
           {"CURVE"},
           opts};
 }
