@@ -229,3 +229,46 @@ TEST(EvalRobust, SampleEachHandsOverEachSampleAtOnce) {
   EXPECT_EQ(calls, 3);
   EXPECT_THROW(sample_each(c, sp, r, 1, 15, o.max_prec, [](long, const SamplePoint&) {}), InvalidArgument);
 }
+
+TEST(EvalRobust, RefinedMapIsTheSameMapKnownBetter) {
+  // refined() recomputes the data of the map the method defines for its
+  // breakpoints: every refined joint, alpha and value of r lies in the
+  // original balls, and meets the new digits.
+  Options o;
+  const Curve c = parse_curve(kSlide);
+  const Speed sp(c, SpeedKind::Angular);
+  std::vector<Reparameterization> maps;
+  maps.emplace_back(radical(c, SpeedKind::Angular, o));
+  maps.emplace_back(reparam_c0(c, SpeedKind::Angular, 3, o));
+  maps.emplace_back(reparam_c1(c, SpeedKind::Angular, Rational(99, 100), o));
+  maps.emplace_back(make_rational(c, reparam_c0(c, SpeedKind::Angular, 2, o), 6, o));
+  for (const auto& r : maps) {
+    SCOPED_TRACE(r.method());
+    const Reparameterization f = r.refined(sp, 40, o.max_prec);
+    ASSERT_EQ(f.pieces(), r.pieces());
+    for (std::size_t i = 0; i < r.joints_s().size(); ++i) {
+      EXPECT_TRUE(f.joints_s()[i].meets_digits(40)) << i;
+      EXPECT_TRUE(r.joints_s()[i].contains(f.joints_s()[i])) << i;
+    }
+    const std::vector<Ball>* a0 = nullptr;
+    const std::vector<Ball>* a1 = nullptr;
+    std::vector<Ball> ra, fa;
+    if (const auto* x = r.radical_result()) {
+      for (const auto& p : x->integrals) ra.push_back(p.alpha);
+      for (const auto& p : f.radical_result()->integrals) fa.push_back(p.alpha);
+      a0 = &ra;
+      a1 = &fa;
+    } else {
+      a0 = &r.moebius_result()->alpha;
+      a1 = &f.moebius_result()->alpha;
+    }
+    for (std::size_t i = 0; i < a0->size(); ++i) {
+      EXPECT_TRUE((*a1)[i].meets_digits(40)) << i;
+      EXPECT_TRUE((*a0)[i].contains((*a1)[i])) << i;
+    }
+    for (long k = 0; k <= 8; ++k) {
+      const Ball s(Rational(k, 8), 256);
+      EXPECT_TRUE(r.eval_r(s, 256).contains(f.eval_r(s, 256))) << k;
+    }
+  }
+}
