@@ -182,7 +182,10 @@ MoebiusResult make_rational(const Curve& c, const MoebiusResult& r, long rationa
                             const Options& opt = {});
 
 /// Enclosure of r(s) for s in [0, 1] (a real ball; where s overlaps a joint
-/// s_i, the union of both pieces' values). InvalidArgument if s misses [0, 1].
+/// s_i, the union of both pieces' values). An exact s equal to an exact joint
+/// s_i (s = 0, s = 1) gives t_i's ball, exact for a dyadic t_i: r(0) = 0 and
+/// r(1) = 1 exactly. The accuracy is limited by r's data (S, alpha: balls);
+/// see Reparameterization::refined. InvalidArgument if s misses [0, 1].
 Ball moebius_eval_r(const MoebiusResult& r, const Ball& s, long prec);
 /// Enclosure of r'(s) (the union of one-sided values at a C0 joint).
 Ball moebius_eval_dr(const MoebiusResult& r, const Ball& s, long prec);

@@ -38,7 +38,10 @@ struct RadicalResult {
 RadicalResult radical(const Curve& c, SpeedKind kind, const Options& opt = {});
 
 /// Enclosure of r(z) for z in [0, 1] (the ball may straddle a joint: both
-/// pieces are evaluated and the union returned).
+/// pieces are evaluated and the union returned). An exact z equal to an exact
+/// joint z_i (z = 0, z = 1) gives t_i's ball, exact for a dyadic t_i. The
+/// accuracy is limited by r's data (Z, alpha: balls); see
+/// Reparameterization::refined.
 Ball radical_eval_r(const RadicalResult& r, const Ball& z, long prec);
 /// Enclosure of sigma_{p o r}(z) = sigma_p(r(z)) r'(z), the reparameterized
 /// speed, evaluated from the formulas of the pieces.
