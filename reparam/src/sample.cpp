@@ -10,7 +10,6 @@
 #include "uniparam/core/ball_poly.hpp"
 #include "uniparam/core/budget.hpp"
 #include "uniparam/core/error.hpp"
-#include "moebius_detail.hpp"
 
 namespace uniparam {
 
@@ -213,49 +212,6 @@ void refine_radical(RadicalResult& x, const Speed& sp, long digits, long max_pre
   }
 }
 
-// The piecewise Moebius map's data at `digits`: exact data (make_rational)
-// as balls at a matching precision; otherwise the integrals of its T and,
-// for C0, S = cumulative sqrt M and the optimal alphas (moebius_c0), for C1,
-// S = cumulative int sigma and the C1 alphas (c1_from_pieces).
-void refine_moebius(MoebiusResult& x, const Speed& sp, long digits, long max_prec) {
-  const std::size_t N = x.pieces();
-  if (x.rational) {
-    const long prec = digits_to_bits(digits) + 64;
-    x.S.clear();
-    for (const auto& q : x.S_exact) x.S.emplace_back(q, prec);
-    x.alpha.clear();
-    for (const auto& q : x.alpha_exact) x.alpha.emplace_back(q, prec);
-    return;
-  }
-  std::vector<RealAlgebraic> T;
-  for (const auto& b : x.T) T.push_back(b.t);
-  for (long bits = digits_to_bits(digits) + 8;; bits += 32) {
-    check_time_budget();
-    const long prec = 2 * bits + 64;
-    std::vector<PieceIntegrals> I = all_piece_integrals(sp, x.T, bits, max_prec);
-    std::vector<Ball> S, alpha;
-    if (x.continuity == Continuity::C0) {
-      S = cumulative_unit(sqrts(I, &PieceIntegrals::M, prec), prec);
-      alpha = alphas(I);
-    } else {
-      std::vector<Ball> len(N);
-      for (std::size_t i = 0; i < N; ++i) len[i] = integrate_speed(sp, T[i], T[i + 1], bits, max_prec);
-      S = cumulative_unit(len, prec);
-      alpha = detail::c1_from_pieces(T, S, I, x.mu, prec).alpha;
-    }
-    if (all_meet(S, digits) && all_meet(alpha, digits)) {
-      x.integrals = std::move(I);
-      x.S = std::move(S);
-      x.alpha = std::move(alpha);
-      return;
-    }
-    if (bits > max_prec)
-      throw BudgetExceeded("could not refine the piecewise Moebius map's data to " + std::to_string(digits) +
-                           " digits within " + std::to_string(max_prec) +
-                           " bits of working precision (raise it with --max-prec)");
-  }
-}
-
 }  // namespace
 
 Reparameterization Reparameterization::refined(const Speed& sp, long digits, long max_prec) const {
@@ -266,9 +222,7 @@ Reparameterization Reparameterization::refined(const Speed& sp, long digits, lon
     refine_radical(y, sp, digits, max_prec);
     return Reparameterization(std::move(y));
   }
-  MoebiusResult y = *moebius_result();
-  refine_moebius(y, sp, digits, max_prec);
-  return Reparameterization(std::move(y));
+  return Reparameterization(refine_moebius_data(sp, *moebius_result(), digits, max_prec));
 }
 
 namespace {

@@ -181,6 +181,19 @@ MoebiusResult reparam_c1_traced(const Curve& c, SpeedKind kind, const Rational& 
 MoebiusResult make_rational(const Curve& c, const MoebiusResult& r, long rational_digits = 8,
                             const Options& opt = {});
 
+/// The same map r with its data recomputed to `digits`: S and alpha (and the
+/// integrals) meet `digits`. The map is the one r's method defines for r's
+/// breakpoints: for C0 the optimal alpha and S (moebius_c0), for C1 the S of
+/// the arc length and the C1 optimum (reparam_c1), for an exact rational map
+/// (rational == true) its exact S and alpha as balls of matching precision; so
+/// each refined ball lies in r's (up to rounding) and meets `digits`. Every
+/// other field is kept; an identically zero map is returned as is.
+/// \pre r was computed for the speed sp (not checkable); digits >= 1
+///      (InvalidArgument).
+/// \throws BudgetExceeded when `digits` cannot be met within max_prec bits or
+///         the thread's TimeBudget.
+MoebiusResult refine_moebius_data(const Speed& sp, const MoebiusResult& r, long digits, long max_prec);
+
 /// Enclosure of r(s) for s in [0, 1] (a real ball; where s overlaps a joint
 /// s_i, the union of both pieces' values). An exact s equal to an exact joint
 /// s_i (s = 0, s = 1) gives t_i's ball, exact for a dyadic t_i: r(0) = 0 and
