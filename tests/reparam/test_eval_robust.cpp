@@ -272,3 +272,34 @@ TEST(EvalRobust, RefinedMapIsTheSameMapKnownBetter) {
     }
   }
 }
+
+TEST(EvalRobust, RationalJointsAreWithinTheRelativeAccuracyOfTheTrueJoints) {
+  // With more --rational-digits than the map was computed to, the joints S
+  // must be refined first: each rounded s_j is certainly within 10^-d times
+  // the smaller neighbouring gap of the optimal s_j (computed to 60 digits).
+  Options o;
+  Options ref;
+  ref.digits = 60;
+  const Curve c = parse_curve(kCubic);
+  const MoebiusResult r = reparam_c0(c, SpeedKind::Angular, 4, o);
+  std::vector<RealAlgebraic> T;
+  for (const auto& b : r.T) T.push_back(b.t);
+  const MoebiusResult exact = moebius_c0(c, SpeedKind::Angular, T, ref);
+  for (long rd : {8L, 30L}) {
+    SCOPED_TRACE(rd);
+    const MoebiusResult q = make_rational(c, r, rd, o);
+    const Ball tol(pow10_inv(rd), 512);
+    for (std::size_t j = 1; j < q.pieces(); ++j) {
+      Ball d, left, right, gap;
+      const Ball sq(q.S_exact[j], 512);
+      arb_sub(d.get(), sq.get(), exact.S[j].get(), 512);
+      arb_abs(d.get(), d.get());
+      arb_sub(left.get(), exact.S[j].get(), exact.S[j - 1].get(), 512);
+      arb_sub(right.get(), exact.S[j + 1].get(), exact.S[j].get(), 512);
+      arb_min(gap.get(), left.get(), right.get(), 512);
+      arb_mul(gap.get(), gap.get(), tol.get(), 512);
+      EXPECT_TRUE(arb_le(d.get(), gap.get())) << "s_" << j << " = " << q.S_exact[j].str() << " vs "
+                                              << exact.S[j].str(65);
+    }
+  }
+}
