@@ -108,7 +108,7 @@ int run_sample(int argc, char** argv) {
   // A failed write (full disk, closed pipe) ends the command with status 1:
   // the output is incomplete.
   struct WriteFailed {};
-  auto check = [&out](long) {
+  auto check = [&out]() {
     if (!out) throw WriteFailed{};
   };
   long written = 0;
@@ -161,7 +161,7 @@ int run_sample(int argc, char** argv) {
           if (ch == '\n') line += "    ";
         }
         out << line;
-        check(k);
+        check();
         ++written;
       });
     } catch (const BudgetExceeded& e) {
@@ -179,13 +179,13 @@ int run_sample(int argc, char** argv) {
   for (std::size_t i = 0; i < n; ++i) out << "," << coordinate_name(i, n);
   out << ",speed\n";
   try {
-    sample_each(c, sp, r, K, opt.digits, opt.max_prec, [&](long k, const SamplePoint& p) {
+    sample_each(c, sp, r, K, opt.digits, opt.max_prec, [&](long, const SamplePoint& p) {
       std::string line = decimal_string(p.s, opt.digits) + "," + p.t.mid_decimal(opt.digits);
       for (const auto& b : p.point) line += "," + b.mid_decimal(opt.digits);
       line += ",";
       if (!p.at_joint) line += p.speed.mid_decimal(opt.digits);
       out << line << "\n";
-      check(k);
+      check();
       ++written;
     });
   } catch (const BudgetExceeded& e) {
