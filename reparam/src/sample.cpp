@@ -140,87 +140,11 @@ std::vector<Ball> Reparameterization::eval_point(const Curve& c, const Ball& s, 
   return c.eval(t, prec);
 }
 
-namespace {
-
-// out[0] = 0, out[N] = 1, out[i] = sum_{k<i} w_k / sum w (exact ends).
-std::vector<Ball> cumulative_unit(const std::vector<Ball>& w, long prec) {
-  Ball total(0);
-  for (const auto& x : w) arb_add(total.get(), total.get(), x.get(), prec);
-  std::vector<Ball> out{Ball(0)};
-  Ball acc(0);
-  for (std::size_t k = 0; k + 1 < w.size(); ++k) {
-    arb_add(acc.get(), acc.get(), w[k].get(), prec);
-    Ball q;
-    arb_div(q.get(), acc.get(), total.get(), prec);
-    out.push_back(q);
-  }
-  out.push_back(Ball(1));
-  return out;
-}
-
-bool all_meet(const std::vector<Ball>& v, long digits) {
-  for (const auto& b : v)
-    if (!b.meets_digits(digits)) return false;
-  return true;
-}
-
-std::vector<Ball> sqrts(const std::vector<PieceIntegrals>& I, Ball PieceIntegrals::*m, long prec) {
-  std::vector<Ball> out(I.size());
-  for (std::size_t i = 0; i < I.size(); ++i) arb_sqrtpos(out[i].get(), (I[i].*m).get(), prec);
-  return out;
-}
-
-std::vector<Ball> alphas(const std::vector<PieceIntegrals>& I) {
-  std::vector<Ball> out;
-  for (const auto& p : I) out.push_back(p.alpha);
-  return out;
-}
-
-// The radical map's data for its T at `digits`: the integrals of every
-// piece, S and Z (cumulative sqrt L and sqrt M), A, B, C (the integrals over
-// Delta s), each alpha; as radical() computes them.
-void refine_radical(RadicalResult& x, const Speed& sp, long digits, long max_prec) {
-  for (long bits = digits_to_bits(digits) + 8;; bits += 32) {
-    check_time_budget();
-    const long prec = 2 * bits + 64;
-    std::vector<PieceIntegrals> I = all_piece_integrals(sp, x.T, bits, max_prec);
-    std::vector<Ball> S = cumulative_unit(sqrts(I, &PieceIntegrals::L, prec), prec);
-    std::vector<Ball> Z = cumulative_unit(sqrts(I, &PieceIntegrals::M, prec), prec);
-    if (all_meet(S, digits) && all_meet(Z, digits) && all_meet(alphas(I), digits)) {
-      x.A.clear();
-      x.B.clear();
-      x.C.clear();
-      for (std::size_t i = 0; i < I.size(); ++i) {
-        Ball ds, q;
-        arb_sub(ds.get(), S[i + 1].get(), S[i].get(), prec);
-        arb_div(q.get(), I[i].A.get(), ds.get(), prec);
-        x.A.push_back(q);
-        arb_div(q.get(), I[i].B.get(), ds.get(), prec);
-        x.B.push_back(q);
-        arb_div(q.get(), I[i].C.get(), ds.get(), prec);
-        x.C.push_back(q);
-      }
-      x.integrals = std::move(I);
-      x.S = std::move(S);
-      x.Z = std::move(Z);
-      return;
-    }
-    if (bits > max_prec)
-      throw BudgetExceeded("could not refine the radical map's data to " + std::to_string(digits) +
-                           " digits within " + std::to_string(max_prec) +
-                           " bits of working precision (raise it with --max-prec)");
-  }
-}
-
-}  // namespace
-
 Reparameterization Reparameterization::refined(const Speed& sp, long digits, long max_prec) const {
   if (digits < 1) throw InvalidArgument("Reparameterization::refined: digits must be at least 1");
   if (acts_as_identity(*this)) return *this;
   if (const auto* x = radical_result()) {
-    RadicalResult y = *x;
-    refine_radical(y, sp, digits, max_prec);
-    return Reparameterization(std::move(y));
+    return Reparameterization(refine_radical_data(sp, *x, digits, max_prec));
   }
   return Reparameterization(refine_moebius_data(sp, *moebius_result(), digits, max_prec));
 }
