@@ -6,6 +6,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "output.hpp"
 #include "report.hpp"
 #include "uniparam/reparam/sample.hpp"
 
@@ -104,6 +105,7 @@ int run_sample(int argc, char** argv) {
   const Speed sp(c, kind);
   const std::size_t n = c.dimension();
   const long pd = printed_digits(opt.digits);
+  stream_stdout();  // the map is certified: the rows go out as they come
   std::ostream& out = std::cout;
   // A failed write (full disk, closed pipe) ends the command with status 1:
   // the output is incomplete.

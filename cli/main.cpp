@@ -90,15 +90,18 @@ int dispatch(int argc, char** argv, uniparam::cli::StdoutCapture& out, std::stri
 int main(int argc, char** argv) {
   std::string cmd;
   int status = 0;
-  std::string text;
+  std::string error;
+  bool streamed = false;
   {
     uniparam::cli::StdoutCapture out;
     status = dispatch(argc, argv, out, cmd);
-    text = out.take();
+    // The answer is complete: write it at once (or flush what streamed), and
+    // fail loudly if it cannot be.
+    streamed = out.streaming();
+    error = out.finish();
   }
-  // The answer is complete: write it at once, and fail loudly if it cannot be.
-  const std::string error = uniparam::cli::write_and_close(1, text);
-  if (!error.empty()) {
+  // A streaming command that failed has said why, a failed write included.
+  if (!error.empty() && !(streamed && status != 0)) {
     std::cerr << "uniparam" << (cmd.empty() ? "" : " " + cmd) << ": cannot write the output to stdout: " << error
               << "\n";
     return status != 0 ? status : 1;
