@@ -89,9 +89,13 @@ std::string StdoutCapture::finish() {
   return std::string();
 }
 
+std::string StdoutCapture::stream_error() const { return direct_ ? direct_->error() : std::string(); }
+
 void stream_stdout() {
   if (g_active) g_active->stream();
 }
+
+std::string stdout_stream_error() { return g_active ? g_active->stream_error() : std::string(); }
 
 std::string StdoutCapture::take() {
   std::string s = buffer_.str();

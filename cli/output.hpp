@@ -51,6 +51,8 @@ class StdoutCapture {
   void stream();
   /// Whether stream() has switched std::cout to file descriptor 1.
   bool streaming() const { return direct_ != nullptr; }
+  /// The first failed write's reason in streaming mode, else "".
+  std::string stream_error() const;
 
  private:
   class FdBuf;
@@ -64,6 +66,10 @@ class StdoutCapture {
 /// For a command whose answer is too large to hold in memory: call it after
 /// everything that can fail before the first byte has succeeded.
 void stream_stdout();
+
+/// The system's reason for the first failed write since stream_stdout()
+/// ("No space left on device", ...), or "" when none failed or nothing streams.
+std::string stdout_stream_error();
 
 /// Writes all of `text` to file descriptor `fd` (retrying short writes and
 /// EINTR) and closes `fd`, reporting the errors of the write and of the close
