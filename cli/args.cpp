@@ -9,19 +9,22 @@
 
 namespace uniparam::cli {
 
+long parse_long(const std::string& name, const std::string& s, long lo, long hi) {
+  char* end = nullptr;
+  errno = 0;
+  const long v = std::strtol(s.c_str(), &end, 10);
+  if (s.empty() || *end != '\0' || errno == ERANGE)
+    throw InvalidArgument(name + " expects an integer, got '" + s + "'");
+  if (v < lo || v > hi)
+    throw InvalidArgument(name + " must be between " + std::to_string(lo) + " and " + std::to_string(hi) + ", got " +
+                          s);
+  return v;
+}
+
 long Args::get_long(const std::string& n, long dflt, long lo, long hi) const {
   auto it = values.find(n);
   if (it == values.end()) return dflt;
-  const std::string& s = it->second;
-  char* end = nullptr;
-  errno = 0;
-  long v = std::strtol(s.c_str(), &end, 10);
-  if (s.empty() || *end != '\0' || errno == ERANGE)
-    throw InvalidArgument("--" + n + " expects an integer, got '" + s + "'");
-  if (v < lo || v > hi)
-    throw InvalidArgument("--" + n + " must be between " + std::to_string(lo) + " and " + std::to_string(hi) +
-                          ", got " + s);
-  return v;
+  return parse_long("--" + n, it->second, lo, hi);
 }
 
 bool curve_or_control(const CommandSpec& spec) {

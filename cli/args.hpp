@@ -43,6 +43,12 @@ struct Args {
   long get_long(const std::string& n, long dflt, long lo, long hi) const;
 };
 
+/// The integer `text` of the option or variable `name` ("--threads",
+/// "UNIPARAM_THREADS"), read in full (no sign-only, trailing characters or
+/// overflow). \pre lo <= hi.
+/// \throws InvalidArgument naming `name` when `text` is not an integer in [lo, hi].
+long parse_long(const std::string& name, const std::string& text, long lo, long hi);
+
 /// True when the command's first positional CURVE may be given as --control instead.
 bool curve_or_control(const CommandSpec& spec);
 

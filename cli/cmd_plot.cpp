@@ -1,11 +1,11 @@
 // cli/cmd_plot.cpp -- `uniparam plot CURVE -o FILE.svg|FILE.png`: ImUp's
 // three panels (ImUpPlotN / ImUpPlotU): p sampled at equal steps of t, p o r
-// sampled at equal steps of s, and the two speed functions, with axes, the
-// breakpoints and the certified uniformities in the captions.
+// sampled at equal steps of s (over the curve's adaptively sampled trace),
+// and the two speed functions, with axes, the breakpoints and the certified
+// uniformities in the captions.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <iostream>
 #include <stdexcept>
 
@@ -32,8 +32,10 @@ CommandSpec plot_spec() {
           "the reparameterized curve p o r at K equal steps of s, and the speed of p (against t)\n"
           "and of p o r (against s). The breakpoints p(t_i) are marked, the joints s_i of r\n"
           "drawn in the speed panel, and the captions give the certified u before and after.\n"
-          "Space curves are drawn in a projection, named in the picture. PNG output is\n"
-          "rendered from the SVG by rsvg-convert (Debian package librsvg2-bin) at 2x size.\n"
+          "The grey curve is p itself, sampled adaptively along it. Space curves are drawn\n"
+          "in a projection, named in the picture. PNG output is rendered from the SVG by\n"
+          "rsvg-convert (Debian package librsvg2-bin) at 2x size. The output file is checked\n"
+          "before computing (exit 2 with the reason when it cannot be written).\n"
           "When --method c1 misses its target, the best map is drawn and the exit status is 4.",
           {"CURVE"},
           opts};
@@ -166,8 +168,162 @@ void equal_aspect(Range& x, Range& y, double w, double h) {
   }
 }
 
+// ---- The trace: the curve itself, sampled in its own geometry ----------
+//
+// Equal steps of t can miss most of a curve (a circle with weights [1, 8e40,
+// 1e82] runs its whole arc for t below 1e-39). The trace starts from seeds
+// spread in t and in the curve's geometry (t_j = j/64 and r(j/64), r the
+// uniformizing map), then bisects each piece [a, b] in t until the chord
+// p(a)p(b) is at most kChordPx pixels long and p at a quarter, half and three
+// quarters of the piece lies within kFlatPx pixels of it. Parameters are exact
+// dyadic numbers (so pieces near t = 1 stay resolved), and each point is
+// evaluated with the precision raised until its ball is below kEvalPx pixels.
+
+constexpr double kPanelPx = 330;   // the curve panels' size
+constexpr double kChordPx = 8;     // longest segment of the trace
+constexpr double kFlatPx = 0.2;    // largest distance of a tested point from its segment
+constexpr double kEvalPx = 0.02;   // accuracy of a trace point
+constexpr int kMaxBisections = 1100;
+constexpr long kMaxTraceEvaluations = 200000;
+
+// The midpoint of an exact ball, as an exact ball clamped to [0, 1].
+Ball exact_unit(const Ball& b) {
+  Ball t;
+  arf_set(arb_midref(t.get()), arb_midref(b.get()));
+  if (arf_sgn(arb_midref(t.get())) < 0) arf_zero(arb_midref(t.get()));
+  if (arf_cmp_si(arb_midref(t.get()), 1) > 0) arf_one(arb_midref(t.get()));
+  return t;
+}
+
+Ball exact_middle(const Ball& a, const Ball& b) {
+  Ball m;
+  arb_add(m.get(), a.get(), b.get(), ARF_PREC_EXACT);
+  arb_mul_2exp_si(m.get(), m.get(), -1);
+  return m;
+}
+
+// p(t) projected, for an exact t, with balls below `tol` (data units; for
+// tol <= 0 below 2^-40 of the point's size). False when no finite point
+// came out within max_prec.
+bool trace_point(const Curve& c, const Projection& proj, const Ball& t, double tol, long max_prec, Point& out) {
+  const long bits = static_cast<long>(arf_bits(arb_midref(t.get())));
+  for (long prec = bits + 64;; prec *= 2) {
+    const std::vector<Ball> v = c.eval(t, prec);
+    std::vector<double> m;
+    double rad = 0, size = 0;
+    bool finite = true;
+    for (const auto& b : v) {
+      finite = finite && b.is_finite();
+      m.push_back(mid_double(b));
+      rad = std::max(rad, mag_get_d(arb_radref(b.get())));
+      size = std::max(size, std::fabs(m.back()));
+    }
+    out = proj(m);
+    // a projection adds at most 1.7 x the largest radius (isometric Y)
+    const bool good = finite && std::isfinite(out.first) && std::isfinite(out.second) &&
+                      1.7 * rad <= (tol > 0 ? tol : std::ldexp(size, -40));
+    if (good) return true;
+    if (prec >= std::max(max_prec, bits + 64)) return finite && std::isfinite(out.first) && std::isfinite(out.second);
+  }
+}
+
+double segment_distance(Point p, Point a, Point b) {
+  const double dx = b.first - a.first, dy = b.second - a.second;
+  const double l2 = dx * dx + dy * dy;
+  double u = l2 > 0 ? ((p.first - a.first) * dx + (p.second - a.second) * dy) / l2 : 0;
+  u = std::min(1.0, std::max(0.0, u));
+  return std::hypot(p.first - a.first - u * dx, p.second - a.second - u * dy);
+}
+
+/// The trace of c (projected) for the curve panels: a polyline from p(0) to
+/// p(1) whose segments are at most kChordPx pixels long and within about
+/// kFlatPx pixels of the curve at the scale of the panels (see above).
+/// \pre r was computed for c. Checks the time budget (BudgetExceeded).
+std::vector<Point> trace_curve(const Curve& c, const Reparameterization& r, const Projection& proj, long max_prec) {
+  // Seeds: equal steps of t and of s (through r), sorted, without repeats.
+  std::vector<Ball> seeds;
+  const int n = 64;
+  for (int j = 0; j <= n; ++j) seeds.push_back(Ball(Rational(j, n), 64));  // dyadic: exact
+  for (int j = 1; j < n; ++j) {
+    check_time_budget();
+    try {
+      const Ball t = r.eval_r(Ball(Rational(j, n), 128), 128);
+      if (arf_is_finite(arb_midref(t.get()))) seeds.push_back(exact_unit(t));
+    } catch (const BudgetExceeded&) {
+      throw;
+    } catch (const Error&) {
+      // a seed is only a starting point: the equal steps of t remain
+    }
+  }
+  std::sort(seeds.begin(), seeds.end(),
+            [](const Ball& a, const Ball& b) { return arf_cmp(arb_midref(a.get()), arb_midref(b.get())) < 0; });
+  seeds.erase(std::unique(seeds.begin(), seeds.end(),
+                          [](const Ball& a, const Ball& b) { return arf_equal(arb_midref(a.get()), arb_midref(b.get())); }),
+              seeds.end());
+  std::vector<Ball> ts;
+  std::vector<Point> ps;
+  Range xr, yr;
+  for (const auto& t : seeds) {
+    Point p;
+    if (!trace_point(c, proj, t, 0, max_prec, p)) continue;
+    ts.push_back(t);
+    ps.push_back(p);
+    xr.add(p.first);
+    yr.add(p.second);
+  }
+  if (ps.size() < 2) return ps;
+  double extent = std::max(xr.hi - xr.lo, yr.hi - yr.lo);
+  if (!(extent > 0)) extent = std::max({1.0, std::fabs(xr.lo), std::fabs(yr.lo)});
+  const double px = extent * 1.12 / kPanelPx;  // data per pixel (the panels pad by 6% a side)
+  const double chord = kChordPx * px, flat = kFlatPx * px, tol = kEvalPx * px;
+
+  struct Piece {
+    Ball ta, tb;
+    Point pa, pb;
+    int depth = 0;
+    bool has_mid = false;
+    Ball tm;
+    Point pm;
+  };
+  std::vector<Point> out = {ps.front()};
+  long evaluations = 0;
+  std::vector<Piece> stack;
+  for (std::size_t i = ps.size() - 1; i > 0; --i) stack.push_back({ts[i - 1], ts[i], ps[i - 1], ps[i], 0, false, {}, {}});
+  while (!stack.empty()) {
+    Piece q = std::move(stack.back());
+    stack.pop_back();
+    check_time_budget();
+    if (q.depth >= kMaxBisections || evaluations >= kMaxTraceEvaluations) {
+      out.push_back(q.pb);
+      continue;
+    }
+    if (!q.has_mid) {
+      q.tm = exact_middle(q.ta, q.tb);
+      ++evaluations;
+      if (!trace_point(c, proj, q.tm, tol, max_prec, q.pm)) { out.push_back(q.pb); continue; }
+    }
+    const Ball t1 = exact_middle(q.ta, q.tm), t3 = exact_middle(q.tm, q.tb);
+    Point p1, p3;
+    evaluations += 2;
+    if (!trace_point(c, proj, t1, tol, max_prec, p1) || !trace_point(c, proj, t3, tol, max_prec, p3)) {
+      out.push_back(q.pb);
+      continue;
+    }
+    const bool done = std::hypot(q.pb.first - q.pa.first, q.pb.second - q.pa.second) <= chord &&
+                      segment_distance(p1, q.pa, q.pb) <= flat && segment_distance(q.pm, q.pa, q.pb) <= flat &&
+                      segment_distance(p3, q.pa, q.pb) <= flat;
+    if (done) {
+      out.push_back(q.pb);
+      continue;
+    }
+    stack.push_back({q.tm, q.tb, q.pm, q.pb, q.depth + 1, true, t3, p3});
+    stack.push_back({q.ta, q.tm, q.pa, q.pm, q.depth + 1, true, t1, p1});
+  }
+  return out;
+}
+
 struct PlotData {
-  std::vector<Point> trace;                 // the curve, dense (projected)
+  std::vector<Point> trace;                 // the curve (projected), trace_curve
   std::vector<Point> before, after;         // the K samples (projected)
   std::vector<Point> breakpoints;           // p(t_i), interior i
   std::vector<Point> speed_before;          // (t, sigma_p(t)), dense
@@ -177,14 +333,14 @@ struct PlotData {
 };
 
 PlotData collect(const Curve& c, const Speed& sp, const Reparameterization& r, const Samples& smp,
-                 const Projection& proj) {
+                 const Projection& proj, long max_prec) {
   const long prec = 64;
   PlotData d;
+  d.trace = trace_curve(c, r, proj, max_prec);
   const Reparameterization id = Reparameterization::identity(r.mu(), r.u_before());
   const int dense = 800;
   for (int j = 0; j <= dense; ++j) {
     const Ball t(Rational(j, dense), prec);
-    d.trace.push_back(proj(mids(id.eval_point(c, t, prec))));
     d.speed_before.push_back({static_cast<double>(j) / dense, mid_double(id.eval_speed(sp, t, prec))});
   }
   for (const auto& p : smp.before) d.before.push_back(proj(mids(p.point)));
@@ -227,31 +383,35 @@ std::string method_title(const Reparameterization& r, const Args& a) {
   return "Optimal C0 piecewise M\u00f6bius reparameterization (" + pieces + ")";
 }
 
-std::string elide(const std::string& s, std::size_t max_chars) {
-  // counts bytes; the pretty curve text is mostly ASCII
-  if (s.size() <= max_chars) return s;
-  std::size_t keep = max_chars / 2 - 2;
-  // do not cut a UTF-8 sequence
-  std::size_t a = keep, b = s.size() - keep;
-  while (a > 0 && (static_cast<unsigned char>(s[a]) & 0xC0) == 0x80) --a;
-  while (b < s.size() && (static_cast<unsigned char>(s[b]) & 0xC0) == 0x80) ++b;
-  return s.substr(0, a) + " \u2026 " + s.substr(b);
-}
-
 std::string render(const Curve& c, SpeedKind kind, const Reparameterization& r, const PlotData& d,
                    const Projection& proj, long K, const Args& a) {
-  const double col = 430, plot = 330, left0 = 78, top = proj.caption.empty() ? 84 : 102;
-  const double W = 3 * col + 20, H = top + plot + 168;
+  const double col = 430, plot = 330, left0 = 78;
+  const double W = 3 * col + 20;
+  // Title, subtitle (the curve) and projection, wrapped to the page: the
+  // curve panels start below them.
+  const double text_w = W - 40;
+  const auto title = svg::wrap_text(
+      method_title(r, a) + ", " + (kind == SpeedKind::Angular ? "angular" : "parametric") + " speed", 18, text_w, true, 2);
+  const auto subtitle = svg::wrap_text("p(t) = " + pretty(c.str()), 13, text_w, false, 4);
+  const auto projection =
+      proj.caption.empty() ? std::vector<std::string>{} : svg::wrap_text("drawn in the " + proj.caption, 12, text_w, false, 2);
+  double y = 30;
+  std::vector<std::pair<double, std::string>> title_at, subtitle_at, projection_at;
+  for (std::size_t i = 0; i < title.size(); ++i) title_at.push_back({y += i ? 22 : 0, title[i]});
+  y += 24;
+  for (std::size_t i = 0; i < subtitle.size(); ++i) subtitle_at.push_back({y += i ? 17 : 0, subtitle[i]});
+  if (!projection.empty()) y += 20;
+  for (std::size_t i = 0; i < projection.size(); ++i) projection_at.push_back({y += i ? 15 : 0, projection[i]});
+  const double top = y + (projection.empty() ? 30 : 28);
+  const double H = top + plot + 168;
   svg::Document doc(W, H);
   doc.comment("uniparam plot: p(t) = " + c.str() + "; speed " + to_string(kind) + "; method " + r.method() + "; " +
               std::to_string(r.pieces()) + " pieces; u before " + r.u_before().mid_decimal(10) + ", u after " +
               r.u_after().mid_decimal(10));
-  // Title and subtitle
   doc.begin_group("title");
-  doc.text({W / 2, 30}, method_title(r, a) + ", " + (kind == SpeedKind::Angular ? "angular" : "parametric") + " speed",
-           18, Anchor::Middle, "#111", true);
-  doc.text({W / 2, 54}, "p(t) = " + elide(pretty(c.str()), 190), 13, Anchor::Middle, "#333");
-  if (!proj.caption.empty()) doc.text({W / 2, 74}, "drawn in the " + proj.caption, 12, Anchor::Middle, "#555");
+  for (const auto& [yy, line] : title_at) doc.text({W / 2, yy}, line, 18, Anchor::Middle, "#111", true);
+  for (const auto& [yy, line] : subtitle_at) doc.text({W / 2, yy}, line, 13, Anchor::Middle, "#333");
+  for (const auto& [yy, line] : projection_at) doc.text({W / 2, yy}, line, 12, Anchor::Middle, "#555");
   doc.end_group();
 
   const bool angular = kind == SpeedKind::Angular;
@@ -413,6 +573,23 @@ int run_plot(int argc, char** argv) {
   const bool png = ends_with(".png");
   if (out != "-" && !png && !ends_with(".svg"))
     throw InvalidArgument("-o: the file name must end in .svg or .png (or be - for SVG on stdout), got '" + out + "'");
+  // The output is checked before any computing: a file that cannot be
+  // written, or PNG without rsvg-convert, fails at once.
+  if (out != "-") {
+    try {
+      svg::check_writable(out);
+    } catch (const std::runtime_error& e) {
+      throw InvalidArgument(e.what());
+    }
+    if (png) {
+      try {
+        svg::find_rsvg_convert();
+      } catch (const std::runtime_error& e) {
+        std::cerr << "uniparam plot: " << e.what() << "\n";
+        return 1;
+      }
+    }
+  }
   // 15 digits (no --digits): the drawing evaluates r next to its joints (1e-9
   // of a piece inside), so the joints must be known far better than that.
   const Options opt = read_options(a);
@@ -424,7 +601,7 @@ int run_plot(int argc, char** argv) {
   const Speed sp(c, kind);
   // The dots need only drawing accuracy; they are certified to 6 digits anyway.
   const Samples smp = sample(c, sp, r, K, std::min<long>(6, opt.digits), opt.max_prec);
-  const PlotData d = collect(c, sp, r, smp, proj);
+  const PlotData d = collect(c, sp, r, smp, proj, opt.max_prec);
   const std::string text = render(c, kind, r, d, proj, K, a);
   if (out == "-") {
     std::cout << text;
@@ -434,10 +611,7 @@ int run_plot(int argc, char** argv) {
     if (png) {
       svg::write_png(text, out, 2);
     } else {
-      std::ofstream f(out, std::ios::binary);
-      f << text;
-      f.close();
-      if (!f) throw std::runtime_error("cannot write " + out);
+      svg::write_file(out, text);
     }
   } catch (const std::runtime_error& e) {
     if (dynamic_cast<const Error*>(&e)) throw;

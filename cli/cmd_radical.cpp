@@ -6,6 +6,7 @@
 #include "report.hpp"
 #include "uniparam/reparam/formula.hpp"
 #include "uniparam/reparam/radical.hpp"
+#include "uniparam/reparam/sample.hpp"
 
 namespace uniparam::cli {
 
@@ -53,24 +54,14 @@ int run_radical(int argc, char** argv) {
     if (*at < Rational(0) || *at > Rational(1)) throw InvalidArgument("--at must lie in [0, 1], got " + at->str());
   }
   const RadicalResult r = radical(c, kind, opt);
-  // Certified values at z = --at, to the requested digits.
-  struct AtValues { Ball r, speed; std::vector<Ball> point; };
-  std::optional<AtValues> atv;
+  // Certified values at z = --at, to the requested digits: r's data are
+  // refined as far as the evaluation needs (an ill-conditioned map needs them
+  // to more digits than the report), within --max-prec.
+  std::optional<SamplePoint> atv;
   if (at) {
     const Speed s(c, kind);
-    for (long prec = digits_to_bits(opt.digits) + 32;; prec *= 2) {
-      const Ball z(*at, prec);
-      AtValues v{radical_eval_r(r, z, prec), radical_eval_speed(r, s, z, prec), radical_eval_point(c, r, z, prec)};
-      bool ok = v.r.meets_digits(opt.digits + 1) && v.speed.meets_digits(opt.digits + 1);
-      for (const auto& b : v.point) ok = ok && b.meets_digits(opt.digits + 1);
-      if (ok || prec > opt.max_prec) {
-        if (!ok)
-          throw BudgetExceeded("could not certify r(z) at --at " + at->str() + " to " + std::to_string(opt.digits) +
-                               " digits (the breakpoints and alpha are known to that accuracy only)");
-        atv = std::move(v);
-        break;
-      }
-    }
+    Sampler ev(c, s, Reparameterization(r), opt.digits + 1, opt.max_prec);
+    atv = ev.at(*at);
   }
   const long pd = printed_digits(opt.digits);
   const auto formulas = radical_formulas(c, r, fmt, opt.digits);
@@ -130,11 +121,12 @@ int run_radical(int argc, char** argv) {
     if (atv) {
       Json e = Json::object();
       e.set("z", json_rational(*at, pd));
-      e.set("r", json_ball(atv->r, pd));
+      e.set("r", json_ball(atv->t, pd));
       Json pt = Json::array();
       for (const auto& b : atv->point) pt.push(json_ball(b, pd));
       e.set("p_r", pt);
       e.set("speed", json_ball(atv->speed, pd));
+      e.set("at_joint", Json::boolean(atv->at_joint));
       j.set("at", e);
     }
     std::cout << j.dump(2) << "\n";
@@ -178,10 +170,11 @@ int run_radical(int argc, char** argv) {
             << "u(p o r)   " << format_ball(r.u_after, pd, Format::Text) << "\n"
             ;
   if (atv) {
-    std::cout << "at z = " << at->str() << ": r(z) = " << format_ball(atv->r, pd, Format::Text) << "\n  p(r(z)) = (";
+    std::cout << "at z = " << at->str() << ": r(z) = " << format_ball(atv->t, pd, Format::Text) << "\n  p(r(z)) = (";
     for (std::size_t k = 0; k < atv->point.size(); ++k)
       std::cout << (k ? ", " : "") << format_ball(atv->point[k], pd, Format::Text);
-    std::cout << ")\n  speed of p o r = " << format_ball(atv->speed, pd, Format::Text) << "\n";
+    std::cout << ")\n  speed of p o r = " << format_ball(atv->speed, pd, Format::Text)
+              << (atv->at_joint ? " (z is on a joint: the union of both one-sided speeds)" : "") << "\n";
   }
   std::cout << "(every number is certified to " << opt.digits
             << " digits; the formulas print ball midpoints)\n";

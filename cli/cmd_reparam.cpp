@@ -41,7 +41,7 @@ int run_reparam(int argc, char** argv) {
   long pieces = 0;
   Rational target;
   std::vector<RealAlgebraic> T;
-  const long max_pieces = a.get_long("max-pieces", 64, 1, 1000);
+  const long max_pieces = a.get_long("max-pieces", 64, 1, kMaxPiecesLimit);
   if (a.has("pieces")) pieces = a.get_long("pieces", 1, 1, 1000);
   if (a.has("breakpoints")) T = parse_breakpoints(a.get("breakpoints", ""));
   if (a.has("target")) {
@@ -56,9 +56,7 @@ int run_reparam(int argc, char** argv) {
   r = finish_moebius(c, r, a, opt);
   print_moebius(c, r, opt.digits, how);
   if (r.target.used && !r.target.reached) {
-    std::cerr << "uniparam: the target u >= " << r.target.value.str() << " was not reached within " << max_pieces
-              << " pieces; the best map found is printed (u = " << r.u_after.mid_decimal(8)
-              << "); raise --max-pieces to try more pieces\n";
+    std::cerr << "uniparam reparam: " << target_missed_message(r, max_pieces, opt.digits) << "\n";
     return 4;
   }
   return 0;

@@ -3,8 +3,10 @@
 // --method options shared with `uniparam plot`.
 #include <algorithm>
 #include <iostream>
+#include <string>
 
 #include "commands.hpp"
+#include "output.hpp"
 #include "report.hpp"
 #include "uniparam/reparam/sample.hpp"
 
@@ -70,7 +72,11 @@ CommandSpec sample_spec() {
           "Where s falls on a joint of r whose side cannot be decided, the speed is\n"
           "two-sided: CSV leaves it empty, JSON gives the union and \"at_joint\": true.\n"
           "--method none samples the original p (s = t). When --method c1 misses its\n"
-          "target, the best map is sampled and the exit status is 4.",
+          "target, the best map is sampled and the exit status is 4.\n"
+          "The map is certified before the first row; the rows then stream out as they\n"
+          "are certified (r's data refined where a row needs it). A row that cannot be\n"
+          "certified within --max-prec or --timeout ends the output with an error\n"
+          "naming the rows written (exit 4).",
           {"CURVE"},
           opts};
 }
@@ -87,28 +93,36 @@ int run_sample(int argc, char** argv) {
     throw InvalidArgument("unknown format '" + format + "' (expected csv or json)");
   if (a.flag("json") && format != "json") throw InvalidArgument("--json conflicts with --format " + format);
   const Curve c = read_curve(a);
-  // r's data are balls of fixed accuracy: compute them with 3 more digits than
-  // the samples must meet.
+  // The map is certified completely (u, joints, data to 3 more digits than
+  // the samples) before the first byte; the samples then stream out one row
+  // at a time (memory independent of K). A sample refines r's data when it
+  // needs more (Sampler): that can fail only at the --max-prec or --timeout
+  // budget, and then the rows written so far are followed by an error and
+  // exit status 4 (see incomplete()).
   Options ropt = opt;
   ropt.digits = opt.digits + 3;
-  Reparameterization r = read_method(a, c, kind, ropt, true);
+  const Reparameterization r = read_method(a, c, kind, ropt, true);
   const Speed sp(c, kind);
-  Samples smp = sample(c, sp, r, K, opt.digits, opt.max_prec);
-  if (!meets_digits(smp, opt.digits)) {
-    // A sample on a joint where the speed vanishes with multiplicity k - 1: r
-    // is Hoelder-1/k there, so r's data need k times the digits.
-    long k = 2;
-    if (const auto* x = r.radical_result())
-      for (std::size_t i = 0; i < x->pieces(); ++i) k = std::max<long>(k, x->root_index(i));
-    ropt.digits = std::min<long>(10000, k * opt.digits + 3);
-    r = read_method(a, c, kind, ropt, true);
-    smp = sample(c, sp, r, K, opt.digits, opt.max_prec);
-    if (!meets_digits(smp, opt.digits))
-      throw BudgetExceeded("could not certify the samples on the joints of r to " + std::to_string(opt.digits) +
-                           " digits (r computed to " + std::to_string(ropt.digits) + " digits)");
-  }
   const std::size_t n = c.dimension();
   const long pd = printed_digits(opt.digits);
+  stream_stdout();  // the map is certified: the rows go out as they come
+  std::ostream& out = std::cout;
+  // A failed write (full disk, closed pipe) ends the command with status 1:
+  // the output is incomplete.
+  struct WriteFailed {};
+  auto check = [&out]() {
+    if (!out) throw WriteFailed{};
+  };
+  long written = 0;
+  auto write_failed = [&]() {
+    std::cerr << "uniparam sample: cannot write the output (" << written << " of " << K
+              << " rows written; the output is incomplete)\n";
+    return 1;
+  };
+  auto incomplete = [&](const BudgetExceeded& e) {
+    return BudgetExceeded("the output is incomplete (" + std::to_string(written) +
+                          " of " + std::to_string(K) + " rows written): " + e.what());
+  };
 
   if (format == "json") {
     Json j = Json::object();
@@ -127,32 +141,63 @@ int run_sample(int argc, char** argv) {
     joints.set("s", js);
     joints.set("t", jt);
     j.set("joints", joints);
-    Json rows = Json::array();
-    for (const auto& p : smp.after) {
-      Json row = Json::object();
-      row.set("s", json_rational(p.s, pd));
-      row.set("t", json_ball(p.t, pd));
-      Json pt = Json::array();
-      for (const auto& b : p.point) pt.push(json_ball(b, pd));
-      row.set("point", pt);
-      row.set("speed", json_ball(p.speed, pd));
-      row.set("at_joint", Json::boolean(p.at_joint));
-      rows.push(row);
+    // The document as Json::dump(2) would print it with "samples" last: the
+    // header without its closing brace, then each row indented two levels.
+    std::string head = j.dump(2);
+    head.resize(head.size() - 2);  // "\n}"
+    out << head << ",\n  \"samples\": [";
+    try {
+      sample_each(c, sp, r, K, opt.digits, opt.max_prec, [&](long k, const SamplePoint& p) {
+        Json row = Json::object();
+        row.set("s", json_rational(p.s, pd));
+        row.set("t", json_ball(p.t, pd));
+        Json pt = Json::array();
+        for (const auto& b : p.point) pt.push(json_ball(b, pd));
+        row.set("point", pt);
+        row.set("speed", json_ball(p.speed, pd));
+        row.set("at_joint", Json::boolean(p.at_joint));
+        std::string text = row.dump(2);
+        std::string line = k ? ",\n    " : "\n    ";
+        for (char ch : text) {
+          line += ch;
+          if (ch == '\n') line += "    ";
+        }
+        out << line;
+        check();
+        ++written;
+      });
+    } catch (const BudgetExceeded& e) {
+      out.flush();
+      throw incomplete(e);
+    } catch (const WriteFailed&) {
+      return write_failed();
     }
-    j.set("samples", rows);
-    std::cout << j.dump(2) << "\n";
+    out << "\n  ]\n}\n";
+    out.flush();
+    if (!out) return write_failed();
     return target_status(r, "sample");
   }
-  std::cout << "s,t";
-  for (std::size_t i = 0; i < n; ++i) std::cout << "," << coordinate_name(i, n);
-  std::cout << ",speed\n";
-  for (const auto& p : smp.after) {
-    std::cout << decimal_string(p.s, opt.digits) << "," << p.t.mid_decimal(opt.digits);
-    for (const auto& b : p.point) std::cout << "," << b.mid_decimal(opt.digits);
-    std::cout << ",";
-    if (!p.at_joint) std::cout << p.speed.mid_decimal(opt.digits);
-    std::cout << "\n";
+  out << "s,t";
+  for (std::size_t i = 0; i < n; ++i) out << "," << coordinate_name(i, n);
+  out << ",speed\n";
+  try {
+    sample_each(c, sp, r, K, opt.digits, opt.max_prec, [&](long, const SamplePoint& p) {
+      std::string line = decimal_string(p.s, opt.digits) + "," + p.t.mid_decimal(opt.digits);
+      for (const auto& b : p.point) line += "," + b.mid_decimal(opt.digits);
+      line += ",";
+      if (!p.at_joint) line += p.speed.mid_decimal(opt.digits);
+      out << line << "\n";
+      check();
+      ++written;
+    });
+  } catch (const BudgetExceeded& e) {
+    out.flush();
+    throw incomplete(e);
+  } catch (const WriteFailed&) {
+    return write_failed();
   }
+  out.flush();
+  if (!out) return write_failed();
   return target_status(r, "sample");
 }
 

@@ -1,6 +1,7 @@
 // cli/commands.cpp -- the table of subcommands and their shared options.
 #include "commands.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -16,16 +17,24 @@ namespace {
 
 constexpr const char* kDefaultTimeout = "600";
 
-/// The backstop of --timeout. The engine checks its TimeBudget cooperatively,
-/// but a single Arb call (computing Gauss-Legendre nodes at thousands of bits,
-/// say) can run for minutes without returning. If the command is still
-/// running 5% + 2 s after its deadline, this thread reports the budget error
-/// and ends the process with exit code 4 (nothing has been printed to stdout:
-/// the commands print only after computing).
+/// The range of --threads and UNIPARAM_THREADS.
+constexpr long kMaxThreads = 64;
+
+/// The backstop of --timeout. The engine checks its TimeBudget cooperatively
+/// in every long loop, but a single Arb or FLINT call (one product or gcd of
+/// huge polynomials, say) runs to its end without looking at the clock. If
+/// the command is still running watchdog_grace() after its deadline, this
+/// thread reports the budget error and ends the process with exit code 4
+/// (stdout stays empty: main() writes the answer only after the command has
+/// returned, cli/output.hpp).
+/// The grace: max(0.4 s, 8% of the budget), inside the promise of
+/// docs/robustness.md that --timeout T stops within max(0.5 s, 10% of T).
+double watchdog_grace(double seconds) { return std::max(0.4, 0.08 * seconds); }
+
 class Watchdog {
  public:
   Watchdog(double seconds, std::string command) {
-    const auto grace = std::chrono::duration<double>(seconds * 1.05 + 2.0);
+    const auto grace = std::chrono::duration<double>(seconds + watchdog_grace(seconds));
     thread_ = std::thread([this, grace, seconds, command = std::move(command)] {
       std::unique_lock<std::mutex> lock(mutex_);
       if (done_cv_.wait_for(lock, grace, [this] { return done_; })) return;
@@ -142,10 +151,13 @@ int run_command(const Command& c, int argc, char** argv, bool watchdog) {
   const Args a = parse_args(c.spec, argc, argv, 2);
   if (a.help) return c.run(argc, argv);
   const double seconds = read_timeout(a);
+  // Every parallel loop reads UNIPARAM_THREADS (core/parallel.hpp): --threads
+  // sets it, and a value given in the environment passes the same check.
   if (a.has("threads")) {
-    // Every parallel loop reads UNIPARAM_THREADS (core/parallel.hpp).
-    const long n = a.get_long("threads", 1, 1, 64);
+    const long n = a.get_long("threads", 1, 1, kMaxThreads);
     setenv("UNIPARAM_THREADS", std::to_string(n).c_str(), 1);
+  } else if (const char* e = std::getenv("UNIPARAM_THREADS"); e && *e) {
+    parse_long("UNIPARAM_THREADS", e, 1, kMaxThreads);
   }
   const TimeBudget budget(seconds);
   if (!watchdog) return c.run(argc, argv);

@@ -44,10 +44,13 @@ Curve read_curve(const Args& a);
 BezierCurve read_bezier(const Args& a);
 
 /// Runs a command under a TimeBudget of --timeout seconds (so every command
-/// of the table gets the time limit): argv[1] is the command name. With
+/// of the table gets the time limit): argv[1] is the command name. The
+/// worker count is --threads N, else a non-empty UNIPARAM_THREADS, both
+/// integers from 1 to 64 (InvalidArgument naming the one at fault). With
 /// `watchdog`, a backstop thread ends the process with exit code 4 and the
-/// budget message if the command overruns its deadline by 5% + 2 s inside a
-/// call that cannot notice the TimeBudget (the fuzz driver runs without it).
+/// budget message if the command overruns its deadline by max(0.4 s, 8%)
+/// inside a call that cannot notice the TimeBudget (the fuzz driver runs
+/// without it).
 /// \throws whatever the command throws; InvalidArgument for bad arguments.
 int run_command(const Command& c, int argc, char** argv, bool watchdog = true);
 

@@ -2,12 +2,14 @@
 //
 // Exit codes: 0 success; 2 usage error or invalid input (bad option, parse
 // error); 3 domain error (the curve is not regular on [0, 1], ...);
-// 4 budget exceeded (could not certify within the limits); 1 anything else.
+// 4 budget exceeded (could not certify within the limits); 1 anything else,
+// among it an answer that could not be written to stdout (cli/output.hpp).
 #include <cstring>
 #include <iostream>
 #include <string>
 
 #include "commands.hpp"
+#include "output.hpp"
 #include "uniparam/uniparam.hpp"
 
 namespace {
@@ -38,11 +40,14 @@ const char* kMainHelp =
     "Run 'uniparam COMMAND --help' for the options of a command.\n"
     "Exit codes: 0 ok, 2 invalid input or option, 3 curve not regular on [0,1],\n"
     "4 a budget exceeded (precision, degree, size, length, depth or time: the\n"
-    "message names the option that raises it), 1 other error.\n";
+    "message names the option that raises it), 1 other error (among them an\n"
+    "answer that could not be written: a full disk, a closed pipe).\n";
 
-}  // namespace
-
-int main(int argc, char** argv) {
+/// Runs the command of argv (or the main help); its answer goes to std::cout
+/// (captured by main), errors to stderr. An exception discards what the
+/// command printed so far, so a failed command prints nothing on stdout.
+/// \returns the exit status; `cmd` is the command's name ("" for the help).
+int dispatch(int argc, char** argv, uniparam::cli::StdoutCapture& out, std::string& cmd) {
   using namespace uniparam;
   if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h") || !std::strcmp(argv[1], "help")) {
     if (argc < 2) {  // a usage error: the help goes to stderr
@@ -56,29 +61,52 @@ int main(int argc, char** argv) {
     std::cout << "uniparam 0.1.0\n";
     return 0;
   }
-  const std::string cmd = argv[1];
+  cmd = argv[1];
+  auto fail = [&](const std::string& message, int status) {
+    out.discard();
+    std::cerr << "uniparam " << cmd << ": " << message << "\n";
+    return status;
+  };
   try {
     for (const auto& c : cli::commands())
       if (c.spec.name == cmd) return cli::run_command(c, argc, argv);
     std::cerr << "uniparam: unknown command '" << cmd << "' (run 'uniparam --help' for the list)\n";
     return 2;
   } catch (const ParseError& e) {
-    std::cerr << "uniparam " << cmd << ": " << e.what() << "\n";
-    return 2;
+    return fail(e.what(), 2);
   } catch (const InvalidArgument& e) {
-    std::cerr << "uniparam " << cmd << ": " << e.what() << "\n";
-    return 2;
+    return fail(e.what(), 2);
   } catch (const DomainError& e) {
-    std::cerr << "uniparam " << cmd << ": " << e.what() << "\n";
-    return 3;
+    return fail(e.what(), 3);
   } catch (const BudgetExceeded& e) {
-    std::cerr << "uniparam " << cmd << ": " << e.what() << "\n";
-    return 4;
+    return fail(e.what(), 4);
   } catch (const std::bad_alloc&) {
-    std::cerr << "uniparam " << cmd << ": out of memory\n";
-    return 1;
+    return fail("out of memory", 1);
   } catch (const std::exception& e) {
-    std::cerr << "uniparam " << cmd << ": internal error: " << e.what() << "\n";
-    return 1;
+    return fail(std::string("internal error: ") + e.what(), 1);
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string cmd;
+  int status = 0;
+  std::string error;
+  bool streamed = false;
+  {
+    uniparam::cli::StdoutCapture out;
+    status = dispatch(argc, argv, out, cmd);
+    // The answer is complete: write it at once (or flush what streamed), and
+    // fail loudly if it cannot be.
+    streamed = out.streaming();
+    error = out.finish();
+  }
+  // A streaming command that failed has said why, a failed write included.
+  if (!error.empty() && !(streamed && status != 0)) {
+    std::cerr << "uniparam" << (cmd.empty() ? "" : " " + cmd) << ": cannot write the output to stdout: " << error
+              << "\n";
+    return status != 0 ? status : 1;
+  }
+  return status;
 }

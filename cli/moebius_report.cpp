@@ -101,4 +101,23 @@ void print_moebius(const Curve& c, const MoebiusResult& r, long digits, const Mo
   }
 }
 
+std::string missed_u_text(const Ball& u, const Rational& target, long digits) {
+  for (long k = 8; k <= printed_digits(digits); ++k) {
+    const std::string text = u.mid_decimal(k);
+    if (Rational::parse(text) < target) return text;
+  }
+  return format_ball(u, printed_digits(digits), Format::Text);
+}
+
+std::string target_missed_message(const MoebiusResult& r, long max_pieces, long digits) {
+  std::string m = "the target u >= " + r.target.value.str() + " was not reached with at most " +
+                  std::to_string(max_pieces) + (max_pieces == 1 ? " piece" : " pieces") +
+                  "; the best map found is printed (" + std::to_string(r.pieces()) +
+                  (r.pieces() == 1 ? " piece" : " pieces") + ", u = " +
+                  missed_u_text(r.u_after, r.target.value, digits) + "); ";
+  if (max_pieces < kMaxPiecesLimit)
+    return m + "raise --max-pieces (at most " + std::to_string(kMaxPiecesLimit) + ") to try more pieces";
+  return m + std::to_string(kMaxPiecesLimit) + " pieces is the most --max-pieces allows: lower --target";
+}
+
 }  // namespace uniparam::cli

@@ -22,4 +22,18 @@ MoebiusPrint read_moebius_print(const Args& a);
 /// optimiser / target when set.
 void print_moebius(const Curve& c, const MoebiusResult& r, long digits, const MoebiusPrint& how);
 
+/// The largest --max-pieces the commands accept.
+constexpr long kMaxPiecesLimit = 1000;
+
+/// The uniformity `u` of a map that missed `target` (its midpoint below the
+/// target), as the shortest decimal of 8 to `digits` + 3 significant digits
+/// that lies below the target, so that it never reads as reaching it
+/// ("1" for 0.9999999996); the certified ball when none does.
+std::string missed_u_text(const Ball& u, const Rational& target, long digits);
+
+/// The message of a C1 map r (r.target.used, not reached) refined up to
+/// `max_pieces` pieces: the target, the u reached (missed_u_text), and what
+/// to change: raise --max-pieces below kMaxPiecesLimit, else lower --target.
+std::string target_missed_message(const MoebiusResult& r, long max_pieces, long digits);
+
 }  // namespace uniparam::cli

@@ -4,26 +4,7 @@
 
 namespace uniparam::cli {
 
-std::pair<Rational, Rational> short_interval(const RealAlgebraic& x) {
-  // Widen the (possibly long) current interval to decimals with few digits,
-  // keeping it isolating: exactly one root inside, no root at either end.
-  for (long d = 2; d <= 200; d *= 2) {
-    Ball b = x.to_ball(static_cast<long>(d * 3.33) + 16);
-    const std::string step = "1e-" + std::to_string(d);
-    Rational h = Rational::parse(step);
-    Rational mid = Rational::parse(decimal_string(x.lo(), d + 2));
-    // round to multiples of 10^-d around the interval
-    Rational lo = mid - h, hi = mid + h;
-    while (lo > x.lo()) lo = lo - h;
-    while (hi < x.hi()) hi = hi + h;
-    lo = Rational::parse(decimal_string(lo, d + 2));
-    hi = Rational::parse(decimal_string(hi, d + 2));
-    if (lo > x.lo() || hi < x.hi()) continue;
-    if (x.poly().sign_at(lo) != 0 && x.poly().sign_at(hi) != 0 && count_real_roots(x.poly(), lo, hi) == 1)
-      return {lo, hi};
-  }
-  return {x.lo(), x.hi()};
-}
+std::pair<Rational, Rational> short_interval(const RealAlgebraic& x) { return x.short_interval(); }
 
 Json json_algebraic(const RealAlgebraic& x, long digits) {
   if (x.is_rational()) return json_rational(x.rational(), printed_digits(digits));

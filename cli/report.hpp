@@ -19,7 +19,7 @@ Json json_algebraic(const RealAlgebraic& x, long digits);
 std::string text_algebraic(const RealAlgebraic& x, long digits);
 
 /// A short isolating interval of an irrational algebraic number (decimal ends
-/// with few digits, exactly one root inside), or its current interval.
+/// with few digits, exactly one root inside): RealAlgebraic::short_interval.
 std::pair<Rational, Rational> short_interval(const RealAlgebraic& x);
 
 /// {"text": ..., "latex": ..., "maple": ...} of a rational function.

@@ -7,6 +7,8 @@
 #include <mag.h>
 
 #include <algorithm>
+#include <cmath>
+#include <utility>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -23,6 +25,9 @@ using detail::floor_log2;
 
 /// Largest refinement (bits) any loop here asks for before giving up.
 constexpr long kMaxBits = 1L << 20;
+
+/// Refinement short_interval asks for before it prints the current interval.
+constexpr long kMaxShortIntervalBits = 1L << 14;
 
 /// d*t - n for q = n/d (primitive, positive leading coefficient).
 Poly linear_poly(const Rational& q) { return Poly(std::vector<Integer>{Integer(0) - q.num(), q.den()}); }
@@ -52,6 +57,10 @@ int compare_rational(const RealAlgebraic& x, const Rational& q) {
 }  // namespace
 
 struct RealAlgebraic::Shared {
+  Shared(Rational lo, Rational hi) : lo0(std::move(lo)), hi0(std::move(hi)) {}
+  // The isolating interval the number was made with: poly has no root in
+  // [lo0, hi0] but the number (short_interval). Never changes.
+  const Rational lo0, hi0;
   std::mutex mu;
   Rational lo, hi;      // empty (lo == hi == 0) until a copy publishes
   long newton_log = 2;  // the refinement's Newton rate, continued by the next call
@@ -118,7 +127,7 @@ void RealAlgebraic::init(const IsolatedRoot& r, const ScaledEvaluator* sev) {
   poly_ = std::move(f);
   lo_ = r.lo;
   hi_ = r.hi;
-  shared_ = std::make_shared<Shared>();
+  shared_ = std::make_shared<Shared>(r.lo, r.hi);
 }
 
 RealAlgebraic::RealAlgebraic(const Poly& squarefree, const Rational& lo, const Rational& hi) {
@@ -136,7 +145,7 @@ RealAlgebraic::RealAlgebraic(const Poly& squarefree, const Rational& lo, const R
   poly_ = r.is_exact() ? linear_poly(r.lo) : r.factor;  // the isolator makes rational roots exact
   lo_ = r.lo;
   hi_ = r.hi;
-  if (!r.is_exact()) shared_ = std::make_shared<Shared>();
+  if (!r.is_exact()) shared_ = std::make_shared<Shared>(lo, hi);
 }
 
 RealAlgebraic::RealAlgebraic(const IsolatedRoot& r, std::shared_ptr<const ScaledEvaluator> sev) {
@@ -251,6 +260,50 @@ std::string RealAlgebraic::decimal(long digits) const {
   refine(-floor_log2(m) + digits * 3322 / 1000 + 6);
   if (is_rational()) return decimal_string(lo_, digits);
   return decimal_string((lo_ + hi_) * Rational(1, 2), digits);
+}
+
+std::pair<Rational, Rational> RealAlgebraic::short_interval() const {
+  if (is_rational()) return {lo_, lo_};
+  const Rational& lo0 = shared_->lo0;
+  const Rational& hi0 = shared_->hi0;
+  // Start at the widest cell that could fit: 10^-d <= hi0 - lo0 < 2^(e + 1)
+  // needs d > -(e + 1) log10(2) (d0 below is at most that).
+  const long e = floor_log2(hi0 - lo0);
+  long d = (e >= 0 ? -(e * 30103) / 100000 : ((-e) * 30103 + 99999) / 100000) - 1;
+  const Rational ten(10);
+  fmpz_t k, khi;
+  fmpz_init(k);
+  fmpz_init(khi);
+  for (;; ++d) {
+    const long bits = static_cast<long>(std::ceil(static_cast<double>(d) * 3.3219280948873623)) + 2;
+    if (bits > kMaxShortIntervalBits) break;
+    // h = 10^-d; k = floor(x / h), decided on an interval narrower than h
+    // (with one exact sign at the grid point when it straddles one).
+    Rational h(1);
+    for (long i = 0; i < (d < 0 ? -d : d); ++i) h = h * ten;
+    if (d > 0) h = Rational(1) / h;
+    refine(bits);  // hi - lo <= 2^-bits <= h / 4
+    Rational t = lo_ / h;
+    fmpz_fdiv_q(k, fmpq_numref(t.get()), fmpq_denref(t.get()));
+    t = hi_ / h;
+    fmpz_fdiv_q(khi, fmpq_numref(t.get()), fmpq_denref(t.get()));
+    if (!fmpz_equal(k, khi)) {
+      Integer g;
+      fmpz_set(g.get(), khi);
+      if (compare_rational(*this, Rational(g) * h) > 0) fmpz_set(k, khi);
+    }
+    Integer ki;
+    fmpz_set(ki.get(), k);
+    const Rational L = Rational(ki) * h, H = L + h;
+    if (lo0 <= L && H <= hi0) {
+      fmpz_clear(k);
+      fmpz_clear(khi);
+      return {L, H};
+    }
+  }
+  fmpz_clear(k);
+  fmpz_clear(khi);
+  return {lo_, hi_};
 }
 
 std::string RealAlgebraic::str() const {

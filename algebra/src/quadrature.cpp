@@ -127,7 +127,9 @@ constexpr int kGlRungCount = 12;
 /// The rung depends on the precision alone, never on what was asked
 /// before, so the nodes' balls, and with them every integral's, do not
 /// depend on the thread's history (which thread ran which piece, or what
-/// ran earlier in the process).
+/// ran earlier in the process). gl_rule checks the time budget before each
+/// node (BudgetExceeded; the rule interrupted is computed again when next
+/// asked for).
 struct GlRule {
   long prec = 0;
   arb_ptr x = nullptr, w = nullptr;
@@ -158,7 +160,11 @@ const GlRule& gl_rule(int step, long prec) {
     }
     r.dx.assign(static_cast<std::size_t>(r.len), DDBall{});
     r.dw.assign(static_cast<std::size_t>(r.len), DDBall{});
+    r.prec = 0;  // incomplete until the loop ends (an exceeded time budget leaves it so)
     for (slong k = 0; k < r.len; ++k) {
+      // Thousands of nodes at thousands of bits take seconds: --timeout is
+      // noticed within one node.
+      check_time_budget();
       arb_hypgeom_legendre_p_ui_root(r.x + k, r.w + k, static_cast<ulong>(n), static_cast<ulong>(k), wp);
       // x in (0, 1), w in (0, 2): always representable; a failure would
       // leave a non-finite ball, which sends its node to the Integrand
@@ -439,7 +445,17 @@ int gl_step(acb_ptr res, long* evals, Context& ctx, const acb_t a, const acb_t b
     return ARB_CALC_NO_CONVERGENCE;
   }
   const long n = kGlSteps[best];
-  const GlRule& rule = gl_rule(best, prec);
+  const GlRule* rule_ptr = nullptr;
+  try {
+    rule_ptr = &gl_rule(best, prec);
+  } catch (...) {  // the time budget: stored like an Integrand's exception, rethrown by integrate_many
+    ctx.error = std::current_exception();
+  }
+  if (!rule_ptr) {
+    _acb_vec_zero(res, static_cast<slong>(count));
+    return ARB_CALC_SUCCESS;
+  }
+  const GlRule& rule = *rule_ptr;
   arb_t x;
   arb_init(x);
   _acb_vec_zero(s.v, static_cast<slong>(count));

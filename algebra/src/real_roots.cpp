@@ -1278,8 +1278,15 @@ void make_disjoint(std::vector<Found>& roots, long cap) {
 
 }  // namespace
 
+namespace {
+thread_local long t_exact_isolations = 0;
+}  // namespace
+
+long exact_isolations() { return t_exact_isolations; }
+
 std::vector<IsolatedRoot> isolate_real_roots(const Poly& p, const Rational& a, const Rational& b,
                                              const RootIsolationOptions& opt) {
+  ++t_exact_isolations;
   if (p.is_zero()) throw InvalidArgument("real-root isolation of the zero polynomial (every number is a root)");
   if (b < a) throw InvalidArgument("real-root isolation in [" + a.str() + ", " + b.str() + "]: empty interval");
   if (p.degree() > opt.max_degree)

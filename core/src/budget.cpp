@@ -46,7 +46,7 @@ TimeBudget::~TimeBudget() {
 
 void check_time_budget() {
   if (g_deadline.active && Clock::now() >= g_deadline.at)
-    throw BudgetExceeded("time limit exceeded: the computation did not finish within " +
+    throw TimeLimitExceeded("time limit exceeded: the computation did not finish within " +
                          seconds_text(g_deadline.seconds) + " s (raise it with --timeout SECONDS)");
 }
 

@@ -2,6 +2,8 @@
 #include "uniparam/core/parallel.hpp"
 
 #include <flint/flint.h>
+#include <pthread.h>
+#include <time.h>
 
 #include <algorithm>
 #include <atomic>
@@ -25,31 +27,63 @@ std::size_t worker_count() {
     const long v = std::strtol(e, &end, 10);
     if (end != e && *end == '\0' && v >= 1) return static_cast<std::size_t>(std::min(v, 64L));
   }
-  const unsigned hw = std::thread::hardware_concurrency();
-  return hw == 0 ? 1 : std::min<std::size_t>(hw, 8);
+  // Read once: hardware_concurrency() opens a file in /sys (~10 us), and
+  // callers ask before every parallel loop.
+  static const std::size_t hw = [] {
+    const unsigned n = std::thread::hardware_concurrency();
+    return n == 0 ? std::size_t{1} : std::min<std::size_t>(n, 8);
+  }();
+  return hw;
 }
 
 namespace {
 
+std::atomic<std::uint64_t> g_dispatched{0};  // parallel_dispatches()
+
+/// CPU time (ns) of the thread whose CPU clock is `clock`; 0 when unknown.
+std::int64_t cpu_ns(clockid_t clock) {
+  timespec ts{};
+  if (clock_gettime(clock, &ts) != 0) return 0;
+  return static_cast<std::int64_t>(ts.tv_sec) * 1000000000 + ts.tv_nsec;
+}
+
+std::int64_t wall_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
 /// One parallel_for call: the items, the task and the first error.
 struct Job {
-  Job(std::size_t n_, std::size_t workers_, const std::function<void(std::size_t, std::size_t)>& task_)
-      : n(n_), workers(workers_), task(task_), deadline(current_deadline()) {}
+  Job(std::size_t n_, std::size_t workers_, const std::function<void(std::size_t, std::size_t)>& task_,
+      const std::function<void(std::size_t)>& prepare_)
+      : n(n_), workers(workers_), task(task_), prepare(prepare_), deadline(current_deadline()) {}
   const std::size_t n, workers;
   const std::function<void(std::size_t, std::size_t)>& task;
+  const std::function<void(std::size_t)>& prepare;  // may be empty
   const Deadline deadline;
   std::atomic<std::size_t> next{0};
   std::atomic<bool> failed{false};
   std::exception_ptr error;
   std::mutex error_mutex;
+  // The calling thread's CPU clock, its reading and the wall clock when the
+  // job was published (set before publication, then only read).
+  clockid_t caller_clock = CLOCK_THREAD_CPUTIME_ID;
+  std::int64_t start_cpu = 0, start_wall = 0;
+  std::atomic<bool> dispatched{false};  // pool threads may join (written under the pool's mutex)
+  // The dispatcher found the job due and it has a prepare step: the caller
+  // runs it between two items and dispatches then.
+  std::atomic<bool> requested{false};
 
-  /// Worker `worker` takes items until none is left or one failed.
-  void work(std::size_t worker) {
+  /// Worker `worker` takes items until none is left or one failed. Worker
+  /// 0 calls between_items() after each of its items (may be empty).
+  template <class F>
+  void work(std::size_t worker, F between_items) {
     for (;;) {
       const std::size_t i = next.fetch_add(1);
       if (i >= n || failed.load()) return;
       try {
         task(worker, i);
+        between_items();
       } catch (...) {
         std::lock_guard<std::mutex> lock(error_mutex);
         if (!error) error = std::current_exception();
@@ -58,46 +92,56 @@ struct Job {
       }
     }
   }
+  void work(std::size_t worker) {
+    work(worker, [] {});
+  }
+
+  /// Long enough to pay for threads: the caller spent kInlineCpu of CPU
+  /// on it, or kInlineWall went by (a task that blocks, or a caller that is
+  /// descheduled for long), with items left.
+  bool due(std::int64_t now_wall) const;
 };
+
+/// The work a job does on the calling thread alone before the pool threads
+/// are woken. Waking a blocked thread costs a futex call and a reschedule
+/// (tens of microseconds on an idle VM, a time slice on a busy machine),
+/// more than a whole job at low degree; a job that ends within this much
+/// CPU time never touches another thread, so it costs what it costs on one.
+/// CPU time, not wall time: a caller descheduled on a busy machine has not
+/// done more work, and threads would not make it faster.
+constexpr std::int64_t kInlineCpu = 500000;      // ns
+constexpr std::int64_t kInlineWall = 100000000;  // ns
+/// How often the dispatcher looks at the published jobs, while there are
+/// any: a long job waits at most this much beyond kInlineCpu for the pool
+/// threads; each look is a wake-up of the dispatcher (microseconds).
+constexpr std::chrono::microseconds kTick{1000};
+
+bool Job::due(std::int64_t now_wall) const {
+  if (next.load() >= n) return false;  // every item taken: threads cannot help
+  const std::int64_t wall = now_wall - start_wall;
+  if (wall >= kInlineWall) return true;
+  if (wall < kInlineCpu) return false;  // CPU time <= wall time: no system call
+  return cpu_ns(caller_clock) - start_cpu >= kInlineCpu;
+}
 
 /// The number of pools: a parallel_for made inside a task of another (an
 /// operation's steps side by side, each with its own parallel loops) takes
 /// the next pool, whose threads are as persistent as the first's. Deeper
-/// nesting gets threads of its own.
+/// nesting runs on the calling thread.
 constexpr int kPools = 4;
 thread_local int t_pool = -1;  // the pool this thread belongs to (-1: none)
 
-/// How long a pool thread that finished its items, and a caller waiting for
-/// the pool threads, poll before they block on a condition variable. A
-/// blocked thread takes a futex wake-up and a reschedule to start (tens of
-/// microseconds on a VM), which is the whole run time of a low-degree job;
-/// the jobs of one operation follow each other within far less than this.
-/// The poll yields the processor every 64 rounds, so an oversubscribed
-/// machine loses little to it.
-constexpr std::chrono::microseconds kSpin{500};
-
-/// Polls ready() for at most kSpin; true as soon as it holds.
-template <class Ready>
-bool spin_until(Ready ready) {
-  const auto until = std::chrono::steady_clock::now() + kSpin;
-  for (unsigned round = 0;; ++round) {
-    if (ready()) return true;
-    if ((round & 63) == 63) {
-      if (std::chrono::steady_clock::now() >= until) return false;
-      std::this_thread::yield();
-    }
-  }
-}
-
-/// Persistent worker threads, started on first use and kept until the
-/// process exits. Their FLINT/Arb thread-local caches (Gauss-Legendre nodes
-/// above all: computing them costs more than a low-degree quadrature) then
-/// live from one parallel_for to the next, as the calling thread's do,
-/// instead of being rebuilt by fresh threads at every call. Pool thread k
-/// (k >= 1) is worker k of every job that uses at least k + 1 workers.
-/// One job at a time: a call that finds the pool in use (from another
-/// thread, or from inside a task) takes the next pool (parallel_for), and
-/// threads of its own when all kPools are.
+/// Persistent worker threads, started when a job is first dispatched and
+/// kept until the process exits. Their FLINT/Arb thread-local caches
+/// (Gauss-Legendre nodes above all: computing them costs more than a
+/// low-degree quadrature) then live from one parallel_for to the next, as
+/// the calling thread's do. Pool thread k (k >= 1) is worker k of every
+/// dispatched job that uses at least k + 1 workers. A job is published
+/// without waking anyone; the calling thread works on it, and the pool
+/// threads are woken only once the job is due (Job::due), by the calling
+/// thread between two items or by the dispatcher (Dispatcher) during one. Threads block on a condition variable; nothing spins. One
+/// job at a time: a call that finds the pool in use (from another thread,
+/// or from inside a task) takes the next pool (parallel_for).
 class Pool {
  public:
   /// Pool k (0 <= k < kPools); pool k's threads know they belong to it.
@@ -106,40 +150,34 @@ class Pool {
     return pools[k];
   }
 
-  /// Runs job on the calling thread (worker 0) and pool threads 1..workers-1;
-  /// false (nothing run) when the pool is in use.
-  bool run(Job& job) {
-    bool expected = false;
-    if (!in_use_.compare_exchange_strong(expected, true)) return false;
-    struct Release {
-      std::atomic<bool>& flag;
-      ~Release() { flag.store(false); }
-    } release{in_use_};
-    {
-      std::lock_guard<std::mutex> lock(m_);
-      while (threads_.size() + 1 < job.workers) {
-        const std::size_t k = threads_.size() + 1;
-        threads_.emplace_back([this, k] { loop(k); });
-      }
-      job_ = &job;
-      pending_ = job.workers - 1;
-      pending_count_.store(pending_, std::memory_order_release);
-      generation_.fetch_add(1, std::memory_order_release);
-    }
-    wake_.notify_all();
-    job.work(0);
-    spin_until([this] { return pending_count_.load(std::memory_order_acquire) == 0; });
+  /// Runs job on the calling thread (worker 0) and, once it is due, on pool
+  /// threads 1..workers-1; false (nothing run) when the pool is in use.
+  bool run(Job& job);
+
+  /// Dispatches the current job if it is due (the dispatcher's tick); true
+  /// when the pool has a job that is not yet dispatched.
+  bool poll(std::int64_t now_wall) {
     std::unique_lock<std::mutex> lock(m_);
-    done_.wait(lock, [this] { return pending_ == 0; });
-    job_ = nullptr;
-    return true;
+    if (!job_ || job_->dispatched || job_->requested.load()) return false;
+    if (!job_->due(now_wall)) return true;
+    if (job_->prepare) {  // the caller prepares and dispatches (Pool::run)
+      job_->requested.store(true);
+      waiting_.store(false);
+      return false;
+    }
+    dispatch_locked();
+    lock.unlock();
+    wake_.notify_all();
+    return false;
   }
+
+  /// A job is published and not yet dispatched (read without the lock).
+  bool waiting() const { return waiting_.load(); }
 
   ~Pool() {
     {
       std::lock_guard<std::mutex> lock(m_);
       stop_ = true;
-      stop_flag_.store(true);
     }
     wake_.notify_all();
     for (auto& t : threads_) t.join();
@@ -148,18 +186,33 @@ class Pool {
  private:
   explicit Pool(int level) : level_(level) {}
 
+  /// \pre m_ held, job_ set and not dispatched.
+  void dispatch_locked() {
+    while (threads_.size() + 1 < job_->workers) {
+      const std::size_t k = threads_.size() + 1;
+      threads_.emplace_back([this, k] { loop(k); });
+    }
+    job_->dispatched.store(true);
+    waiting_.store(false);
+    ++generation_;
+    g_dispatched.fetch_add(1);
+  }
+
   void loop(std::size_t k) {
     t_pool = level_;
     std::uint64_t seen = 0;
     for (;;) {
       Job* job = nullptr;
-      spin_until([&] { return generation_.load(std::memory_order_acquire) != seen || stop_flag_.load(); });
       {
         std::unique_lock<std::mutex> lock(m_);
-        wake_.wait(lock, [&] { return stop_ || generation_.load() != seen; });
+        wake_.wait(lock, [&] { return stop_ || generation_ != seen; });
         if (stop_) break;
-        seen = generation_.load();
-        if (job_ && k < job_->workers) job = job_;  // null: a job this thread sat out ended
+        seen = generation_;
+        // null: the job this generation dispatched has ended, or needs fewer workers
+        if (job_ && job_->dispatched && k < job_->workers) {
+          job = job_;
+          ++joined_;
+        }
       }
       if (!job) continue;
       {
@@ -169,59 +222,163 @@ class Pool {
       bool last;
       {
         std::lock_guard<std::mutex> lock(m_);
-        last = --pending_ == 0;
-        pending_count_.store(pending_, std::memory_order_release);
+        last = --joined_ == 0;
       }
-      if (last) done_.notify_one();
+      if (last) done_.notify_all();
     }
     flint_cleanup();  // this thread's FLINT/Arb caches
   }
 
   int level_;                        // this pool's index (Pool::instance)
   std::atomic<bool> in_use_{false};  // a parallel_for is using the pool
-  std::mutex m_;    // guards everything below
+  std::atomic<bool> waiting_{false};  // job_ set and not dispatched
+  std::mutex m_;  // guards everything below
   std::condition_variable wake_, done_;
   std::vector<std::thread> threads_;
   Job* job_ = nullptr;
-  std::size_t pending_ = 0;  // pool threads of the current job still working
-  std::atomic<std::uint64_t> generation_{0};  // written under m_; read by the spinning threads
+  std::size_t joined_ = 0;  // pool threads working on job_ (or on the job before it)
+  std::uint64_t generation_ = 0;  // bumped by every dispatch
   bool stop_ = false;
-  // Copies of pending_ and stop_ for the spinning threads (written under m_).
-  std::atomic<std::size_t> pending_count_{0};
-  std::atomic<bool> stop_flag_{false};
 };
 
-/// The pool is busy: threads of this call's own, released when it returns.
-void run_on_fresh_threads(Job& job) {
-  std::vector<std::thread> threads;
-  threads.reserve(job.workers - 1);
-  for (std::size_t w = 1; w < job.workers; ++w)
-    threads.emplace_back([&job, w] {
-      {
-        const ScopedDeadline inherit(job.deadline);
-        job.work(w);
+/// One thread that wakes the pool threads for the jobs that are due while
+/// their calling thread is inside an item (e.g. an operation's two long
+/// steps side by side): it looks every kTick while any pool has a published
+/// job, and blocks otherwise (a parallel_for that finds it blocked wakes
+/// it). It never runs items itself. Started by the first job found long
+/// (start()), so a process that only runs small jobs has no thread besides
+/// its own (the allocator's single-thread fast paths stay on, and nothing
+/// wakes up); the calling thread dispatches between items by itself.
+class Dispatcher {
+ public:
+  /// The dispatcher, started on first call.
+  static Dispatcher& start() {
+    static Dispatcher d;
+    started_.store(&d);
+    return d;
+  }
+  /// The dispatcher if started, else null.
+  static Dispatcher* started() { return started_.load(); }
+
+  /// A job was just published on some pool.
+  void arm() {
+    if (!idle_.load()) return;
+    std::lock_guard<std::mutex> lock(m_);
+    if (idle_.load()) {
+      idle_.store(false);
+      cv_.notify_one();
+    }
+  }
+
+  ~Dispatcher() {
+    {
+      std::lock_guard<std::mutex> lock(m_);
+      stop_ = true;
+    }
+    cv_.notify_one();
+    thread_.join();
+  }
+
+ private:
+  Dispatcher() : thread_([this] { loop(); }) {}
+
+  void loop() {
+    std::unique_lock<std::mutex> lock(m_);
+    int quiet = 0;  // ticks without a waiting job
+    while (!stop_) {
+      bool any = false;
+      for (int k = 0; k < kPools; ++k) any = Pool::instance(k).poll(wall_ns()) || any;
+      quiet = any ? 0 : quiet + 1;
+      if (quiet >= 4) {
+        // Block until a job is published. Set idle_ first, then look again:
+        // a job published meanwhile either sees idle_ (and wakes us) or is
+        // seen here.
+        idle_.store(true);
+        bool waiting = false;
+        for (int k = 0; k < kPools; ++k) waiting = waiting || Pool::instance(k).waiting();
+        if (waiting) {
+          idle_.store(false);
+        } else {
+          cv_.wait(lock, [this] { return stop_ || !idle_.load(); });
+        }
+        quiet = 0;
+        continue;
       }
-      flint_cleanup();  // this thread's FLINT/Arb caches (Gauss-Legendre nodes, ...)
-    });
-  job.work(0);
-  for (auto& t : threads) t.join();
+      cv_.wait_for(lock, kTick, [this] { return stop_; });
+    }
+  }
+
+  std::mutex m_;
+  std::condition_variable cv_;
+  std::atomic<bool> idle_{false};
+  bool stop_ = false;
+  std::thread thread_;  // last: started once the members above exist
+  static std::atomic<Dispatcher*> started_;
+};
+
+std::atomic<Dispatcher*> Dispatcher::started_{nullptr};
+
+bool Pool::run(Job& job) {
+  bool expected = false;
+  if (!in_use_.compare_exchange_strong(expected, true)) return false;
+  struct Release {
+    std::atomic<bool>& flag;
+    ~Release() { flag.store(false); }
+  } release{in_use_};
+  if (pthread_getcpuclockid(pthread_self(), &job.caller_clock) != 0) job.caller_clock = CLOCK_THREAD_CPUTIME_ID;
+  job.start_cpu = cpu_ns(job.caller_clock);
+  job.start_wall = wall_ns();
+  {
+    std::lock_guard<std::mutex> lock(m_);
+    job_ = &job;
+    waiting_.store(true);
+  }
+  if (Dispatcher* d = Dispatcher::started()) d->arm();
+  // Between its items the caller dispatches a job that is due itself (the
+  // dispatcher may not run yet, and cannot run a prepare step).
+  job.work(0, [&] {
+    if (job.dispatched.load() || job.next.load() >= job.n) return;
+    if (!job.requested.load() && !job.due(wall_ns())) return;
+    job.requested.store(false);
+    Dispatcher::start();
+    if (job.prepare) job.prepare(job.workers);  // no task runs now: the caller is between items
+    {
+      std::lock_guard<std::mutex> lock(m_);
+      if (job.dispatched.load()) return;
+      dispatch_locked();
+    }
+    wake_.notify_all();
+  });
+  // A long job, even one the caller had to finish alone (its last item
+  // took the time): later ones get the dispatcher.
+  if (!Dispatcher::started() && wall_ns() - job.start_wall >= kInlineCpu &&
+      cpu_ns(job.caller_clock) - job.start_cpu >= kInlineCpu)
+    Dispatcher::start();
+  std::unique_lock<std::mutex> lock(m_);
+  job_ = nullptr;  // threads woken from now on sit this job out
+  waiting_.store(false);
+  done_.wait(lock, [this] { return joined_ == 0; });
+  return true;
 }
 
 }  // namespace
 
-void parallel_for(std::size_t n, std::size_t max_workers, const std::function<void(std::size_t, std::size_t)>& task) {
+std::uint64_t parallel_dispatches() { return g_dispatched.load(); }
+
+void parallel_for(std::size_t n, std::size_t max_workers, const std::function<void(std::size_t, std::size_t)>& task,
+                  const std::function<void(std::size_t)>& prepare) {
   const std::size_t workers = std::min(std::max<std::size_t>(max_workers, 1), n);
   if (workers <= 1) {
     for (std::size_t i = 0; i < n; ++i) task(0, i);
     return;
   }
-  Job job(n, workers, task);
+  Job job(n, workers, task, prepare);
   // A free pool after the calling thread's own (the caller is worker 0 of
   // whatever job it is running; the pools before its own may be busy with
   // the job it belongs to).
   bool ran = false;
   for (int k = t_pool + 1; k < kPools && !ran; ++k) ran = Pool::instance(k).run(job);
-  if (!ran) run_on_fresh_threads(job);
+  if (!ran) job.work(0);  // every pool busy: the machine's threads are too
   if (job.error) std::rethrow_exception(job.error);
 }
 

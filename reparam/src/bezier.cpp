@@ -288,7 +288,14 @@ int QuadraticSurd::sign() const {
 
 std::string QuadraticSurd::str(Format f) const {
   if (is_rational()) return format_rational(x_, f);
-  const Integer A = a(), Bv = b(), Dv = d();
+  // d = lcm of the denominators once; a = x d and b = y d by exact division
+  // (the same integers as a(), b(), d(), without a gcd per coordinate).
+  const Integer Dv = d();
+  Integer A, Bv;
+  fmpz_divexact(A.get(), Dv.get(), fmpq_denref(x_.get()));
+  fmpz_mul(A.get(), A.get(), fmpq_numref(x_.get()));
+  fmpz_divexact(Bv.get(), Dv.get(), fmpq_denref(y_.get()));
+  fmpz_mul(Bv.get(), Bv.get(), fmpq_numref(y_.get()));
   const bool latex = f == Format::Latex;
   Integer absb = Bv;
   fmpz_abs(absb.get(), absb.get());
@@ -319,8 +326,22 @@ QuadraticSurd operator-(const QuadraticSurd& p, const QuadraticSurd& q) {
   Integer c = common_root(p, q);
   return QuadraticSurd(p.x_ - q.x_, p.y_ - q.y_, c);
 }
+namespace {
+thread_local std::size_t t_full_products = 0;
+}  // namespace
+
+std::size_t QuadraticSurd::full_products() { return t_full_products; }
+
 QuadraticSurd operator*(const QuadraticSurd& p, const QuadraticSurd& q) {
   Integer c = common_root(p, q);
+  // The terms that are zero are left out: a rational factor, or a factor
+  // y sqrt(c) (as in the recurrence of the Bezier weights), costs two
+  // rational products instead of four products and two sums.
+  if (p.is_rational()) return QuadraticSurd(p.x_ * q.x_, p.x_ * q.y_, c);
+  if (q.is_rational()) return QuadraticSurd(p.x_ * q.x_, p.y_ * q.x_, c);
+  if (q.x_.is_zero()) return QuadraticSurd(p.y_ * (q.y_ * Rational(c)), p.x_ * q.y_, c);
+  if (p.x_.is_zero()) return QuadraticSurd(q.y_ * (p.y_ * Rational(c)), q.x_ * p.y_, c);
+  ++t_full_products;
   return QuadraticSurd(p.x_ * q.x_ + p.y_ * q.y_ * Rational(c), p.x_ * q.y_ + p.y_ * q.x_, c);
 }
 
@@ -386,6 +407,30 @@ std::vector<Ball> ball_weights(const std::vector<Rational>& v, const Ball& alpha
   return w;
 }
 
+// v_i (1 - alpha)^i alpha^(n - i), i = 0..n, for alpha = 1 / (1 + sr):
+// (1 - alpha) / alpha = sr, so the unweighted terms u_i = (1 - alpha)^i
+// alpha^(n - i) satisfy u_0 = alpha^n (binary powering) and u_{i+1} = u_i sr.
+// Each step multiplies the coordinates of u_i by the small rationals of sr
+// (sr = y sqrt(c) or rational): O(size of u_i) instead of a product of two
+// large surds, so the cost is about n times the size of alpha^n.
+// The values, hence their canonical forms, are those of the definition.
+std::vector<QuadraticSurd> bilinear_weights(const std::vector<Rational>& v, const QuadraticSurd& alpha,
+                                            const QuadraticSurd& sr) {
+  const std::size_t n1 = v.size();
+  QuadraticSurd u(Rational(1)), base = alpha;
+  for (std::size_t e = n1 - 1; e > 0; e >>= 1) {
+    if (e & 1) u = u * base;
+    if (e > 1) base = base * base;
+  }
+  std::vector<QuadraticSurd> w;
+  w.reserve(n1);
+  for (std::size_t i = 0; i < n1; ++i) {
+    if (i > 0) u = u * sr;
+    w.push_back(v[i] == Rational(1) ? u : QuadraticSurd(v[i]) * u);
+  }
+  return w;
+}
+
 bool all_meet(const std::vector<Ball>& v, long digits) {
   for (const auto& b : v)
     if (!b.meets_digits(digits)) return false;
@@ -419,16 +464,7 @@ BezierResult optimal_integral(const BezierCurve& bz, const Curve& curve, const O
     r.alpha_algebraic = RealAlgebraic(f.primitive(), Rational(0), Rational(1));
   }
   const std::vector<Rational> v = bz.weights();
-  const std::size_t n1 = v.size();
-  {
-    std::vector<QuadraticSurd> pa(n1, QuadraticSurd(Rational(1))), pb(n1, QuadraticSurd(Rational(1)));
-    const QuadraticSurd one_minus = QuadraticSurd(Rational(1)) - *r.alpha_exact;
-    for (std::size_t k = 1; k < n1; ++k) {
-      pa[k] = pa[k - 1] * *r.alpha_exact;
-      pb[k] = pb[k - 1] * one_minus;
-    }
-    for (std::size_t i = 0; i < n1; ++i) r.weights_exact.push_back(QuadraticSurd(v[i]) * pb[i] * pa[n1 - 1 - i]);
-  }
+  r.weights_exact = bilinear_weights(v, *r.alpha_exact, sr);
 
   const Speed sp(curve, SpeedKind::Parametric);
   const long d = opt.digits + 1;

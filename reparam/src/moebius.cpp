@@ -21,6 +21,13 @@ void piece_eval(Ball* t, Ball* dt, const MoebiusResult& r, std::size_t i, const 
   arb_sub(st.get(), s.get(), r.S[i].get(), prec);
   arb_div(st.get(), st.get(), ds.get(), prec);
   clamp_unit(st.get(), prec);  // only the part of s inside the piece maps through it
+  // At an exact end (s equal to an exact s_i or s_{i+1}, as s = 0 and s = 1
+  // are) the local coordinate is exactly 0 or 1, and t exactly t_i or t_{i+1}:
+  // the quotient of the correlated balls above would keep their radii.
+  const bool at_lo = s.is_exact() && r.S[i].is_exact() && arb_equal(s.get(), r.S[i].get());
+  const bool at_hi = s.is_exact() && r.S[i + 1].is_exact() && arb_equal(s.get(), r.S[i + 1].get());
+  if (at_lo) arb_zero(st.get());
+  else if (at_hi) arb_one(st.get());
   arb_sub(h.get(), tb.get(), ta.get(), prec);
   const Ball& a = r.alpha[i];
   Ball oma, den, num, q;
@@ -33,7 +40,9 @@ void piece_eval(Ball* t, Ball* dt, const MoebiusResult& r, std::size_t i, const 
   arb_neg(c12.get(), c12.get());
   arb_mul(den.get(), c12.get(), st.get(), prec);
   arb_add(den.get(), den.get(), a.get(), prec);
-  if (t) {
+  if (t && (at_lo || at_hi)) {
+    *t = at_lo ? ta : tb;
+  } else if (t) {
     arb_mul(num.get(), oma.get(), st.get(), prec);
     arb_div(q.get(), num.get(), den.get(), prec);
     arb_mul(q.get(), q.get(), h.get(), prec);

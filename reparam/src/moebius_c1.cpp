@@ -124,15 +124,21 @@ Built build(const Speed& s, const UniformityResult& base, const std::vector<Real
     // speed and the breakpoints (both keep mutable caches).
     r.integrals.resize(N);
     const std::size_t workers = std::min(worker_count(), N);
-    std::vector<Speed> speeds(workers > 1 ? workers - 1 : 0, s);
-    std::vector<std::vector<RealAlgebraic>> Ts(speeds.size(), T);
-    parallel_for(N, workers, [&](std::size_t w, std::size_t i) {
-      const Speed& sw = w == 0 ? s : speeds[w - 1];
-      const std::vector<RealAlgebraic>& tw = w == 0 ? T : Ts[w - 1];
-      r.integrals[i] = piece_integrals(sw, Breakpoint{tw[i], 0, 0, 0}, Breakpoint{tw[i + 1], 0, 0, 0}, bits,
-                                       opt.max_prec);
-      len[i] = integrate_speed(sw, tw[i], tw[i + 1], bits, opt.max_prec);
-    });
+    std::vector<Speed> speeds;  // made only when the loop wakes the workers
+    std::vector<std::vector<RealAlgebraic>> Ts;
+    parallel_for(
+        N, workers,
+        [&](std::size_t w, std::size_t i) {
+          const Speed& sw = w == 0 ? s : speeds[w - 1];
+          const std::vector<RealAlgebraic>& tw = w == 0 ? T : Ts[w - 1];
+          r.integrals[i] = piece_integrals(sw, Breakpoint{tw[i], 0, 0, 0}, Breakpoint{tw[i + 1], 0, 0, 0}, bits,
+                                           opt.max_prec);
+          len[i] = integrate_speed(sw, tw[i], tw[i + 1], bits, opt.max_prec);
+        },
+        [&](std::size_t k) {
+          speeds.assign(k - 1, s);
+          Ts.assign(k - 1, T);
+        });
     for (std::size_t i = 0; i < N; ++i) {
       r.T.push_back(Breakpoint{T[i], 0, 0, 0});
       arb_add(total.get(), total.get(), len[i].get(), prec);
@@ -206,9 +212,12 @@ FloatPiece panel(const Speed& s, double a, double h, double l, double r) {
 
 // Adaptive bisection until both the sigma^2 moments and the length of [l, r]
 // change by at most 1e-13 of the piece's first estimates. sigma is smooth on
-// [l, r] (zeros of sigma, where |g| has a kink, are panel ends).
+// [l, r] (zeros of sigma, where |g| has a kink, are panel ends). Next to a
+// zero of sigma the bisection can go 30 levels deep (up to 2^30 panels), so
+// the time budget is checked every 4 levels: at most 31 calls between checks.
 FloatPiece adapt(const Speed& s, double a, double h, double l, double r, const FloatPiece& whole,
                  double scale2, double scale1, int depth) {
+  if (depth % 4 == 0) check_time_budget();
   const double m = (l + r) / 2;
   const FloatPiece left = panel(s, a, h, l, m), right = panel(s, a, h, m, r), both = left + right;
   const double d2 = std::fabs(both.A - whole.A) + std::fabs(both.B - whole.B) + std::fabs(both.C - whole.C);

@@ -1,11 +1,16 @@
 // reparam/src/moebius_rational.cpp -- exact rational output of a piecewise
-// Moebius map: short rational T, S, alpha and the certified u of that map.
+// Moebius map: short rational T, S, alpha and the certified u of that map;
+// and the refinement of a map's data (the balls S and alpha) to more digits.
+#include <algorithm>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "moebius_detail.hpp"
+#include "uniparam/core/budget.hpp"
 #include "uniparam/core/error.hpp"
 #include "uniparam/reparam/moebius.hpp"
+#include "uniparam/reparam/uniformity.hpp"
 
 namespace uniparam {
 
@@ -17,20 +22,64 @@ Rational pow10_inv(long d) {
   return Rational(Integer(1), p);
 }
 
-// The simplest rational within tol * min(gap to the neighbours) of each
-// interior value; ends exactly 0 and 1. `mids` are the exact midpoints.
-std::vector<Rational> round_sequence(const std::vector<Rational>& mids, const Rational& tol) {
-  std::vector<Rational> out{Rational(0)};
-  for (std::size_t j = 1; j + 1 < mids.size(); ++j) {
-    Rational gap = mids[j] - mids[j - 1];
-    if (mids[j + 1] - mids[j] < gap) gap = mids[j + 1] - mids[j];
+// The exact ends of the ball b as rationals.
+Rational lower_rational(const Ball& b) {
+  Ball lo;
+  arb_get_lbound_arf(arb_midref(lo.get()), b.get(), ARF_PREC_EXACT);
+  return mid_rational(lo);
+}
+Rational upper_rational(const Ball& b) {
+  Ball hi;
+  arb_get_ubound_arf(arb_midref(hi.get()), b.get(), ARF_PREC_EXACT);
+  return mid_rational(hi);
+}
+
+// A closed interval [first, second] known to hold a value.
+using Range = std::pair<Rational, Rational>;
+
+Range range_of(const Ball& b) { return {lower_rational(b), upper_rational(b)}; }
+
+// For the increasing values x_0 = 0 < x_1 < ... < x_n = 1 known to lie in
+// v[j]: the simplest rational q_j certainly within tol * gap_j of x_j, with
+// gap_j a lower bound of the smaller gap to x_j's neighbours; ends exactly 0
+// and 1. For tol < 1/2 the q_j increase strictly. False when some v[j] is
+// too wide for its window (wider than tol * gap_j): the caller refines v.
+bool round_sequence(const std::vector<Range>& v, const Rational& tol, std::vector<Rational>& out) {
+  out.assign(1, Rational(0));
+  for (std::size_t j = 1; j + 1 < v.size(); ++j) {
+    Rational gap = v[j].first - v[j - 1].second;
+    const Rational right = v[j + 1].first - v[j].second;
+    if (right < gap) gap = right;
+    if (gap <= Rational(0)) return false;
     const Rational w = gap * tol;
-    Rational q = Rational::simplest_between(mids[j] - w, mids[j] + w);
-    if (q <= out.back()) q = mids[j];  // cannot happen for tol < 1/2; kept for safety
+    // every x in v[j] is within w of every q in [hi - w, lo + w]
+    if (v[j].second - v[j].first > w) return false;  // keep at least half the window
+    const Rational q = Rational::simplest_between(v[j].second - w, v[j].first + w);
+    if (q <= out.back()) return false;  // impossible for tol < 1/2
     out.push_back(q);
   }
   out.push_back(Rational(1));
-  return out;
+  return true;
+}
+
+// The simplest rational q certainly within tol * m(x) of the value x the
+// ball b encloses, for every x in b: |q - x| <= tol * m(x), with
+// m(x) = x for a positive quantity (`unit` false) and m(x) = min(x, 1 - x)
+// for one in (0, 1) (`unit` true), so q keeps the sign and, for a quantity in
+// (0, 1), stays in (0, 1). tol < 1. Empty (false) when b is not certainly
+// inside the domain or too wide for that window (its width above tol * m
+// at b's worst end): the caller refines b.
+bool round_relative(const Ball& b, const Rational& tol, bool unit, Rational& q) {
+  if (!b.is_finite()) return false;
+  const Rational lo = lower_rational(b), hi = upper_rational(b);
+  if (lo <= Rational(0) || (unit && hi >= Rational(1))) return false;
+  Rational m = lo;  // a lower bound of m(x) over b
+  if (unit && Rational(1) - hi < m) m = Rational(1) - hi;
+  const Rational w = tol * m;
+  // every x in [lo, hi] is within w of every q in [hi - w, lo + w]
+  if (hi - lo > w) return false;  // keep at least half the window
+  q = Rational::simplest_between(hi - w, lo + w);
+  return true;
 }
 
 }  // namespace
@@ -44,21 +93,50 @@ MoebiusResult make_rational(const Curve& c, const MoebiusResult& in, long ration
   const Rational tol = pow10_inv(rational_digits);
   const long prec0 = 4 * digits_to_bits(rational_digits + opt.digits) + 64;
 
-  std::vector<Rational> tm, sm;
-  for (const auto& b : in.T) tm.push_back(b.t.is_rational() ? b.t.rational() : mid_rational(b.t.to_ball(prec0)));
-  for (const auto& b : in.S) sm.push_back(mid_rational(b));
   // Breakpoints chosen by a method (the optimiser, the C1 construction) are
   // rounded like S; breakpoints the user gave (moebius_c0) stay exact, and so
-  // does every rational one among them.
+  // does every rational one among them. C0: each piece's alpha is rounded to
+  // the simplest rational certainly within tol * min(alpha, 1 - alpha) of the
+  // optimal alpha (so 0 < alpha < 1, and k = (1 - alpha) / alpha keeps the
+  // relative accuracy tol). Every window is certain: the data's balls are
+  // refined (the same map, more digits) until each fits its window.
   const bool chosen = in.optimiser.used || in.target.used;
-  std::vector<Rational> Tq = tm;
   bool irrational = false;
   for (std::size_t j = 1; j < N; ++j) irrational = irrational || !in.T[j].t.is_rational();
-  if (chosen || irrational) Tq = round_sequence(tm, tol);
-  if (!chosen)
-    for (std::size_t j = 0; j <= N; ++j)
-      if (in.T[j].t.is_rational()) Tq[j] = in.T[j].t.rational();
-  const std::vector<Rational> Sq = round_sequence(sm, tol);
+  MoebiusResult base = in;
+  std::vector<Rational> Tq, Sq, alpha_q;
+  for (long dd = 0;;) {
+    const long prec = std::max(prec0, dd > 0 ? digits_to_bits(dd) + 64 : 0L);
+    std::vector<Range> tr, sr;
+    for (const auto& b : in.T)
+      tr.push_back(b.t.is_rational() ? Range{b.t.rational(), b.t.rational()} : range_of(b.t.to_ball(prec)));
+    for (const auto& b : base.S) sr.push_back(range_of(b));
+    bool ok = true;
+    if (chosen || irrational) {
+      ok = round_sequence(tr, tol, Tq);
+    } else {
+      Tq.clear();
+      for (const auto& b : in.T) Tq.push_back(b.t.rational());
+    }
+    if (ok && !chosen)
+      for (std::size_t j = 0; j <= N; ++j)
+        if (in.T[j].t.is_rational()) Tq[j] = in.T[j].t.rational();
+    if (!in.identically_zero) {
+      ok = ok && round_sequence(sr, tol, Sq);
+      if (in.continuity == Continuity::C0) {
+        alpha_q.assign(N, Rational(0));
+        for (std::size_t i = 0; i < N && ok; ++i) ok = round_relative(base.alpha[i], tol, true, alpha_q[i]);
+      }
+    }
+    if (ok) break;
+    dd = dd > 0 ? 2 * dd : opt.digits + rational_digits + 8;
+    if (digits_to_bits(dd) > opt.max_prec)
+      throw BudgetExceeded("could not certify the map's data to the relative accuracy 10^-" +
+                           std::to_string(rational_digits) + " of --rational-digits within " +
+                           std::to_string(opt.max_prec) + " bits of working precision (raise it with --max-prec)");
+    check_time_budget();
+    if (!in.identically_zero) base = refine_moebius_data(s, in, dd, opt.max_prec);
+  }
   std::vector<RealAlgebraic> T;
   for (const auto& q : Tq) T.emplace_back(q);
 
@@ -82,18 +160,22 @@ MoebiusResult make_rational(const Curve& c, const MoebiusResult& in, long ration
     r.integrals = all_piece_integrals(s, r.T, bits, opt.max_prec);
     std::vector<Rational> k(N);
     if (in.continuity == Continuity::C0) {
-      for (std::size_t i = 0; i < N; ++i) {
-        const Rational a = Rational::simplest_between(mid_rational(in.alpha[i]) - tol, mid_rational(in.alpha[i]) + tol);
-        k[i] = (Rational(1) - a) / a;
-      }
+      for (std::size_t i = 0; i < N; ++i) k[i] = (Rational(1) - alpha_q[i]) / alpha_q[i];
     } else {
       // C1: the optimal free parameter for the rounded T and S, rounded; the
       // rest follows exactly from rho_i / k_i = rho_{i+1} k_{i+1}.
       std::vector<Ball> Sb;
       for (const auto& q : Sq) Sb.emplace_back(q, prec);
       const detail::C1Data d = detail::c1_from_pieces(T, Sb, r.integrals, r.mu, prec);
-      const Rational k0 = mid_rational(d.k[0]);
-      k[0] = Rational::simplest_between(k0 - k0 * tol, k0 + k0 * tol);
+      // k_0 > 0 rounded relative to itself; a ball too wide for that waits
+      // for the next, more precise round
+      if (!round_relative(d.k[0], tol, false, k[0])) {
+        if (bits > opt.max_prec)
+          throw BudgetExceeded("could not certify the C1 free parameter to the relative accuracy 10^-" +
+                               std::to_string(rational_digits) + " of --rational-digits within " +
+                               std::to_string(opt.max_prec) + " bits of working precision (raise it with --max-prec)");
+        continue;
+      }
       for (std::size_t i = 0; i + 1 < N; ++i) {
         const Rational rho_i = (Tq[i + 1] - Tq[i]) / (Sq[i + 1] - Sq[i]);
         const Rational rho_j = (Tq[i + 2] - Tq[i + 1]) / (Sq[i + 2] - Sq[i + 1]);
@@ -132,6 +214,86 @@ MoebiusResult make_rational(const Curve& c, const MoebiusResult& in, long ration
   }
   if (r.optimiser.used) r.optimiser.phi = Ball();  // Phi belonged to the unrounded map
   return r;
+}
+
+namespace {
+
+// out[0] = 0, out[N] = 1, out[i] = sum_{k<i} w_k / sum w (exact ends).
+std::vector<Ball> cumulative_unit(const std::vector<Ball>& w, long prec) {
+  Ball total(0);
+  for (const auto& x : w) arb_add(total.get(), total.get(), x.get(), prec);
+  std::vector<Ball> out{Ball(0)};
+  Ball acc(0);
+  for (std::size_t k = 0; k + 1 < w.size(); ++k) {
+    arb_add(acc.get(), acc.get(), w[k].get(), prec);
+    Ball q;
+    arb_div(q.get(), acc.get(), total.get(), prec);
+    out.push_back(q);
+  }
+  out.push_back(Ball(1));
+  return out;
+}
+
+bool all_meet(const std::vector<Ball>& v, long digits) {
+  for (const auto& b : v)
+    if (!b.meets_digits(digits)) return false;
+  return true;
+}
+
+std::vector<Ball> sqrts(const std::vector<PieceIntegrals>& I, Ball PieceIntegrals::*m, long prec) {
+  std::vector<Ball> out(I.size());
+  for (std::size_t i = 0; i < I.size(); ++i) arb_sqrtpos(out[i].get(), (I[i].*m).get(), prec);
+  return out;
+}
+
+std::vector<Ball> alphas(const std::vector<PieceIntegrals>& I) {
+  std::vector<Ball> out;
+  for (const auto& p : I) out.push_back(p.alpha);
+  return out;
+}
+
+}  // namespace
+
+MoebiusResult refine_moebius_data(const Speed& sp, const MoebiusResult& in, long digits, long max_prec) {
+  if (digits < 1) throw InvalidArgument("refine_moebius_data: digits must be at least 1");
+  MoebiusResult x = in;
+  if (x.identically_zero) return x;
+  const std::size_t N = x.pieces();
+  if (x.rational) {
+    const long prec = digits_to_bits(digits) + 64;
+    x.S.clear();
+    for (const auto& q : x.S_exact) x.S.emplace_back(q, prec);
+    x.alpha.clear();
+    for (const auto& q : x.alpha_exact) x.alpha.emplace_back(q, prec);
+    return x;
+  }
+  std::vector<RealAlgebraic> T;
+  for (const auto& b : x.T) T.push_back(b.t);
+  for (long bits = digits_to_bits(digits) + 8;; bits += 32) {
+    check_time_budget();
+    const long prec = 2 * bits + 64;
+    std::vector<PieceIntegrals> I = all_piece_integrals(sp, x.T, bits, max_prec);
+    std::vector<Ball> S, alpha;
+    if (x.continuity == Continuity::C0) {
+      S = cumulative_unit(sqrts(I, &PieceIntegrals::M, prec), prec);
+      alpha = alphas(I);
+    } else {
+      std::vector<Ball> len(N);
+      for (std::size_t i = 0; i < N; ++i) len[i] = integrate_speed(sp, T[i], T[i + 1], bits, max_prec);
+      S = cumulative_unit(len, prec);
+      alpha = detail::c1_from_pieces(T, S, I, x.mu, prec).alpha;
+    }
+    if (all_meet(S, digits) && all_meet(alpha, digits)) {
+      x.integrals = std::move(I);
+      x.S = std::move(S);
+      x.alpha = std::move(alpha);
+      return x;
+    }
+    if (bits > max_prec)
+      throw BudgetExceeded("could not refine the piecewise Moebius map's data to " + std::to_string(digits) +
+                           " digits within " + std::to_string(max_prec) +
+                           " bits of working precision (raise it with --max-prec)");
+  }
 }
 
 }  // namespace uniparam

@@ -381,18 +381,24 @@ std::vector<std::vector<PieceIntegrals>> all_piece_integrals(const Speed& s, con
     parallel_for(to_refine.size(), std::min(worker_count(), to_refine.size()),
                  [&](std::size_t, std::size_t i) { to_refine[i].first->refine(to_refine[i].second); });
   for (const SpeedZero& z : s.zeros()) z.t.refine(most_bits + kFirstEndBits);  // mostly breakpoints already
+  // Extra workers' copies of the speed and the jobs (mutable caches), made
+  // only when the loop is long enough to wake them.
   std::vector<Speed> speeds;
   std::vector<std::vector<PieceJob>> job_copies;
-  for (std::size_t w = 1; w < workers; ++w) {
-    speeds.push_back(s);
-    job_copies.push_back(jobs);
-  }
-  parallel_for(tasks.size(), workers, [&](std::size_t w, std::size_t t) {
-    const Speed& sw = w == 0 ? s : speeds[w - 1];
-    const std::size_t k = tasks[t].first, i = tasks[t].second;
-    const PieceJob& job = w == 0 ? jobs[k] : job_copies[w - 1][k];
-    out[k][i] = piece_integrals(sw, job.T[i], job.T[i + 1], job.rel_goal_bits, max_prec);
-  });
+  parallel_for(
+      tasks.size(), workers,
+      [&](std::size_t w, std::size_t t) {
+        const Speed& sw = w == 0 ? s : speeds[w - 1];
+        const std::size_t k = tasks[t].first, i = tasks[t].second;
+        const PieceJob& job = w == 0 ? jobs[k] : job_copies[w - 1][k];
+        out[k][i] = piece_integrals(sw, job.T[i], job.T[i + 1], job.rel_goal_bits, max_prec);
+      },
+      [&](std::size_t k) {
+        for (std::size_t w = 1; w < k; ++w) {
+          speeds.push_back(s);
+          job_copies.push_back(jobs);
+        }
+      });
   return out;
 }
 

@@ -246,9 +246,15 @@ Ball radical_eval_r(const RadicalResult& r, const Ball& z, long prec) {
     moebius(x, nullptr, zc, r.integrals[i].alpha.get(), prec);
     psi(y, x, r.side(i), r.root_index(i), false, prec);
     Ball v;
-    arb_set(v.get(), acb_realref(y));
-    arb_mul(v.get(), v.get(), dt.get(), prec);
-    arb_add(v.get(), v.get(), ta.get(), prec);
+    // an exact end maps to its breakpoint exactly (psi and the Moebius map fix
+    // 0 and 1); t_i + 1 * (t_{i+1} - t_i) would add t_i's radius twice
+    if (arb_is_zero(zt.get())) v = ta;
+    else if (arb_is_one(zt.get())) v = tb;
+    else {
+      arb_set(v.get(), acb_realref(y));
+      arb_mul(v.get(), v.get(), dt.get(), prec);
+      arb_add(v.get(), v.get(), ta.get(), prec);
+    }
     if (!any) result = v;
     else arb_union(result.get(), result.get(), v.get(), prec);
     any = true;
@@ -373,6 +379,51 @@ Ball radical_direct_uniformity(const RadicalResult& r, const Speed& s, long digi
   arb_mul(u.get(), r.mu.get(), r.mu.get(), prec);
   arb_div(u.get(), u.get(), total.get(), prec);
   return u;
+}
+
+RadicalResult refine_radical_data(const Speed& sp, const RadicalResult& in, long digits, long max_prec) {
+  if (digits < 1) throw InvalidArgument("refine_radical_data: digits must be at least 1");
+  RadicalResult x = in;
+  if (x.identically_zero) return x;
+  const std::size_t N = x.pieces();
+  for (long bits = digits_to_bits(digits) + 8;; bits += 32) {
+    check_time_budget();
+    const long prec = 2 * bits + 64;
+    std::vector<PieceIntegrals> I = all_piece_integrals(sp, x.T, bits, max_prec);
+    std::vector<Ball> sqrtL(N), sqrtM(N), alpha(N);
+    Ball sumL(0), sumM(0);
+    for (std::size_t i = 0; i < N; ++i) {
+      arb_sqrt(sqrtL[i].get(), I[i].L.get(), prec);
+      arb_sqrt(sqrtM[i].get(), I[i].M.get(), prec);
+      arb_add(sumL.get(), sumL.get(), sqrtL[i].get(), prec);
+      arb_add(sumM.get(), sumM.get(), sqrtM[i].get(), prec);
+      alpha[i] = I[i].alpha;
+    }
+    std::vector<Ball> S = cumulative(sqrtL, sumL, prec), Z = cumulative(sqrtM, sumM, prec);
+    if (all_meet(S, digits) && all_meet(Z, digits) && all_meet(alpha, digits)) {
+      x.A.clear();
+      x.B.clear();
+      x.C.clear();
+      for (std::size_t i = 0; i < N; ++i) {
+        Ball ds, q;
+        arb_sub(ds.get(), S[i + 1].get(), S[i].get(), prec);
+        arb_div(q.get(), I[i].A.get(), ds.get(), prec);
+        x.A.push_back(q);
+        arb_div(q.get(), I[i].B.get(), ds.get(), prec);
+        x.B.push_back(q);
+        arb_div(q.get(), I[i].C.get(), ds.get(), prec);
+        x.C.push_back(q);
+      }
+      x.integrals = std::move(I);
+      x.S = std::move(S);
+      x.Z = std::move(Z);
+      return x;
+    }
+    if (bits > max_prec)
+      throw BudgetExceeded("could not refine the radical map's data to " + std::to_string(digits) +
+                           " digits within " + std::to_string(max_prec) +
+                           " bits of working precision (raise it with --max-prec)");
+  }
 }
 
 }  // namespace uniparam

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "uniparam/core/ball_poly.hpp"
+#include "uniparam/core/budget.hpp"
 #include "uniparam/core/error.hpp"
 
 namespace uniparam {
@@ -112,9 +113,40 @@ Ball Reparameterization::eval_speed(const Speed& sp, const Ball& s, long prec) c
   return moebius_eval_speed(*moebius_result(), sp, s, prec);
 }
 
+namespace {
+
+// The exact rational r(s) when s is an exact ball equal to an exact joint
+// s_i whose t_i is rational (s = 0 and s = 1 always are: t = 0 and 1).
+const Rational* exact_image(const Reparameterization& r, const Ball& s) {
+  if (!s.is_exact()) return nullptr;
+  for (std::size_t i = 0; i < r.joints_s().size(); ++i) {
+    const Ball& si = r.joints_s()[i];
+    if (si.is_exact() && arb_equal(si.get(), s.get()) && r.joints_t()[i].is_rational())
+      return &r.joints_t()[i].rational();
+  }
+  return nullptr;
+}
+
+}  // namespace
+
 std::vector<Ball> Reparameterization::eval_point(const Curve& c, const Ball& s, long prec) const {
+  if (const Rational* t = exact_image(*this, s)) {
+    check_unit(s, "Reparameterization::eval_point");
+    std::vector<Ball> out;
+    for (const RatFunc& f : c.components()) out.emplace_back(f(*t), prec);
+    return out;
+  }
   const Ball t = eval_r(s, prec);
   return c.eval(t, prec);
+}
+
+Reparameterization Reparameterization::refined(const Speed& sp, long digits, long max_prec) const {
+  if (digits < 1) throw InvalidArgument("Reparameterization::refined: digits must be at least 1");
+  if (acts_as_identity(*this)) return *this;
+  if (const auto* x = radical_result()) {
+    return Reparameterization(refine_radical_data(sp, *x, digits, max_prec));
+  }
+  return Reparameterization(refine_moebius_data(sp, *moebius_result(), digits, max_prec));
 }
 
 namespace {
@@ -129,42 +161,68 @@ double rel_rad(const Ball& b) {
   return rad / std::max(1.0, mid);
 }
 
-SamplePoint sample_one(const Curve& c, const Speed& sp, const Reparameterization& r, const Rational& s, long digits,
-                       long max_prec) {
+}  // namespace
+
+Sampler::Sampler(const Curve& c, const Speed& sp, Reparameterization r, long digits, long max_prec)
+    : c_(c), sp_(sp), r_(std::move(r)), digits_(digits), max_prec_(max_prec) {
+  if (digits < 1 || digits > 10000) throw InvalidArgument("sample: digits must be between 1 and 10000");
+  if (max_prec < 64) throw InvalidArgument("sample: the precision limit must be at least 64 bits");
+}
+
+SamplePoint Sampler::at(const Rational& s) {
+  if (s < Rational(0) || s > Rational(1)) throw InvalidArgument("sample: s must lie in [0, 1], got " + s.str());
   SamplePoint out;
   out.s = s;
-  for (std::size_t i = 1; i + 1 < r.joints_s().size(); ++i)
-    if (r.joints_s()[i].contains(s)) out.at_joint = true;
+  const long start = digits_to_bits(digits_) + 32;
+  long prec = start;
   double last = HUGE_VAL;
-  for (long prec = digits_to_bits(digits) + 32;; prec *= 2) {
+  for (;;) {
+    check_time_budget();  // up to a million samples, each a few precision steps
+    out.at_joint = false;
+    for (std::size_t i = 1; i + 1 < r_.joints_s().size(); ++i)
+      if (r_.joints_s()[i].contains(s)) out.at_joint = true;
     const Ball sb(s, prec);
-    out.t = r.eval_r(sb, prec);
-    out.point = r.eval_point(c, sb, prec);
-    out.speed = r.eval_speed(sp, sb, prec);
-    bool ok = out.t.meets_digits(digits);
+    out.point = r_.eval_point(c_, sb, prec);
+    if (const Rational* t = exact_image(r_, sb)) out.t = Ball(*t, prec);
+    else out.t = r_.eval_r(sb, prec);
+    out.speed = r_.eval_speed(sp_, sb, prec);
+    bool ok = out.t.meets_digits(digits_);
     double worst = rel_rad(out.t);
     for (const auto& b : out.point) {
-      ok = ok && b.meets_digits(digits);
+      ok = ok && b.meets_digits(digits_);
       worst = std::max(worst, rel_rad(b));
     }
     if (!out.at_joint) {
-      ok = ok && out.speed.meets_digits(digits);
+      ok = ok && out.speed.meets_digits(digits_);
       worst = std::max(worst, rel_rad(out.speed));
     }
     if (ok) return out;
-    // Stop when doubling the precision no longer halves the error: the
-    // accuracy is then limited by r's data, not by the working precision.
-    const bool stalled = prec * 2 > max_prec || !(worst < 0.5 * last);
-    if (stalled && out.at_joint) return out;  // enclosures, exempt from `digits` (see SamplePoint)
-    if (stalled)
-      throw BudgetExceeded("could not certify the sample at s = " + s.str() + " to " + std::to_string(digits) +
-                           " digits (working precision " + std::to_string(prec) +
-                           " bits); the reparameterization must be computed with more digits than its samples");
-    last = worst;
+    // More working precision while it still halves the error; once it does
+    // not, r's data limit the accuracy: refine them (twice the digits each
+    // time) and go on at the same working precision.
+    if ((worst < 0.5 * last || worst == HUGE_VAL) && prec * 2 <= max_prec_) {
+      last = worst;
+      prec *= 2;
+      continue;
+    }
+    const long next = data_digits_ ? 2 * data_digits_ : 2 * digits_ + 8;
+    if (digits_to_bits(next) > max_prec_)
+      throw BudgetExceeded("could not certify the sample at s = " + s.str() + " to " + std::to_string(digits_) +
+                           " digits: r's data would need more than " + std::to_string(max_prec_) +
+                           " bits (raise --max-prec)");
+    r_ = r_.refined(sp_, next, max_prec_);
+    data_digits_ = next;
+    ++refinements_;
+    last = HUGE_VAL;
   }
 }
 
-}  // namespace
+void sample_each(const Curve& c, const Speed& sp, const Reparameterization& r, long K, long digits, long max_prec,
+                 const SampleSink& sink) {
+  if (K < 2 || K > 1000000) throw InvalidArgument("sample: the number of points must be between 2 and 1000000");
+  Sampler smp(c, sp, r, digits, max_prec);
+  for (long k = 0; k < K; ++k) sink(k, smp.at(Rational(k, K - 1)));
+}
 
 bool meets_digits(const Samples& s, long digits) {
   for (const auto* v : {&s.before, &s.after})
@@ -184,11 +242,8 @@ Samples sample(const Curve& c, const Speed& sp, const Reparameterization& r, lon
   Samples out;
   out.before.reserve(static_cast<std::size_t>(K));
   out.after.reserve(static_cast<std::size_t>(K));
-  for (long k = 0; k < K; ++k) {
-    const Rational s(k, K - 1);
-    out.before.push_back(sample_one(c, sp, id, s, digits, max_prec));
-    out.after.push_back(sample_one(c, sp, r, s, digits, max_prec));
-  }
+  sample_each(c, sp, id, K, digits, max_prec, [&](long, const SamplePoint& p) { out.before.push_back(p); });
+  sample_each(c, sp, r, K, digits, max_prec, [&](long, const SamplePoint& p) { out.after.push_back(p); });
   return out;
 }
 

@@ -147,14 +147,21 @@ void speed_integrals(const Speed& s, long bits, long max_prec, bool squares, Bal
   const std::vector<RealAlgebraic> ends = detail::with_split_points(speed_piece_ends(s, zero, one), parts);
   const std::size_t tasks = ends.size() - 1;
   const std::size_t workers = std::min(worker_count(), tasks);
-  std::vector<Speed> speeds(workers > 1 ? workers - 1 : 0, s);
-  std::vector<std::vector<RealAlgebraic>> ends_copies(speeds.size(), ends);
+  // Extra workers' copies (made only when the loop wakes them).
+  std::vector<Speed> speeds;
+  std::vector<std::vector<RealAlgebraic>> ends_copies;
   std::vector<std::vector<Ball>> results(tasks);
-  parallel_for(tasks, workers, [&](std::size_t w, std::size_t i) {
-    const Speed& sw = w == 0 ? s : speeds[w - 1];
-    const std::vector<RealAlgebraic>& ew = w == 0 ? ends : ends_copies[w - 1];
-    results[i] = integrate_speed_piece(sw, ew[i], ew[i + 1], bits, max_prec, squares);
-  });
+  parallel_for(
+      tasks, workers,
+      [&](std::size_t w, std::size_t i) {
+        const Speed& sw = w == 0 ? s : speeds[w - 1];
+        const std::vector<RealAlgebraic>& ew = w == 0 ? ends : ends_copies[w - 1];
+        results[i] = integrate_speed_piece(sw, ew[i], ew[i + 1], bits, max_prec, squares);
+      },
+      [&](std::size_t k) {
+        speeds.assign(k - 1, s);
+        ends_copies.assign(k - 1, ends);
+      });
   // sigma and sigma^2 are >= 0: the relative accuracy of every part holds
   // for their sum.
   mu = Ball(0);

@@ -2,6 +2,7 @@
 // worker in range, per-worker state needs no lock, the first exception is
 // rethrown, and worker threads inherit the caller's time budget.
 #include <gtest/gtest.h>
+#include <time.h>
 
 #include <atomic>
 #include <algorithm>
@@ -107,6 +108,21 @@ TEST(Parallel, NestedCallsRunEveryItemOnce) {
 // for each call the counter would restart at every round.
 thread_local long t_items = 0;
 
+// Busy work for about `ns` of this thread's CPU time (parallel_for wakes its
+// pool threads for a job once the caller has spent CPU time on it; a
+// sleeping task would not be dispatched).
+void burn_cpu(long ns) {
+  auto cpu = [] {
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return static_cast<long>(ts.tv_sec) * 1000000000L + ts.tv_nsec;
+  };
+  const long until = cpu() + ns;
+  volatile unsigned long x = 1;
+  while (cpu() < until)
+    for (int i = 0; i < 1000; ++i) x = x * 6364136223846793005UL + 1;
+}
+
 TEST(Parallel, NestedCallsRunOnPersistentThreads) {
   long most = 0;
   std::mutex m;
@@ -114,11 +130,11 @@ TEST(Parallel, NestedCallsRunOnPersistentThreads) {
   for (int round = 0; round < rounds; ++round)
     parallel_for(2, 2, [&](std::size_t w, std::size_t) {
       if (w != 0) {  // the calling thread's task nests a loop (this one keeps the other item)
-        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        burn_cpu(12000000);
         return;
       }
       parallel_for(2, 2, [&](std::size_t v, std::size_t) {
-        std::this_thread::sleep_for(std::chrono::milliseconds(2));  // both workers get an item
+        burn_cpu(5000000);  // both workers get an item
         if (v != 1) return;
         const long seen = ++t_items;
         std::lock_guard<std::mutex> lock(m);

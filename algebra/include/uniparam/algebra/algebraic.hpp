@@ -8,6 +8,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "uniparam/core/ball.hpp"
 #include "uniparam/core/number.hpp"
@@ -79,6 +80,16 @@ class RealAlgebraic {
   /// correctly rounded is not promised; the value is within one unit of the
   /// last digit.
   std::string decimal(long digits) const;
+  /// A short isolating interval, for printing: the cell (k 10^-d, (k + 1) 10^-d)
+  /// holding the number for the smallest d (possibly negative) for which that
+  /// cell lies in the isolating interval the number was constructed with
+  /// (so poly() has no other root in its closure, and its ends are no roots).
+  /// A function of the number and that interval alone, never of earlier
+  /// refinements. Costs a refinement to about 10^-d and at most one exact
+  /// sign per d; no root isolation. Should d need more than 2^14 bits (the
+  /// number within 10^-4900 of an end of that interval), the current
+  /// interval is returned instead (still isolating). (q, q) for a rational q.
+  std::pair<Rational, Rational> short_interval() const;
   /// "t^4*27 - 1 in (43/100, 11/25)"-style description:
   /// "root of 27*t^4 - 1 in [lo, hi]" or the rational "1/2".
   std::string str() const;

@@ -112,4 +112,9 @@ std::vector<IsolatedRoot> isolate_real_roots(const Poly& p, const PolyEvaluator&
 /// \pre p != 0, a < b.
 long count_real_roots(const Poly& p, const Rational& a, const Rational& b);
 
+/// Work counter (tests, benchmarks): the number of exact isolations
+/// (isolate_real_roots on the power basis, count_real_roots) this thread
+/// has started.
+long exact_isolations();
+
 }  // namespace uniparam

@@ -5,7 +5,7 @@
 // while it is alive; the long loops of the engine (quadrature integrand
 // evaluations and precision doubling, real-root isolation and refinement,
 // the precision loops of the reparameterizations) call check_time_budget(),
-// which throws BudgetExceeded once the deadline has passed. Nothing
+// which throws TimeLimitExceeded once the deadline has passed. Nothing
 // uncertified is returned in place of a result. The check is cheap (one read
 // of a monotonic clock), so it may be called per integrand evaluation.
 // A single long FLINT/Arb call (one gcd of huge polynomials, ...) is not
@@ -37,8 +37,9 @@ class TimeBudget {
   double prev_seconds_;
 };
 
-/// Throws BudgetExceeded naming the time limit and --timeout when the calling
-/// thread has a TimeBudget whose deadline has passed; otherwise does nothing.
+/// Throws TimeLimitExceeded (a BudgetExceeded) naming the time limit and
+/// --timeout when the calling thread has a TimeBudget whose deadline has
+/// passed; otherwise does nothing.
 void check_time_budget();
 
 /// True when a TimeBudget is in force in the calling thread.

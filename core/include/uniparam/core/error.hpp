@@ -55,4 +55,14 @@ class BudgetExceeded : public Error {
   using Error::Error;
 };
 
+/// The wall-clock time budget ran out (TimeBudget, --timeout; core/budget.hpp).
+/// Its message always names the time limit and --timeout. It is its own type
+/// so that code that reports its own failures (a precision loop giving up,
+/// a fallback after a failed attempt) can tell it apart and let it through:
+/// a timeout is never reported as a precision or other budget failure.
+class TimeLimitExceeded : public BudgetExceeded {
+ public:
+  using BudgetExceeded::BudgetExceeded;
+};
+
 }  // namespace uniparam

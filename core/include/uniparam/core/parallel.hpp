@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 
 namespace uniparam {
@@ -10,33 +11,51 @@ namespace uniparam {
 /// Number of worker threads parallel_for uses: the environment variable
 /// UNIPARAM_THREADS when set to a positive integer (1 = everything on the
 /// calling thread), otherwise std::thread::hardware_concurrency() capped
-/// at 8 (1 when unknown).
+/// at 8 (1 when unknown), read once per process.
 std::size_t worker_count();
 
-/// Runs task(worker, i) for every i in [0, n), on min(workers, n) threads
-/// (workers >= 1; typically worker_count()); worker 0 is the calling thread,
-/// and every item runs on exactly one worker, with worker < min(workers, n),
-/// so a task may use per-worker state indexed by `worker` without locking. Items are handed out in
-/// increasing order as workers become free.
+/// Runs task(worker, i) for every i in [0, n), on at most min(workers, n)
+/// threads (workers >= 1; typically worker_count()); worker 0 is the calling
+/// thread, and every item runs on exactly one worker, with worker <
+/// min(workers, n), so a task may use per-worker state indexed by `worker`
+/// without locking. Items are handed out in increasing order as workers
+/// become free.
+/// Small jobs run on the calling thread alone: the call publishes the job
+/// and starts on it; the other workers are woken only once the calling
+/// thread has spent 0.5 ms of CPU time on it, or 0.1 s has gone by, with
+/// items left: by the calling thread between two items, or during one by a
+/// dispatcher thread that looks every millisecond while jobs run (started
+/// by the first job found long: until then a job can only be dispatched
+/// between items, and a process of small jobs starts no thread at all), so a job shorter than that costs what it costs on one thread
+/// and never waits for another. Waiting threads block on a condition
+/// variable (no spinning).
 /// Worker threads inherit the calling thread's time budget (the same
 /// deadline, see budget.hpp). Workers 1.. are persistent pool threads,
-/// started on first use and kept until the process exits (when they release
-/// FLINT/Arb's thread-local caches), so those caches (Gauss-Legendre nodes)
-/// serve every later call as the calling thread's do. A pool thread that
-/// has finished, and the caller waiting for the pool threads, poll for up to
-/// 0.5 ms before they sleep, so that the calls of one operation (each a
-/// fraction of a millisecond at low degree) do not wait for a thread to be
-/// woken and rescheduled. A pool runs one call at a time: a call made while
-/// it is busy (from another thread, or nested inside a task, e.g. an
-/// operation's steps side by side with loops of their own) takes the next
-/// of four such pools, equally persistent, and when all are busy runs on
-/// threads of its own, started for the call and released (caches included)
-/// when it returns. Which thread runs which item
-/// is not fixed either way, so tasks must not depend on it beyond `worker`.
+/// started when first needed and kept until the process exits (when they
+/// release FLINT/Arb's thread-local caches), so those caches (Gauss-Legendre
+/// nodes) serve every later call as the calling thread's do. A pool runs one
+/// call at a time: a call made while it is busy (from another thread, or
+/// nested inside a task, e.g. an operation's steps side by side with loops
+/// of their own) takes the next of four such pools, equally persistent, and
+/// when all are busy runs on the calling thread alone. Which thread runs
+/// which item is not fixed, so tasks must not depend on it beyond `worker`.
+/// `prepare` (may be empty) makes the state workers 1.. need, e.g. their
+/// own copies of objects with mutable caches: prepare(k) runs on the calling
+/// thread, between two of its items (no task is running then), right
+/// before workers 1..k-1 (k = min(workers, n)) are woken, and never for a
+/// job that stays on the calling thread, so a small job does not pay for
+/// copies it does not use. A job with a prepare step is dispatched when the
+/// calling thread finishes the item it is running once the job is due.
+/// An exception from prepare is treated as one from a task.
 /// \post all items ran, or the first exception thrown by a task is rethrown
 ///       here after every worker has stopped (items not yet started are
 ///       skipped).
 void parallel_for(std::size_t n, std::size_t workers,
-                  const std::function<void(std::size_t worker, std::size_t i)>& task);
+                  const std::function<void(std::size_t worker, std::size_t i)>& task,
+                  const std::function<void(std::size_t workers)>& prepare = {});
+
+/// Work counter (tests, benchmarks): the number of jobs whose pool threads
+/// parallel_for has woken, since the process started (all threads).
+std::uint64_t parallel_dispatches();
 
 }  // namespace uniparam

@@ -12,6 +12,7 @@
 // exact quadratic surd.
 #pragma once
 
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <vector>
@@ -104,6 +105,12 @@ class QuadraticSurd {
   friend QuadraticSurd operator-(const QuadraticSurd& p, const QuadraticSurd& q);
   friend QuadraticSurd operator*(const QuadraticSurd& p, const QuadraticSurd& q);
 
+  /// Work counter (tests, benchmarks): the number of products of two surds
+  /// with both parts x and y nonzero (four rational products and two sums)
+  /// this thread has made. A product with a rational or with a pure y sqrt(c)
+  /// takes two rational products and is not counted.
+  static std::size_t full_products();
+
  private:
   QuadraticSurd(Rational x, Rational y, Integer c);
   Rational x_, y_;
@@ -134,7 +141,9 @@ struct BezierResult {
   std::optional<QuadraticSurd> alpha_exact;
   std::optional<RealAlgebraic> alpha_algebraic;
   /// The new weights v_i (1 - alpha)^i alpha^(n - i), exactly in Q(sqrt c);
-  /// set when exact.
+  /// set when exact. Computed as v_i alpha^n sqrt(rho)^i (rho = C / A, so
+  /// (1 - alpha) / alpha = sqrt(rho)): O(log n) products of two surds, then
+  /// one cheap product per weight.
   std::vector<QuadraticSurd> weights_exact;
 
   Ball P, Q;            ///< certified (exact balls of the rationals when exact)

@@ -160,24 +160,45 @@ MoebiusResult reparam_c1_traced(const Curve& c, SpeedKind kind, const Rational& 
 }  // namespace detail
 
 /// Exact rational output: rounds T, S and the alphas of r to the simplest
-/// rationals within 10^-rational_digits (relative to the neighbouring gaps for
-/// T and S) and certifies the u of *that* map, which has rational
-/// coefficients. T is rounded when a method chose it (reparam_c0,
-/// reparam_c1); rational breakpoints given to moebius_c0 stay exact
-/// (irrational ones are rounded). C0: each alpha rounded. C1: the free
-/// parameter rounded, the other alphas solved exactly from the C1 condition
-/// on the rational T and S, so r' is continuous exactly.
+/// rationals within the relative accuracy tol = 10^-rational_digits and
+/// certifies the u of *that* map, which has rational coefficients. T and S:
+/// within tol times the smaller neighbouring gap. T is rounded when a method
+/// chose it (reparam_c0, reparam_c1); rational breakpoints given to
+/// moebius_c0 stay exact (irrational ones are rounded). C0: each alpha is the
+/// simplest rational certainly within tol * min(alpha, 1 - alpha) of the
+/// optimal alpha of r's T (its ball refined until that window is certain), so
+/// 0 < alpha < 1 however close alpha is to 0 or 1. C1: the free parameter
+/// k_0 > 0 rounded within tol * k_0 the same way, the other alphas solved
+/// exactly from the C1 condition on the rational T and S, so r' is
+/// continuous exactly.
 /// \pre r was computed for c; 1 <= rational_digits <= 100 (InvalidArgument).
 /// \post rational == true; T_exact, S_exact, alpha_exact are the map's data;
 ///       T, S, alpha, integrals and u_after describe that exact map (u_after
 ///       meets Options::digits); target.reached re-checked; optimiser.phi is
 ///       cleared (it described the unrounded map).
-/// \throws as moebius_c0.
+/// \throws as moebius_c0 (BudgetExceeded also when alpha or k_0 cannot be
+///         certified to the relative accuracy within Options::max_prec).
 MoebiusResult make_rational(const Curve& c, const MoebiusResult& r, long rational_digits = 8,
                             const Options& opt = {});
 
+/// The same map r with its data recomputed to `digits`: S and alpha (and the
+/// integrals) meet `digits`. The map is the one r's method defines for r's
+/// breakpoints: for C0 the optimal alpha and S (moebius_c0), for C1 the S of
+/// the arc length and the C1 optimum (reparam_c1), for an exact rational map
+/// (rational == true) its exact S and alpha as balls of matching precision; so
+/// each refined ball lies in r's (up to rounding) and meets `digits`. Every
+/// other field is kept; an identically zero map is returned as is.
+/// \pre r was computed for the speed sp (not checkable); digits >= 1
+///      (InvalidArgument).
+/// \throws BudgetExceeded when `digits` cannot be met within max_prec bits or
+///         the thread's TimeBudget.
+MoebiusResult refine_moebius_data(const Speed& sp, const MoebiusResult& r, long digits, long max_prec);
+
 /// Enclosure of r(s) for s in [0, 1] (a real ball; where s overlaps a joint
-/// s_i, the union of both pieces' values). InvalidArgument if s misses [0, 1].
+/// s_i, the union of both pieces' values). An exact s equal to an exact joint
+/// s_i (s = 0, s = 1) gives t_i's ball, exact for a dyadic t_i: r(0) = 0 and
+/// r(1) = 1 exactly. The accuracy is limited by r's data (S, alpha: balls);
+/// see Reparameterization::refined. InvalidArgument if s misses [0, 1].
 Ball moebius_eval_r(const MoebiusResult& r, const Ball& s, long prec);
 /// Enclosure of r'(s) (the union of one-sided values at a C0 joint).
 Ball moebius_eval_dr(const MoebiusResult& r, const Ball& s, long prec);

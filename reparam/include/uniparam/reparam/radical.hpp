@@ -37,8 +37,22 @@ struct RadicalResult {
 /// \throws as uniformity().
 RadicalResult radical(const Curve& c, SpeedKind kind, const Options& opt = {});
 
+/// The same map r with its data recomputed to `digits`: S, Z and every
+/// alpha meet `digits` (A, B, C and the integrals follow), as radical()
+/// computes them for r's breakpoints T; each refined ball therefore lies in
+/// r's (up to rounding). mu and the uniformities are kept; an identically
+/// zero map is returned as is.
+/// \pre r was computed for the speed sp (not checkable); digits >= 1
+///      (InvalidArgument).
+/// \throws BudgetExceeded when `digits` cannot be met within max_prec bits or
+///         the thread's TimeBudget.
+RadicalResult refine_radical_data(const Speed& sp, const RadicalResult& r, long digits, long max_prec);
+
 /// Enclosure of r(z) for z in [0, 1] (the ball may straddle a joint: both
-/// pieces are evaluated and the union returned).
+/// pieces are evaluated and the union returned). An exact z equal to an exact
+/// joint z_i (z = 0, z = 1) gives t_i's ball, exact for a dyadic t_i. The
+/// accuracy is limited by r's data (Z, alpha: balls); see
+/// Reparameterization::refined.
 Ball radical_eval_r(const RadicalResult& r, const Ball& z, long prec);
 /// Enclosure of sigma_{p o r}(z) = sigma_p(r(z)) r'(z), the reparameterized
 /// speed, evaluated from the formulas of the pieces.

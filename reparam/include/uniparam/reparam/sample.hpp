@@ -4,6 +4,7 @@
 // points a CNC or animation pipeline consumes, and what the plots show).
 #pragma once
 
+#include <functional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -54,7 +55,23 @@ class Reparameterization {
   /// union of both one-sided speeds.
   Ball eval_speed(const Speed& sp, const Ball& s, long prec) const;
   /// Enclosures of the components of p(r(s)); `c` must be the curve of r.
+  /// Where r(s) is an exact rational (s an exact joint with a rational t_i,
+  /// such as s = 0 and s = 1), p is evaluated exactly there.
   std::vector<Ball> eval_point(const Curve& c, const Ball& s, long prec) const;
+
+  /// The same map r with its data recomputed more accurately: the joints s_i,
+  /// the alphas and the radical pieces' constants each meet `digits` (the
+  /// breakpoints t_i are exact algebraic numbers, refined on demand anyway).
+  /// The map is the one the method defines for these t_i (the optimal one;
+  /// for C1, the C1 optimum; for an exact rational map, its exact data), so
+  /// every enclosure of the refined map is one of r; mu and the uniformities
+  /// are kept. The identity (and r = id for an identically zero speed) is
+  /// returned as is.
+  /// \pre `sp` is the speed r was computed for (not checkable).
+  /// \throws InvalidArgument for digits < 1; BudgetExceeded when the data
+  ///         cannot meet `digits` within max_prec bits or the thread's
+  ///         TimeBudget.
+  Reparameterization refined(const Speed& sp, long digits, long max_prec) const;
 
  private:
   Reparameterization() = default;
@@ -71,16 +88,68 @@ struct SamplePoint {
   Ball t;                   ///< r(s)
   std::vector<Ball> point;  ///< p(r(s)), one ball per component
   Ball speed;               ///< sigma_{p o r}(s), see at_joint
-  /// True when s lies in the ball of an interior joint s_i (1 <= i < N): which
-  /// side of the joint s is on is then unknown. `speed` is the union of both
-  /// one-sided speeds and exempt from the accuracy contract. t and point are
-  /// still enclosures and usually meet it (r is continuous), but at a joint
-  /// where sigma vanishes with multiplicity k - 1, r is only Hoelder-1/k
-  /// continuous: a joint ball of radius rho gives t a width of about
-  /// rho^(1/k). Computing r with k times the digits cures that (see
-  /// meets_digits(Samples)).
+  /// True when s lies in the ball of an interior joint s_i (1 <= i < N) of
+  /// the map as refined for this sample (s equal to s_i, or s_i not
+  /// separable from s within max_prec): which side of the joint s is on is
+  /// then unknown. `speed` is the union of both one-sided speeds and exempt
+  /// from the accuracy contract; t and point still meet it (r is continuous;
+  /// at a joint where sigma vanishes with multiplicity k - 1, r is only
+  /// Hoelder-1/k continuous, and r's data are refined until t meets it).
   bool at_joint = false;
 };
+
+/// Certified samples of one reparameterization, one parameter at a time:
+/// r(s), p(r(s)) and the speed of p o r at s to `digits` digits. When the
+/// working precision alone no longer improves a sample (r's data, balls of
+/// fixed accuracy, limit it: an ill-conditioned but well-posed map), r's data
+/// are refined (Reparameterization::refined, the digits doubled each time)
+/// and the more accurate map is kept for the following samples. Memory does
+/// not depend on how many samples are taken.
+class Sampler {
+ public:
+  /// \pre `c` and `sp` are the curve and speed r was computed for, and
+  ///      outlive the Sampler (they are held by reference).
+  /// \throws InvalidArgument unless 1 <= digits <= 10000 and max_prec >= 64.
+  Sampler(const Curve& c, const Speed& sp, Reparameterization r, long digits, long max_prec);
+
+  /// The sample at s in [0, 1] (InvalidArgument otherwise).
+  /// \post t, every point component and (unless at_joint) speed contain the
+  ///       true values and meet `digits` (rad <= 10^-digits max(1, |mid|));
+  ///       t is exact where r(s) is an exact rational (s = 0: t = 0, s = 1:
+  ///       t = 1), and then so is every component of p(t) that is a dyadic
+  ///       number.
+  /// \throws BudgetExceeded when the working precision or r's data would
+  ///         need more than max_prec bits, or the thread's TimeBudget ends.
+  SamplePoint at(const Rational& s);
+
+  /// The map as currently refined (the one given until a sample needed more).
+  const Reparameterization& map() const { return r_; }
+  /// How many times r's data have been refined so far.
+  long refinements() const { return refinements_; }
+
+ private:
+  const Curve& c_;
+  const Speed& sp_;
+  Reparameterization r_;
+  long digits_, max_prec_;
+  long data_digits_ = 0;  // digits of the last refinement (0: r as given)
+  long refinements_ = 0;
+};
+
+/// Receives the samples of sample_each one by one, in order of k.
+using SampleSink = std::function<void(long k, const SamplePoint&)>;
+
+/// Certified samples of p o r at the K equally spaced s = k / (K - 1),
+/// k = 0, ..., K - 1 (first 0, last 1), handed to `sink` one at a time as
+/// soon as each is certified (a Sampler; nothing is kept between calls, so
+/// memory does not grow with K). An exception from the sink stops the loop
+/// and propagates.
+/// \pre 2 <= K <= 1000000 (checked: InvalidArgument), as Sampler.
+/// \post each sample as Sampler::at.
+/// \throws as Sampler::at, after the samples before the failing one were
+///         handed over.
+void sample_each(const Curve& c, const Speed& sp, const Reparameterization& r, long K, long digits, long max_prec,
+                 const SampleSink& sink);
 
 /// K samples of the original curve and of the reparameterized one.
 struct Samples {
@@ -90,18 +159,12 @@ struct Samples {
 
 /// Certified samples at K equally spaced parameters, k = 0, ..., K - 1: the
 /// original curve p at t = k/(K-1) and p o r at s = k/(K-1) (first s = 0,
-/// last s = 1).
+/// last s = 1), both by sample_each, collected (memory grows with K; for
+/// many points, use sample_each).
 /// \pre 2 <= K <= 1000000 (checked: InvalidArgument); `r` was computed for
 ///      `c` and `sp` (not checkable; the balls would be meaningless otherwise).
-/// \post every t, point component and speed contains the true value and
-///       meets `digits` (rad <= 10^-digits max(1, |mid|)), except for a
-///       sample with at_joint (see SamplePoint): there the balls are
-///       enclosures only, and meets_digits(Samples) tells whether they also
-///       meet `digits`.
-/// \throws BudgetExceeded when a sample off the joints cannot meet `digits`
-///         within max_prec bits: r's data (joints, alpha) are balls of fixed
-///         accuracy, so r must have been computed with more digits than asked
-///         here (3 more suffice off the joints).
+/// \post as Sampler::at for every sample; meets_digits(result, digits).
+/// \throws as sample_each.
 Samples sample(const Curve& c, const Speed& sp, const Reparameterization& r, long K, long digits,
                long max_prec);
 

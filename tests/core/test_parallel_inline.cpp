@@ -1,0 +1,79 @@
+// parallel_for runs small jobs on the calling thread alone (no pool thread
+// woken, no item on another worker) and still spreads long jobs over the
+// pool threads.
+#include <gtest/gtest.h>
+
+#include <time.h>
+
+#include <atomic>
+#include <cstdint>
+#include <vector>
+
+#include "uniparam/core/parallel.hpp"
+
+namespace uniparam {
+namespace {
+
+std::int64_t thread_cpu_ns() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<std::int64_t>(ts.tv_sec) * 1000000000 + ts.tv_nsec;
+}
+
+// Busy work for about `ns` of this thread's CPU time.
+void burn(std::int64_t ns) {
+  const std::int64_t until = thread_cpu_ns() + ns;
+  volatile std::uint64_t x = 1;
+  while (thread_cpu_ns() < until)
+    for (int i = 0; i < 1000; ++i) x = x * 6364136223846793005ULL + 1;
+}
+
+// Many jobs of about a tenth of a millisecond each (the low-degree case): every item on
+// the calling thread, and no pool thread ever woken.
+TEST(ParallelInline, SmallJobsStayOnTheCallingThread) {
+  const std::uint64_t before = parallel_dispatches();
+  std::atomic<long> elsewhere{0};
+  for (int round = 0; round < 300; ++round) {
+    std::vector<long> sum(4, 0);
+    parallel_for(64, 4, [&](std::size_t w, std::size_t i) {
+      if (w != 0) ++elsewhere;
+      sum[w] += static_cast<long>(i);
+      burn(2000);  // 64 items: about 0.13 ms of CPU in all
+    });
+    EXPECT_EQ(sum[0] + sum[1] + sum[2] + sum[3], 64 * 63 / 2);
+  }
+  EXPECT_EQ(elsewhere.load(), 0);
+  EXPECT_EQ(parallel_dispatches() - before, 0u);
+}
+
+// A long job (items of 2 ms of CPU time each) is dispatched: another worker
+// takes items, and every item runs once.
+TEST(ParallelInline, LongJobsUseThePool) {
+  const std::uint64_t before = parallel_dispatches();
+  std::vector<std::atomic<int>> runs(8);
+  std::atomic<long> elsewhere{0};
+  parallel_for(8, 2, [&](std::size_t w, std::size_t i) {
+    if (w != 0) ++elsewhere;
+    ++runs[i];
+    burn(2000000);
+  });
+  for (auto& r : runs) EXPECT_EQ(r.load(), 1);
+  EXPECT_EQ(parallel_dispatches() - before, 1u);
+  EXPECT_GT(elsewhere.load(), 0);
+}
+
+// Two long items (an operation's steps side by side): the second does not
+// wait for the first, it goes to a pool thread while the first runs (once
+// the process has seen a long job, which starts the dispatcher).
+TEST(ParallelInline, TwoLongItemsRunSideBySide) {
+  parallel_for(4, 2, [](std::size_t, std::size_t) { burn(1000000); });
+  std::atomic<long> elsewhere{0};
+  parallel_for(2, 2, [&](std::size_t w, std::size_t) {
+    if (w != 0) ++elsewhere;
+    burn(20000000);
+  });
+  EXPECT_EQ(elsewhere.load(), 1);
+}
+
+}  // namespace
+}  // namespace uniparam
