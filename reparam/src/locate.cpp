@@ -284,7 +284,8 @@ LocateResult locate(const Curve& c, const Speed& s, const Rational& value, Locat
   }
 }
 
-ExactSamples exact_samples(const Curve& c, const Speed& s, long K, const Options& opt) {
+void exact_samples_each(const Curve& c, const Speed& s, long K, const Options& opt, Ball& mu,
+                        const LocatedSink& sink) {
   validate(opt);
   if (K < 2 || K > 1000000)
     throw InvalidArgument("the number of points must be between 2 and 1000000, got " + std::to_string(K));
@@ -292,29 +293,101 @@ ExactSamples exact_samples(const Curve& c, const Speed& s, long K, const Options
   check_digits_fit(opt);
   long log2k = 0;
   while ((1L << log2k) < K) ++log2k;
-  ExactSamples out;
-  for (long bits = digits_to_bits(opt.digits) + 32 + log2k;; bits = next_bits(bits)) {
-    if (bits > opt.max_prec) throw_budget("the exact samples", opt);
-    check_time_budget();
-    const long prec = 2 * bits + 64;
-    out.mu = mean_speed(s, bits, opt);
-    if (!out.mu.meets_digits(opt.digits + 1)) continue;
-    out.points.assign(static_cast<std::size_t>(K), LocatedPoint{});
-    out.points.front() = exact_point(c, 0);
-    out.points.back() = exact_point(c, 1);
-    Bracket b{Rational(0), Rational(1), Ball(0)};
-    bool ok = true;
-    for (long k = 1; ok && k + 1 < K; ++k) {
-      // t_k > t_{k-1} >= lo: the previous bracket's lower end and G there
-      // start this point; hi = 1 holds as G(1) = mu > k mu / (K - 1).
+  // The chain's precision: every G(lo) is a sum of disjoint integrals, so
+  // its radius stays below 2^-bits mu whatever K; log2 K more bits keep the
+  // targets k mu / (K - 1) apart from it.
+  long bits = digits_to_bits(opt.digits) + 32 + log2k;
+  auto compute_mu = [&]() {
+    for (;; bits = next_bits(bits)) {
+      if (bits > opt.max_prec) throw_budget("the exact samples", opt);
+      mu = mean_speed(s, bits, opt);
+      if (mu.meets_digits(opt.digits + 1)) return;
+    }
+  };
+  compute_mu();
+  sink(0, exact_point(c, 0));
+  Bracket b{Rational(0), Rational(1), Ball(0)};
+  for (long k = 1; k + 1 < K; ++k) {
+    // t_k > t_{k-1} >= lo: the previous bracket's lower end and G there
+    // start this point; hi = 1 holds as G(1) = mu > k mu / (K - 1).
+    LocatedPoint pt;
+    for (;;) {
+      check_time_budget();
+      const long prec = 2 * bits + 64;
       Ball T;
-      arb_mul_si(T.get(), out.mu.get(), k, prec);
+      arb_mul_si(T.get(), mu.get(), k, prec);
       arb_div_si(T.get(), T.get(), K - 1, prec);
       b.hi = Rational(1);
-      ok = finish_point(c, s, b, T, bits, opt, out.points[static_cast<std::size_t>(k)]);
+      if (finish_point(c, s, b, T, bits, opt, pt)) break;
+      // More bits: mu and G(lo) again at the higher precision (the bracket
+      // holds at any).
+      bits = next_bits(bits);
+      compute_mu();
+      b.Glo = b.lo.is_zero() ? Ball(0)
+                             : integrate_speed(s, RealAlgebraic(0), RealAlgebraic(b.lo), bits, opt.max_prec);
     }
-    if (ok) return out;
+    sink(k, pt);
   }
+  sink(K - 1, exact_point(c, 1));
+}
+
+ExactSamples exact_samples(const Curve& c, const Speed& s, long K, const Options& opt) {
+  ExactSamples out;
+  exact_samples_each(c, s, K, opt, out.mu, [&out](long, const LocatedPoint& p) { out.points.push_back(p); });
+  return out;
+}
+
+ArcFraction::ArcFraction(const Speed& s, long bits, const Options& opt)
+    : s_(s), bits_(bits), max_prec_(opt.max_prec), last_(0), G_last_(0) {
+  check_not_zero_speed(s);
+  mu_ = mean_speed(s, bits, opt);
+}
+
+Ball ArcFraction::G(const Rational& x) {
+  const long prec = 2 * bits_ + 64;
+  if (x == last_) return G_last_;
+  Ball g;
+  if (last_ < x) {
+    const Ball piece = integrate_speed(s_, RealAlgebraic(last_), RealAlgebraic(x), bits_, max_prec_);
+    arb_add(g.get(), G_last_.get(), piece.get(), prec);
+  } else {
+    const Ball piece = integrate_speed(s_, RealAlgebraic(x), RealAlgebraic(last_), bits_, max_prec_);
+    arb_sub(g.get(), G_last_.get(), piece.get(), prec);
+  }
+  last_ = x;
+  G_last_ = g;
+  return g;
+}
+
+Ball ArcFraction::at(const Ball& t) {
+  if (!t.is_finite()) throw DomainError("ArcFraction::at: the parameter's enclosure is not finite");
+  const long prec = 2 * bits_ + 64;
+  Ball tc = t;
+  clamp_unit(tc.get(), prec);
+  arf_t lo, hi;
+  arf_init(lo);
+  arf_init(hi);
+  arb_get_lbound_arf(lo, tc.get(), prec);
+  arb_get_ubound_arf(hi, tc.get(), prec);
+  fmpq_t q;
+  fmpq_init(q);
+  arf_get_fmpq(q, lo);
+  Rational ql(q);
+  arf_get_fmpq(q, hi);
+  Rational qh(q);
+  fmpq_clear(q);
+  arf_clear(lo);
+  arf_clear(hi);
+  if (ql.sign() < 0) ql = Rational(0);
+  if (Rational(1) < qh) qh = Rational(1);
+  // G is increasing: G(t) lies in [G(ql), G(qh)] (G(qh) last, so that the
+  // next, larger t starts from the upper end).
+  const Ball gl = G(ql), gh = G(qh);
+  Ball a, b, u;
+  arb_div(a.get(), gl.get(), mu_.get(), prec);
+  arb_div(b.get(), gh.get(), mu_.get(), prec);
+  arb_union(u.get(), a.get(), b.get(), prec);
+  return u;
 }
 
 Ball fraction_deviation(const Speed& s, const Reparameterization& r, long K, const Options& opt) {
@@ -324,56 +397,12 @@ Ball fraction_deviation(const Speed& s, const Reparameterization& r, long K, con
   check_not_zero_speed(s);
   const long bits = digits_to_bits(opt.digits) + 8;
   const long prec = 2 * bits + 64;
-  // The rational ends [a_k, b_k] of each r(s_k), clipped to [0, 1].
-  std::vector<Rational> a(static_cast<std::size_t>(K)), bnd(static_cast<std::size_t>(K));
-  std::vector<Rational> ends{Rational(0), Rational(1)};
-  for (long k = 0; k < K; ++k) {
-    Ball sk(Rational(k, K - 1), prec);
-    Ball t = r.eval_r(sk, prec);
-    clamp_unit(t.get(), prec);
-    arf_t lo, hi;
-    arf_init(lo);
-    arf_init(hi);
-    arb_get_lbound_arf(lo, t.get(), prec);
-    arb_get_ubound_arf(hi, t.get(), prec);
-    fmpq_t q;
-    fmpq_init(q);
-    arf_get_fmpq(q, lo);
-    Rational ql(q);
-    arf_get_fmpq(q, hi);
-    Rational qh(q);
-    fmpq_clear(q);
-    arf_clear(lo);
-    arf_clear(hi);
-    if (ql.sign() < 0) ql = Rational(0);
-    if (Rational(1) < qh) qh = Rational(1);
-    a[static_cast<std::size_t>(k)] = ql;
-    bnd[static_cast<std::size_t>(k)] = qh;
-    ends.push_back(ql);
-    ends.push_back(qh);
-  }
-  std::sort(ends.begin(), ends.end());
-  ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
-  // G at every end: consecutive gaps, one integral each.
-  std::vector<Ball> G(ends.size());
-  G[0] = Ball(0);
-  for (std::size_t i = 1; i < ends.size(); ++i) {
-    check_time_budget();
-    const Ball gap = integrate_speed(s, RealAlgebraic(ends[i - 1]), RealAlgebraic(ends[i]), bits, opt.max_prec);
-    arb_add(G[i].get(), G[i - 1].get(), gap.get(), prec);
-  }
-  const Ball& mu = G.back();
-  auto G_at = [&](const Rational& x) -> const Ball& {
-    return G[static_cast<std::size_t>(std::lower_bound(ends.begin(), ends.end(), x) - ends.begin())];
-  };
+  ArcFraction frac(s, bits, opt);
   Ball worst(0);
   for (long k = 0; k < K; ++k) {
+    check_time_budget();
     const Ball sk(Rational(k, K - 1), prec);
-    Ball lo, hi, d;
-    // G is increasing: G(r(s_k)) lies in [G(a_k), G(b_k)].
-    arb_div(lo.get(), G_at(a[static_cast<std::size_t>(k)]).get(), mu.get(), prec);
-    arb_div(hi.get(), G_at(bnd[static_cast<std::size_t>(k)]).get(), mu.get(), prec);
-    arb_union(d.get(), lo.get(), hi.get(), prec);
+    Ball d = frac.at(r.eval_r(sk, prec));
     arb_sub(d.get(), d.get(), sk.get(), prec);
     arb_abs(d.get(), d.get());
     arb_max(worst.get(), worst.get(), d.get(), prec);

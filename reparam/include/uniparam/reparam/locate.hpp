@@ -4,6 +4,7 @@
 // and K points at exactly equal steps of it (docs/locate.md).
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "uniparam/core/ball.hpp"
@@ -62,21 +63,58 @@ struct ExactSamples {
   std::vector<LocatedPoint> points;  ///< size K, t increasing
 };
 
-/// The K points of ExactSamples, located one after the other: point k starts
-/// from point k-1's bracket and integrates sigma only between them (so K
-/// points cost O(K) integrals over short pieces, not K integrals from 0).
+/// Receives the points of exact_samples_each one by one, in order of k.
+using LocatedSink = std::function<void(long k, const LocatedPoint&)>;
+
+/// The K points of ExactSamples, located one after the other and handed to
+/// `sink` as soon as each is certified (nothing kept: memory does not grow
+/// with K). Point k starts from point k-1's bracket and integrates sigma
+/// only between them, so K points cost O(K) integrals over short pieces,
+/// not K integrals from 0. Where a point needs more working precision than
+/// the chain has, mu and G at the bracket are recomputed at the higher one
+/// (the points already handed over stay valid). `mu` receives mu (to
+/// opt.digits) before the first point.
 /// \pre 2 <= K <= 1000000 (checked: InvalidArgument); `s` the speed of `c`.
 /// \post each t and point component contains the true value and meets
 ///       opt.digits (as locate()); mu meets opt.digits.
-/// \throws as locate().
+/// \throws as locate(), after the points before the failing one were handed
+///         over; an exception from the sink stops the loop and propagates.
+void exact_samples_each(const Curve& c, const Speed& s, long K, const Options& opt, Ball& mu,
+                        const LocatedSink& sink);
+
+/// exact_samples_each, collected (memory grows with K).
 ExactSamples exact_samples(const Curve& c, const Speed& s, long K, const Options& opt = {});
+
+/// G(t) / mu, the fraction of the whole arc length (turning angle) reached
+/// at t, for balls t visited in (roughly) increasing order: each call
+/// integrates sigma only from the previous call's point, so K calls cost K
+/// short integrals. Enclosed from the monotone G on the rational ends of t
+/// (clipped to [0, 1]).
+class ArcFraction {
+ public:
+  /// mu to relative accuracy 2^-bits (mean_speed) at construction.
+  /// \throws DomainError for an identically zero speed (mu = 0);
+  ///         BudgetExceeded as mean_speed.
+  ArcFraction(const Speed& s, long bits, const Options& opt);
+  const Ball& mu() const { return mu_; }
+  /// A ball containing G(x) / mu for every x in t (the integrals at
+  /// relative accuracy 2^-bits). \pre t finite (DomainError otherwise).
+  Ball at(const Ball& t);
+
+ private:
+  Ball G(const Rational& x);  // G(x), from the last point visited
+  const Speed& s_;
+  long bits_, max_prec_;
+  Ball mu_;
+  Rational last_;
+  Ball G_last_;
+};
 
 /// How far the points of a reparameterization r sit from the exact ones:
 /// max over k of |G(r(s_k)) / mu - s_k| for s_k = k / (K - 1), k = 0, ..., K-1
 /// (the largest deviation in fraction of mu: arc-length fraction for the
-/// parametric speed, turning-angle fraction for the angular one).
-/// Enclosed from the monotone G on the rational ends of each ball r(s_k),
-/// with one integral of sigma per gap between consecutive ends (O(K)).
+/// parametric speed, turning-angle fraction for the angular one), by
+/// ArcFraction (O(K) short integrals).
 /// \pre 2 <= K <= 1000000 (InvalidArgument); r computed for `s`.
 /// \post the result contains the maximum deviation; its upper end is a
 ///       certified upper bound. Its width comes from r's own balls (r's
