@@ -19,14 +19,14 @@ namespace {
 
 constexpr long kPrec = 400;
 
-// The ball [mid - rad, mid + rad] of a JSON certified real, read exactly;
-// `index` picks the index-th occurrence of key (0 = first).
+// The ball [mid - rad, mid + rad] of a JSON certified real, read exactly:
+// the index-th occurrence of key (0 = first).
 Ball json_ball_at(const std::string& json, const std::string& key, std::size_t index = 0) {
-  std::size_t pos = 0;
-  for (std::size_t i = 0; i < index; ++i) pos = json.find("\"mid\"", json.find("\"" + key + "\"", pos) + 1);
+  std::size_t pos = json.find("\"" + key + "\": {");
+  for (std::size_t i = 0; i < index && pos != std::string::npos; ++i) pos = json.find("\"" + key + "\": {", pos + 1);
   std::string mid, rad;
-  if (!certified_real(json.substr(pos), key, mid, rad)) {
-    ADD_FAILURE() << "no certified real " << key << " in " << json;
+  if (pos == std::string::npos || !certified_real(json.substr(pos), key, mid, rad)) {
+    ADD_FAILURE() << "no certified real " << key << " #" << index << " in " << json;
     return Ball(0);
   }
   Ball b(Rational::parse(mid), kPrec), r(Rational::parse(rad), kPrec);
@@ -185,4 +185,100 @@ TEST(LocateCli, ArclengthIsParametricEverywhere) {
   const auto p = run_uniparam({"uniformity", "(t, t^2)", "--speed", "parametric"});
   ASSERT_EQ(a.exit_code, 0) << a.err;
   EXPECT_EQ(a.out, p.out);
+}
+
+// sample --method exact: row k's t contains the parabola's inverse arc
+// length at k mu / (K - 1), computed independently.
+TEST(SampleExactCli, ParabolaRowsAtEqualArcLength) {
+  const long K = 9;
+  const auto r = run_uniparam({"sample", "(t, t^2)", "--method", "exact", "--speed", "arclength", "--points",
+                               std::to_string(K), "--json", "--digits", "20"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  const Ball mu = parabola_length(Ball(1));
+  EXPECT_TRUE(json_ball_at(r.out, "mu").contains(mu)) << r.out;
+  for (long k = 0; k < K; ++k) {
+    Ball y;
+    arb_mul_si(y.get(), mu.get(), k, kPrec);
+    arb_div_si(y.get(), y.get(), K - 1, kPrec);
+    const Ball t = json_ball_at(r.out, "t", static_cast<std::size_t>(k));
+    const Ball ref = parabola_inverse(y);
+    if (k == 0 || k == K - 1) EXPECT_TRUE(arb_overlaps(t.get(), ref.get())) << k;
+    else EXPECT_TRUE(t.contains(ref)) << k << " " << r.out;
+    EXPECT_TRUE(radius_meets(t, 20)) << k;
+  }
+}
+
+// The circle's turning angle: t_k = tan(k (pi/2) / (K - 1) / 2).
+TEST(SampleExactCli, CircleRowsAtEqualTurningAngle) {
+  const long K = 5;
+  const auto r = run_uniparam({"sample", "((1-t^2)/(1+t^2), 2t/(1+t^2))", "--method", "exact", "--points",
+                               std::to_string(K), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (long k = 1; k + 1 < K; ++k) {
+    Ball ref;
+    arb_const_pi(ref.get(), kPrec);
+    arb_mul_si(ref.get(), ref.get(), k, kPrec);
+    arb_div_si(ref.get(), ref.get(), 4 * (K - 1), kPrec);
+    arb_tan(ref.get(), ref.get(), kPrec);
+    EXPECT_TRUE(json_ball_at(r.out, "t", static_cast<std::size_t>(k)).contains(ref)) << k;
+  }
+}
+
+// --deviation of the identity map (--method none) of the circle: row k sits
+// at fraction (4/pi) atan(s) of the length, so its deviation is
+// |(4/pi) atan(s) - s|; the CSV column is an upper bound of it.
+TEST(SampleExactCli, DeviationOfTheIdentityMatchesAtan) {
+  const long K = 5;
+  const std::vector<std::string> base = {"sample", "((1-t^2)/(1+t^2), 2t/(1+t^2))", "--method", "none", "--speed",
+                                         "arclength", "--points", std::to_string(K), "--deviation"};
+  auto json_args = base;
+  json_args.push_back("--json");
+  const auto j = run_uniparam(json_args);
+  const auto c = run_uniparam(base);
+  ASSERT_EQ(j.exit_code, 0) << j.err;
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  Ball pi, worst(0);
+  arb_const_pi(pi.get(), kPrec);
+  std::size_t line_start = c.out.find('\n') + 1;
+  for (long k = 0; k < K; ++k) {
+    Ball s(Rational(k, K - 1), kPrec), d;
+    arb_atan(d.get(), s.get(), kPrec);
+    arb_mul_ui(d.get(), d.get(), 4, kPrec);
+    arb_div(d.get(), d.get(), pi.get(), kPrec);
+    arb_sub(d.get(), d.get(), s.get(), kPrec);
+    arb_abs(d.get(), d.get());
+    arb_max(worst.get(), worst.get(), d.get(), kPrec);
+    EXPECT_TRUE(json_ball_at(j.out, "deviation", static_cast<std::size_t>(k)).contains(d)) << k;
+    const std::size_t eol = c.out.find('\n', line_start);
+    const std::string line = c.out.substr(line_start, eol - line_start);
+    line_start = eol + 1;
+    const Ball bound(Rational::parse(line.substr(line.rfind(',') + 1)), kPrec);
+    Ball diff;
+    arb_sub(diff.get(), bound.get(), d.get(), kPrec);
+    EXPECT_FALSE(diff.certainly_negative()) << line;
+  }
+  EXPECT_TRUE(json_ball_at(j.out, "max_deviation").contains(worst)) << j.out;
+  EXPECT_NE(c.out.find(",speed,deviation\n"), std::string::npos) << c.out;
+}
+
+TEST(SampleExactCli, BadCombinationsFailClearly) {
+  struct Case {
+    std::vector<std::string> args;
+    int code;
+    const char* says;
+  };
+  const Case cases[] = {
+      {{"sample", "(t, t^2)", "--method", "exact", "--deviation"}, 2, "--deviation"},
+      {{"sample", "(t, t^2)", "--method", "exact", "--pieces", "3"}, 2, "--pieces"},
+      {{"sample", "(t, 2t)", "--method", "exact"}, 3, "straight line"},
+      {{"sample", "(t, 2t)", "--method", "radical", "--deviation", "--speed", "angular"}, 3, "straight line"},
+  };
+  for (const Case& c : cases) {
+    const auto r = run_uniparam(c.args);
+    EXPECT_EQ(r.exit_code, c.code) << r.err;
+    EXPECT_NE(r.err.find(c.says), std::string::npos) << r.err;
+  }
+  const auto h = run_uniparam({"sample", "--help"});
+  EXPECT_NE(h.out.find("--method exact --speed arclength"), std::string::npos) << h.out;
 }
