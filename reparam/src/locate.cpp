@@ -212,8 +212,26 @@ Seed seed_at(const Speed& s, const Bracket& b, const Ball& T, long prec) {
 // integral accuracy `bits`. False when more bits are needed.
 bool finish_point(const Curve& c, const Speed& s, Bracket& b, const Ball& T, long bits, const Options& opt,
                   LocatedPoint& out) {
-  Narrower nr(s, bits, opt.max_prec);
   const long prec = 2 * bits + 64;
+  // First to kLowGoalBits at kLowBits, where the quadrature takes its
+  // double-word path: the signs decided there are as certain as any, so
+  // the bracket stays valid; only G(lo) is carried at the full precision,
+  // by one integral from the old lo. Then usually one Newton pair at the
+  // full precision finishes. An undecided sign at the low precision just
+  // ends this stage.
+  constexpr long kLowBits = 60, kLowGoalBits = 40;
+  if (bits > kLowBits + 16 && digits_to_bits(opt.digits) > kLowGoalBits + 8) {
+    Bracket low = b;
+    Narrower coarse(s, kLowBits, opt.max_prec);
+    coarse.narrow(low, T, kLowGoalBits, seed_at(s, low, T, 2 * kLowBits + 64));
+    if (b.lo != low.lo) {
+      const Ball piece = integrate_speed(s, RealAlgebraic(b.lo), RealAlgebraic(low.lo), bits, opt.max_prec);
+      arb_add(b.Glo.get(), b.Glo.get(), piece.get(), prec);
+      b.lo = low.lo;
+    }
+    b.hi = low.hi;
+  }
+  Narrower nr(s, bits, opt.max_prec);
   for (long wbits = digits_to_bits(opt.digits) + 1; wbits <= bits; wbits += 16) {
     if (!nr.narrow(b, T, wbits, seed_at(s, b, T, prec))) return false;
     out.t = unit_ball_of(b.lo, b.hi, prec);
