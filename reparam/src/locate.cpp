@@ -10,6 +10,7 @@
 
 #include "uniparam/algebra/algebraic.hpp"
 #include "uniparam/core/budget.hpp"
+#include "uniparam/core/decimal.hpp"
 #include "uniparam/core/error.hpp"
 
 namespace uniparam {
@@ -192,6 +193,12 @@ void check_digits_fit(const Options& opt) {
                          "precision limit of " + std::to_string(opt.max_prec) + " bits (raise it with --max-prec)");
 }
 
+// The value in messages: exact when short, else 12 significant digits.
+std::string shown(const Rational& x) {
+  const std::string exact = x.str();
+  return exact.size() <= 40 ? exact : "~" + decimal_string(x, 12);
+}
+
 [[noreturn]] void throw_budget(const std::string& what, const Options& opt) {
   throw BudgetExceeded("could not certify " + what + " to " + std::to_string(opt.digits) + " digits within " +
                        std::to_string(opt.max_prec) + " bits of working precision (raise it with --max-prec)");
@@ -256,9 +263,9 @@ LocateResult locate(const Curve& c, const Speed& s, const Rational& value, Locat
   check_not_zero_speed(s);
   if (value.sign() < 0)
     throw InvalidArgument(std::string("the ") + (target == LocateTarget::Fraction ? "fraction" : "value") +
-                          " must be >= 0, got " + value.str());
+                          " must be >= 0, got " + shown(value));
   if (target == LocateTarget::Fraction && Rational(1) < value)
-    throw InvalidArgument("the fraction must be in [0, 1], got " + value.str());
+    throw InvalidArgument("the fraction must be in [0, 1], got " + shown(value));
   check_digits_fit(opt);
   LocateResult r;
   Bracket b{Rational(0), Rational(1), Ball(0)};
@@ -283,13 +290,13 @@ LocateResult locate(const Curve& c, const Speed& s, const Rational& value, Locat
       Ball diff;
       arb_sub(diff.get(), r.target.get(), r.mu.get(), prec);
       if (diff.certainly_positive())
-        throw InvalidArgument("the value " + value.str() + " exceeds mu = int_0^1 sigma = " +
+        throw InvalidArgument("the value " + shown(value) + " exceeds mu = int_0^1 sigma = " +
                               r.mu.mid_decimal(opt.digits) + " (+/- " + r.mu.rad_decimal() +
                               "), the " + (s.kind() == SpeedKind::Parametric ? "length" : "turning angle") +
                               " of the whole curve");
       if (!diff.certainly_negative()) {
         if (next_bits(bits) > opt.max_prec)
-          throw BudgetExceeded("the value " + value.str() + " cannot be told apart from mu = int_0^1 sigma = " +
+          throw BudgetExceeded("the value " + shown(value) + " cannot be told apart from mu = int_0^1 sigma = " +
                                r.mu.mid_decimal(opt.digits) + " within " + std::to_string(opt.max_prec) +
                                " bits of working precision (raise it with --max-prec, or ask for fraction 1)");
         continue;
