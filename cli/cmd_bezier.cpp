@@ -14,6 +14,10 @@ CommandSpec bezier_spec() {
   for (auto& o : common_options())
     if (o.name != "speed") opts.push_back(o);  // always the parametric speed
   opts.push_back({"format", "F", "exact values (P, Q, alpha, weights): text, latex, maple (or json, the same as --json)", "text"});
+  opts.push_back({"exact-weights", "FORM",
+                  "integral curves: the exact new weights as 'expanded' surds, as the 'formula' in alpha, or "
+                  "'auto' (expanded while each has at most 4096 characters; their size grows like the degree squared)",
+                  "auto"});
   return {"bezier",
           "Optimal bilinear (Moebius) reparameterization of a Bezier curve for the parametric speed.",
           "Integral curves (no --weights): P and Q of Juettler 1997, eq. (21) as exact rationals,\n"
@@ -40,6 +44,29 @@ Json json_surd(const QuadraticSurd& q, const Ball& b, long pd) {
   return j;
 }
 
+/// The exact weights' formula in alpha, in format f, for degree n.
+std::string weights_formula(long n, Format f) {
+  const std::string N = std::to_string(n);
+  switch (f) {
+    case Format::Latex: return "w_i = (1-\\alpha)^{i}\\,\\alpha^{" + N + "-i}";
+    case Format::Maple: return "w[i] = (1-alpha)^i*alpha^(" + N + "-i)";
+    default: return "w_i = (1-alpha)^i * alpha^(" + N + "-i)";
+  }
+}
+
+/// Whether the exact weights are printed expanded: --exact-weights, where
+/// 'auto' bounds the size of the largest, w_0 = alpha^n, by n times the size
+/// of alpha's own text (without forming it).
+bool expand_weights(const Args& a, const BezierResult& r, long n) {
+  const std::string form = a.get("exact-weights", "auto");
+  if (form == "expanded") return true;
+  if (form == "formula") return false;
+  if (form != "auto")
+    throw InvalidArgument("--exact-weights expects expanded, formula or auto, got '" + form + "'");
+  if (!r.exact || r.alpha_exact->is_rational()) return true;
+  return static_cast<double>(r.alpha_exact->str(Format::Text).size()) * static_cast<double>(n) <= 4096.0;
+}
+
 }  // namespace
 
 int run_bezier(int argc, char** argv) {
@@ -53,6 +80,7 @@ int run_bezier(int argc, char** argv) {
   const BezierResult r = bezier_optimal(bz, opt);
   const long pd = printed_digits(opt.digits);
   const std::size_t n1 = r.weights.size();
+  const bool expanded = expand_weights(a, r, bz.degree());
 
   if (wants_json(a)) {
     Json j = Json::object();
@@ -85,8 +113,16 @@ int run_bezier(int argc, char** argv) {
       }
       j.set("alpha", al);
       Json w = Json::array();
-      for (std::size_t i = 0; i < n1; ++i) w.push(json_surd(r.weights_exact[i], r.weights[i], pd));
+      for (std::size_t i = 0; i < n1; ++i)
+        w.push(expanded ? json_surd(r.weights_exact[i], r.weights[i], pd) : json_ball(r.weights[i], pd));
       j.set("weights", w);
+      if (!expanded) {
+        Json e = Json::object();
+        e.set("text", Json::string(weights_formula(bz.degree(), Format::Text)));
+        e.set("latex", Json::string(weights_formula(bz.degree(), Format::Latex)));
+        e.set("maple", Json::string(weights_formula(bz.degree(), Format::Maple)));
+        j.set("weights_formula", e);
+      }
       j.set("mean_square", json_rational(*r.mean_square_exact, pd));
     } else {
       j.set("P", json_ball(r.P, pd));
@@ -120,10 +156,16 @@ int run_bezier(int argc, char** argv) {
               << "alpha      " << r.alpha_exact->str(fmt);
     if (!r.alpha_exact->is_rational()) std::cout << " = " << format_ball(r.alpha, pd, Format::Text);
     std::cout << "\n";
-    for (std::size_t i = 0; i < n1; ++i) {
-      std::cout << (i ? "           w_" : "weights    w_") << i << " = " << r.weights_exact[i].str(fmt);
-      if (!r.weights_exact[i].is_rational()) std::cout << " = " << format_ball(r.weights[i], pd, Format::Text);
-      std::cout << "\n";
+    if (expanded) {
+      for (std::size_t i = 0; i < n1; ++i) {
+        std::cout << (i ? "           w_" : "weights    w_") << i << " = " << r.weights_exact[i].str(fmt);
+        if (!r.weights_exact[i].is_rational()) std::cout << " = " << format_ball(r.weights[i], pd, Format::Text);
+        std::cout << "\n";
+      }
+    } else {
+      std::cout << "weights    " << weights_formula(bz.degree(), fmt) << "  (exact; --exact-weights expanded to expand)\n";
+      for (std::size_t i = 0; i < n1; ++i)
+        std::cout << "           w_" << i << " = " << format_ball(r.weights[i], pd, Format::Text) << "\n";
     }
   } else {
     std::cout << "P          " << format_ball(r.P, pd, Format::Text) << "  (-int (1-t)^2 |p'|^2, certified quadrature)\n"
