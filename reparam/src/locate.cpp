@@ -316,12 +316,13 @@ void exact_samples_each(const Curve& c, const Speed& s, long K, const Options& o
     throw InvalidArgument("the number of points must be between 2 and 1000000, got " + std::to_string(K));
   check_not_zero_speed(s);
   check_digits_fit(opt);
-  long log2k = 0;
-  while ((1L << log2k) < K) ++log2k;
   // The chain's precision: every G(lo) is a sum of disjoint integrals, so
-  // its radius stays below 2^-bits mu whatever K; log2 K more bits keep the
-  // targets k mu / (K - 1) apart from it.
-  long bits = digits_to_bits(opt.digits) + 32 + log2k;
+  // its radius stays below about 2^-bits mu whatever K, as does the
+  // targets' k mu / (K - 1). 12 bits above the goal width leave t's
+  // uncertainty 2^-bits mu / sigma(t) below it where sigma(t) > mu / 2^10,
+  // and keep the quadrature's double-word path for up to 16 digits; where
+  // a point needs more, the chain goes on at more bits.
+  long bits = digits_to_bits(opt.digits) + 12;
   auto compute_mu = [&]() {
     for (;; bits = next_bits(bits)) {
       if (bits > opt.max_prec) throw_budget("the exact samples", opt);
