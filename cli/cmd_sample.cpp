@@ -2,12 +2,14 @@
 // at equally spaced parameters, as CSV (decimals) or JSON (balls); and the
 // --method options shared with `uniparam plot`.
 #include <algorithm>
+#include <memory>
 #include <iostream>
 #include <string>
 
 #include "commands.hpp"
 #include "output.hpp"
 #include "report.hpp"
+#include "uniparam/reparam/locate.hpp"
 #include "uniparam/reparam/sample.hpp"
 
 namespace uniparam::cli {
@@ -61,11 +63,22 @@ std::string coordinate_name(std::size_t i, std::size_t n) {
 
 CommandSpec sample_spec() {
   auto opts = common_options();
-  for (const auto& o : method_options(true)) opts.push_back(o);
+  for (auto o : method_options(true)) {
+    if (o.name == "method")
+      o.help += ", exact (points at exactly equal steps of arc length with --speed arclength, "
+                "of turning angle with --speed angular; not a rational map)";
+    opts.push_back(o);
+  }
   opts.push_back({"points", "K", "number of points, at s = 0, 1/(K-1), ..., 1", "40"});
   opts.push_back({"format", "F", "csv (decimals) or json (certified balls; same as --json)", "csv"});
+  opts.push_back({"deviation", "",
+                  "add each row's distance from the exact equal step, |G(r(s))/mu - s| with G(t) = int_0^t sigma "
+                  "(CSV: a certified upper bound; JSON: a ball, and the largest as \"max_deviation\")",
+                  ""});
   return {"sample",
           "K points of the reparameterized curve p o r at equally spaced parameters.",
+          "Points at equal arc length:  uniparam sample CURVE --method exact --speed arclength --points K\n"
+          "\n"
           "Row k is s = k/(K-1) (first 0, last 1), t = r(s), the point p(r(s)) and the\n"
           "speed of p o r at s. Every value is certified to --digits digits: JSON gives\n"
           "balls {\"mid\", \"rad\"}, CSV the midpoints (decimals with D significant digits).\n"
@@ -73,6 +86,11 @@ CommandSpec sample_spec() {
           "two-sided: CSV leaves it empty, JSON gives the union and \"at_joint\": true.\n"
           "--method none samples the original p (s = t). When --method c1 misses its\n"
           "target, the best map is sampled and the exit status is 4.\n"
+          "--method exact: t is the parameter where int_0^t sigma = s mu exactly (equal\n"
+          "steps of arc length for the parametric speed, of turning angle for the\n"
+          "angular one); it is not rational, so there is no map to print, and the\n"
+          "speed column is mu (the uniform speed). --deviation tells, for the other\n"
+          "methods, how far their rows are from these (in fraction of mu).\n"
           "The map is certified before the first row; the rows then stream out as they\n"
           "are certified (r's data refined where a row needs it). A row that cannot be\n"
           "certified within --max-prec or --timeout ends the output with an error\n"
@@ -80,6 +98,109 @@ CommandSpec sample_spec() {
           {"CURVE"},
           opts};
 }
+
+namespace {
+
+// CSV's deviation column: a certified upper bound of |d|, rounded up to 3
+// significant digits.
+std::string upper_bound_text(const Ball& d) {
+  arf_t u;
+  arf_init(u);
+  arb_get_abs_ubound_arf(u, d.get(), 64);
+  Ball b(0);
+  arb_add_error_arf(b.get(), u);
+  arf_clear(u);
+  return b.rad_decimal();
+}
+
+// sample --method exact: the rows of exact_samples_each, streamed as the
+// other methods' rows (same columns; the speed of the exactly uniform
+// parameterization is mu at every s).
+int run_sample_exact(const Args& a, const Curve& c, SpeedKind kind, const Options& opt, long K,
+                     const std::string& format) {
+  for (const char* o : {"pieces", "target", "max-pieces"})
+    if (a.has(o)) throw InvalidArgument(std::string("--") + o + " does not apply to --method exact");
+  if (a.flag("deviation"))
+    throw InvalidArgument("--deviation measures a map's rows against --method exact's; it does not apply to "
+                          "--method exact itself");
+  check_degree(c, opt);
+  const Speed sp(c, kind);
+  const std::size_t n = c.dimension();
+  const long pd = printed_digits(opt.digits);
+  std::ostream& out = std::cout;
+  struct WriteFailed {};
+  long written = 0;
+  auto write_failed = [&]() {
+    std::cerr << "uniparam sample: cannot write the output (" << written << " of " << K
+              << " rows written; the output is incomplete)\n";
+    return 1;
+  };
+  Ball mu;
+  bool started = false;
+  // mu is certified before the first row; the header goes out with it.
+  auto start = [&]() {
+    started = true;
+    stream_stdout();
+    if (format == "json") {
+      Json j = Json::object();
+      j.set("curve", Json::string(c.str()));
+      j.set("speed", Json::string(to_string(kind)));
+      j.set("method", Json::string("exact"));
+      j.set("digits", Json::number(opt.digits));
+      j.set("points", Json::number(K));
+      j.set("mu", json_ball(mu, pd));
+      std::string head = j.dump(2);
+      head.resize(head.size() - 2);  // "\n}"
+      out << head << ",\n  \"samples\": [";
+    } else {
+      out << "s,t";
+      for (std::size_t i = 0; i < n; ++i) out << "," << coordinate_name(i, n);
+      out << ",speed\n";
+    }
+  };
+  try {
+    exact_samples_each(c, sp, K, opt, mu, [&](long k, const LocatedPoint& p) {
+      if (!started) start();
+      const Rational s(k, K - 1);
+      if (format == "json") {
+        Json row = Json::object();
+        row.set("s", json_rational(s, pd));
+        row.set("t", json_ball(p.t, pd));
+        Json pt = Json::array();
+        for (const auto& b : p.point) pt.push(json_ball(b, pd));
+        row.set("point", pt);
+        row.set("speed", json_ball(mu, pd));
+        row.set("at_joint", Json::boolean(false));
+        std::string text = row.dump(2);
+        std::string line = k ? ",\n    " : "\n    ";
+        for (char ch : text) {
+          line += ch;
+          if (ch == '\n') line += "    ";
+        }
+        out << line;
+      } else {
+        std::string line = decimal_string(s, opt.digits) + "," + p.t.mid_decimal(opt.digits);
+        for (const auto& b : p.point) line += "," + b.mid_decimal(opt.digits);
+        out << line << "," << mu.mid_decimal(opt.digits) << "\n";
+      }
+      if (!out) throw WriteFailed{};
+      ++written;
+    });
+  } catch (const BudgetExceeded& e) {
+    if (!started) throw;
+    out.flush();
+    throw BudgetExceeded("the output is incomplete (" + std::to_string(written) + " of " + std::to_string(K) +
+                         " rows written): " + e.what());
+  } catch (const WriteFailed&) {
+    return write_failed();
+  }
+  if (format == "json") out << "\n  ]\n}\n";
+  out.flush();
+  if (!out) return write_failed();
+  return 0;
+}
+
+}  // namespace
 
 int run_sample(int argc, char** argv) {
   const CommandSpec spec = sample_spec();
@@ -93,6 +214,7 @@ int run_sample(int argc, char** argv) {
     throw InvalidArgument("unknown format '" + format + "' (expected csv or json)");
   if (a.flag("json") && format != "json") throw InvalidArgument("--json conflicts with --format " + format);
   const Curve c = read_curve(a);
+  if (a.get("method", "radical") == "exact") return run_sample_exact(a, c, kind, opt, K, format);
   // The map is certified completely (u, joints, data to 3 more digits than
   // the samples) before the first byte; the samples then stream out one row
   // at a time (memory independent of K). A sample refines r's data when it
@@ -105,6 +227,20 @@ int run_sample(int argc, char** argv) {
   const Speed sp(c, kind);
   const std::size_t n = c.dimension();
   const long pd = printed_digits(opt.digits);
+  // --deviation: G(r(s)) / mu for the rows in increasing s, one short
+  // integral per row; mu (and the straight line's refusal) before any row.
+  const bool deviation = a.flag("deviation");
+  std::unique_ptr<ArcFraction> frac;
+  if (deviation) frac = std::make_unique<ArcFraction>(sp, digits_to_bits(opt.digits) + 8, opt);
+  Ball worst(0);
+  auto deviation_of = [&](const SamplePoint& p) {
+    const long prec = 2 * digits_to_bits(opt.digits) + 128;
+    Ball d = frac->at(p.t), s(p.s, prec);
+    arb_sub(d.get(), d.get(), s.get(), prec);
+    arb_abs(d.get(), d.get());
+    arb_max(worst.get(), worst.get(), d.get(), prec);
+    return d;
+  };
   stream_stdout();  // the map is certified: the rows go out as they come
   std::ostream& out = std::cout;
   // A failed write (full disk, closed pipe) ends the command with status 1:
@@ -156,6 +292,7 @@ int run_sample(int argc, char** argv) {
         row.set("point", pt);
         row.set("speed", json_ball(p.speed, pd));
         row.set("at_joint", Json::boolean(p.at_joint));
+        if (deviation) row.set("deviation", json_ball(deviation_of(p), pd));
         std::string text = row.dump(2);
         std::string line = k ? ",\n    " : "\n    ";
         for (char ch : text) {
@@ -172,20 +309,30 @@ int run_sample(int argc, char** argv) {
     } catch (const WriteFailed&) {
       return write_failed();
     }
-    out << "\n  ]\n}\n";
+    out << "\n  ]";
+    if (deviation) {
+      std::string m = json_ball(worst, pd).dump(2), indented;
+      for (char ch : m) {
+        indented += ch;
+        if (ch == '\n') indented += "  ";
+      }
+      out << ",\n  \"max_deviation\": " << indented;
+    }
+    out << "\n}\n";
     out.flush();
     if (!out) return write_failed();
     return target_status(r, "sample");
   }
   out << "s,t";
   for (std::size_t i = 0; i < n; ++i) out << "," << coordinate_name(i, n);
-  out << ",speed\n";
+  out << ",speed" << (deviation ? ",deviation" : "") << "\n";
   try {
     sample_each(c, sp, r, K, opt.digits, opt.max_prec, [&](long, const SamplePoint& p) {
       std::string line = decimal_string(p.s, opt.digits) + "," + p.t.mid_decimal(opt.digits);
       for (const auto& b : p.point) line += "," + b.mid_decimal(opt.digits);
       line += ",";
       if (!p.at_joint) line += p.speed.mid_decimal(opt.digits);
+      if (deviation) line += "," + upper_bound_text(deviation_of(p));
       out << line << "\n";
       check();
       ++written;

@@ -68,7 +68,7 @@ class Watchdog {
 
 std::vector<OptionSpec> common_options() {
   return {
-      {"speed", "KIND", "speed to make uniform: angular or parametric", "angular"},
+      {"speed", "KIND", "speed to make uniform: angular or parametric (arc length; also 'arclength')", "angular"},
       {"digits", "D", "correct decimal digits: every ball has radius <= 10^-D * max(1, |mid|)", "15"},
       {"json", "", "print JSON: certified reals as {\"mid\", \"rad\"}", ""},
       {"max-prec", "BITS", "largest working precision before giving up", "16384"},
@@ -174,6 +174,7 @@ const std::vector<Command>& commands() {
       {bezier_spec(), &run_bezier},
       {sample_spec(), &run_sample},
       {plot_spec(), &run_plot},
+      {locate_spec(), &run_locate},
   };
   return table;
 }

@@ -75,6 +75,8 @@ CommandSpec sample_spec();
 int run_sample(int argc, char** argv);
 CommandSpec plot_spec();
 int run_plot(int argc, char** argv);
+CommandSpec locate_spec();
+int run_locate(int argc, char** argv);
 /// --method, --pieces, --target (cmd_sample.cpp); `with_none` adds
 /// --method none (the original curve).
 std::vector<OptionSpec> method_options(bool with_none);

@@ -29,6 +29,8 @@ const char* kMainHelp =
     "                     optimal bilinear reparameterization of a Bezier curve (arc length)\n"
     "  sample CURVE       K certified points of p o r at equal parameter steps (CSV, JSON)\n"
     "  plot CURVE -o F    SVG or PNG: p and p o r sampled at equal steps, and both speeds\n"
+    "  locate CURVE (--length S | --fraction F | --angle A)\n"
+    "                     the parameter t at arc length S (or turning angle A), certified\n"
     "\n"
     "CURVE is a tuple of rational functions of t, e.g. \"(t, t^3)\" or\n"
     "\"((1-t^2)/(1+t^2), 2t/(1+t^2), t)\"; decimals are read exactly (0.1 = 1/10).\n"

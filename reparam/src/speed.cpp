@@ -22,8 +22,8 @@ std::string to_string(SpeedKind k) { return k == SpeedKind::Angular ? "angular" 
 
 SpeedKind parse_speed_kind(const std::string& s) {
   if (s == "angular") return SpeedKind::Angular;
-  if (s == "parametric") return SpeedKind::Parametric;
-  throw InvalidArgument("unknown speed '" + s + "' (expected 'angular' or 'parametric')");
+  if (s == "parametric" || s == "arclength") return SpeedKind::Parametric;
+  throw InvalidArgument("unknown speed '" + s + "' (expected 'angular', 'parametric' or 'arclength')");
 }
 
 namespace {

@@ -32,6 +32,7 @@
 #include "uniparam/reparam/breakpoints.hpp"
 #include "uniparam/reparam/curve.hpp"
 #include "uniparam/reparam/formula.hpp"
+#include "uniparam/reparam/locate.hpp"
 #include "uniparam/reparam/moebius.hpp"
 #include "uniparam/reparam/pieces.hpp"
 #include "uniparam/reparam/radical.hpp"

@@ -1,0 +1,439 @@
+#include "uniparam/reparam/locate.hpp"
+
+#include <acb.h>
+#include <arb.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "uniparam/algebra/algebraic.hpp"
+#include "uniparam/core/budget.hpp"
+#include "uniparam/core/decimal.hpp"
+#include "uniparam/core/error.hpp"
+
+namespace uniparam {
+
+namespace {
+
+// G(x) - T is decided at rational points x only, from a bracket
+//     lo <= t <= hi,  G(lo) in Glo,
+// where G(x) = G(lo) + int_lo^x sigma (integrate_speed: split at the zeros
+// of sigma inside, each part analytic). Moving lo forward adds the integral
+// over [lo, x] to Glo: the parts are disjoint, so their radii add up to at
+// most 2^-bits of the integral over what was covered.
+struct Bracket {
+  Rational lo, hi;
+  Ball Glo;
+};
+
+// An uncertified estimate of sigma(x) (only used to choose the next probe):
+// the square root of the midpoint of sigma(x)^2 at 64 bits; 0 where that is
+// not a positive finite double.
+double sigma_estimate(const Speed& s, const Rational& x) {
+  acb_t z, out;
+  acb_init(z);
+  acb_init(out);
+  arb_set_fmpq(acb_realref(z), x.get(), 64);
+  s.eval_squared(out, z, 64);
+  const double v = arf_get_d(arb_midref(acb_realref(out)), ARF_RND_NEAR);
+  acb_clear(z);
+  acb_clear(out);
+  return std::isfinite(v) && v > 0 ? std::sqrt(v) : 0.0;
+}
+
+// The dyadic rational nearest to y's midpoint with `bits` significant bits.
+Rational dyadic_near(const arb_t y, long bits) {
+  arf_t m;
+  arf_init(m);
+  arf_set_round(m, arb_midref(y), bits, ARF_RND_NEAR);
+  fmpq_t q;
+  fmpq_init(q);
+  arf_get_fmpq(q, m);
+  Rational r(q);
+  fmpq_clear(q);
+  arf_clear(m);
+  return r;
+}
+
+Rational two_pow(long e) {  // 2^e, e may be negative
+  fmpq_t q;
+  fmpq_init(q);
+  fmpq_one(q);
+  if (e >= 0) fmpq_mul_2exp(q, q, static_cast<ulong>(e));
+  else fmpq_div_2exp(q, q, static_cast<ulong>(-e));
+  Rational r(q);
+  fmpq_clear(q);
+  return r;
+}
+
+// The last decided probe: x, G(x) - T and sigma's estimate there.
+struct Seed {
+  bool valid = false;
+  Rational x;
+  Ball v;
+  double sx = 0;
+};
+
+class Narrower {
+ public:
+  Narrower(const Speed& s, long bits, long max_prec) : s_(s), bits_(bits), max_prec_(max_prec) {}
+
+  // Narrows b (G(lo) <= T <= G(hi), t unique) to hi - lo <= 2^-wbits.
+  // \return false when G(x) - T could not be decided at some x at this
+  //         precision (more bits are needed); b stays a valid bracket.
+  bool narrow(Bracket& b, const Ball& T, long wbits, Seed seed) {
+    const Rational w = two_pow(-wbits), quarter = w / Rational(4);
+    const long prec = 2 * bits_ + 64;
+    bool newton = seed.valid;
+    bool have_undecided = false;
+    Rational undecided;
+    for (long round = 0; round < 8 * (wbits + bits_) + 200; ++round) {
+      check_time_budget();
+      const Rational width = b.hi - b.lo;
+      if (width <= w) return true;
+      std::vector<Rational> probes;
+      const bool undecided_round = have_undecided;
+      if (have_undecided) {
+        probes = {undecided - quarter, undecided + quarter};
+        have_undecided = false;
+      } else if (newton && seed.valid && seed.sx > 0) {
+        // y = x - (G(x) - T) / sigma(x); probes y -+ e straddle t when the
+        // step's own error (about (sigma'/2 sigma) d^2, with d the step) and
+        // the value's radius are below e.
+        arb_t y, d, e, tmp;
+        arb_init(y);
+        arb_init(d);
+        arb_init(e);
+        arb_init(tmp);
+        arb_set_d(tmp, seed.sx);
+        arb_div(d, seed.v.get(), tmp, prec);
+        arb_set_fmpq(y, seed.x.get(), prec);
+        arb_sub(y, y, d, prec);
+        const double dd = std::fabs(arf_get_d(arb_midref(d), ARF_RND_UP));
+        const double rd = mag_get_d(arb_radref(d));
+        const double ed = std::max({4 * dd * dd, 2 * rd, dd * 0x1p-20});
+        const Rational ctr = dyadic_near(y, wbits + 16);
+        Rational er = quarter;
+        if (std::isfinite(ed) && ed > 0) {
+          arb_set_d(e, ed);
+          const Rational ed_q = dyadic_near(e, 30);
+          if (quarter < ed_q) er = ed_q;
+        }
+        probes = {ctr - er, ctr + er};
+        arb_clear(y);
+        arb_clear(d);
+        arb_clear(e);
+        arb_clear(tmp);
+      }
+      std::vector<Rational> inside;
+      for (const Rational& p : probes)
+        if (b.lo < p && p < b.hi) inside.push_back(p);
+      if (inside.empty()) inside.push_back((b.lo + b.hi) / Rational(2));
+      bool newton_round = newton && !undecided_round;
+      for (const Rational& p : inside) {
+        if (!(b.lo < p && p < b.hi)) continue;  // the first probe moved an end past it
+        Ball piece = integrate_speed(s_, RealAlgebraic(b.lo), RealAlgebraic(p), bits_, max_prec_);
+        Ball v;
+        arb_add(v.get(), b.Glo.get(), piece.get(), prec);
+        arb_sub(v.get(), v.get(), T.get(), prec);
+        if (v.certainly_negative()) {
+          arb_add(b.Glo.get(), b.Glo.get(), piece.get(), prec);
+          b.lo = p;
+        } else if (v.certainly_positive()) {
+          b.hi = p;
+        } else {
+          if (undecided_round) return false;
+          have_undecided = true;
+          undecided = p;
+          continue;
+        }
+        seed.valid = true;
+        seed.x = p;
+        seed.v = v;
+        seed.sx = sigma_estimate(s_, p);
+      }
+      // Newton again after a round that shrank the bracket fourfold; one
+      // bisection otherwise (at least halving every two rounds).
+      const Rational shrunk = b.hi - b.lo;
+      newton = !newton_round || shrunk * Rational(4) <= width;
+    }
+    return false;
+  }
+
+ private:
+  const Speed& s_;
+  long bits_, max_prec_;
+};
+
+Ball unit_ball_of(const Rational& lo, const Rational& hi, long prec) {
+  Ball a(lo, prec), b(hi, prec), u;
+  arb_union(u.get(), a.get(), b.get(), prec);
+  return u;
+}
+
+bool points_meet(const std::vector<Ball>& pt, long digits) {
+  for (const Ball& x : pt)
+    if (!x.meets_digits(digits + 1)) return false;
+  return true;
+}
+
+void check_not_zero_speed(const Speed& s) {
+  if (s.identically_zero())
+    throw DomainError(
+        "the angular speed of a straight line is identically zero: its turning angle is 0 at every t, "
+        "so it determines no parameter (use the parametric speed, arc length)");
+}
+
+void check_digits_fit(const Options& opt) {
+  if (digits_to_bits(opt.digits) > opt.max_prec)
+    throw BudgetExceeded(std::to_string(opt.digits) + " digits need more than " +
+                         std::to_string(digits_to_bits(opt.digits)) + " bits of working precision, above the " +
+                         "precision limit of " + std::to_string(opt.max_prec) + " bits (raise it with --max-prec)");
+}
+
+// The value in messages: exact when short, else 12 significant digits.
+std::string shown(const Rational& x) {
+  const std::string exact = x.str();
+  return exact.size() <= 40 ? exact : "~" + decimal_string(x, 12);
+}
+
+[[noreturn]] void throw_budget(const std::string& what, const Options& opt) {
+  throw BudgetExceeded("could not certify " + what + " to " + std::to_string(opt.digits) + " digits within " +
+                       std::to_string(opt.max_prec) + " bits of working precision (raise it with --max-prec)");
+}
+
+long next_bits(long bits) { return bits + std::max(32L, bits / 2); }
+
+Seed seed_at(const Speed& s, const Bracket& b, const Ball& T, long prec) {
+  Seed sd;
+  sd.valid = true;
+  sd.x = b.lo;
+  arb_sub(sd.v.get(), b.Glo.get(), T.get(), prec);
+  sd.sx = sigma_estimate(s, b.lo);
+  return sd;
+}
+
+// Narrows b to a t ball meeting digits with p(t) meeting digits too, at
+// integral accuracy `bits`. False when more bits are needed.
+bool finish_point(const Curve& c, const Speed& s, Bracket& b, const Ball& T, long bits, const Options& opt,
+                  LocatedPoint& out) {
+  const long prec = 2 * bits + 64;
+  // First to kLowGoalBits at kLowBits, where the quadrature takes its
+  // double-word path: the signs decided there are as certain as any, so
+  // the bracket stays valid; only G(lo) is carried at the full precision,
+  // by one integral from the old lo. Then usually one Newton pair at the
+  // full precision finishes. An undecided sign at the low precision just
+  // ends this stage.
+  constexpr long kLowBits = 60, kLowGoalBits = 40;
+  if (bits > kLowBits + 16 && digits_to_bits(opt.digits) > kLowGoalBits + 8) {
+    Bracket low = b;
+    Narrower coarse(s, kLowBits, opt.max_prec);
+    coarse.narrow(low, T, kLowGoalBits, seed_at(s, low, T, 2 * kLowBits + 64));
+    if (b.lo != low.lo) {
+      const Ball piece = integrate_speed(s, RealAlgebraic(b.lo), RealAlgebraic(low.lo), bits, opt.max_prec);
+      arb_add(b.Glo.get(), b.Glo.get(), piece.get(), prec);
+      b.lo = low.lo;
+    }
+    b.hi = low.hi;
+  }
+  Narrower nr(s, bits, opt.max_prec);
+  for (long wbits = digits_to_bits(opt.digits) + 1; wbits <= bits; wbits += 16) {
+    if (!nr.narrow(b, T, wbits, seed_at(s, b, T, prec))) return false;
+    out.t = unit_ball_of(b.lo, b.hi, prec);
+    out.point = c.eval(out.t, prec);
+    if (out.t.meets_digits(opt.digits + 1) && points_meet(out.point, opt.digits)) return true;
+  }
+  return false;
+}
+
+LocatedPoint exact_point(const Curve& c, long t) {
+  LocatedPoint p;
+  p.t = Ball(t);
+  p.point = c.eval(p.t, 128);
+  return p;
+}
+
+}  // namespace
+
+LocateResult locate(const Curve& c, const Speed& s, const Rational& value, LocateTarget target,
+                    const Options& opt) {
+  validate(opt);
+  check_not_zero_speed(s);
+  if (value.sign() < 0)
+    throw InvalidArgument(std::string("the ") + (target == LocateTarget::Fraction ? "fraction" : "value") +
+                          " must be >= 0, got " + shown(value));
+  if (target == LocateTarget::Fraction && Rational(1) < value)
+    throw InvalidArgument("the fraction must be in [0, 1], got " + shown(value));
+  check_digits_fit(opt);
+  LocateResult r;
+  Bracket b{Rational(0), Rational(1), Ball(0)};
+  for (long bits = digits_to_bits(opt.digits) + 32;; bits = next_bits(bits)) {
+    if (bits > opt.max_prec) throw_budget("the located parameter", opt);
+    check_time_budget();
+    const long prec = 2 * bits + 64;
+    r.mu = mean_speed(s, bits, opt);
+    if (!r.mu.meets_digits(opt.digits + 1)) continue;
+    if (target == LocateTarget::Fraction) arb_mul_fmpz(r.target.get(), r.mu.get(), value.num().get(), prec),
+                                          arb_div_fmpz(r.target.get(), r.target.get(), value.den().get(), prec);
+    else r.target = Ball(value, prec);
+    if (value.is_zero()) {
+      r.at = exact_point(c, 0);
+      return r;
+    }
+    if (target == LocateTarget::Fraction && value == Rational(1)) {
+      r.at = exact_point(c, 1);
+      return r;
+    }
+    if (target == LocateTarget::Integral) {
+      Ball diff;
+      arb_sub(diff.get(), r.target.get(), r.mu.get(), prec);
+      if (diff.certainly_positive())
+        throw InvalidArgument("the value " + shown(value) + " exceeds mu = int_0^1 sigma = " +
+                              r.mu.mid_decimal(opt.digits) + " (+/- " + r.mu.rad_decimal() +
+                              "), the " + (s.kind() == SpeedKind::Parametric ? "length" : "turning angle") +
+                              " of the whole curve");
+      if (!diff.certainly_negative()) {
+        if (next_bits(bits) > opt.max_prec)
+          throw BudgetExceeded("the value " + shown(value) + " cannot be told apart from mu = int_0^1 sigma = " +
+                               r.mu.mid_decimal(opt.digits) + " within " + std::to_string(opt.max_prec) +
+                               " bits of working precision (raise it with --max-prec, or ask for fraction 1)");
+        continue;
+      }
+    }
+    // G(lo) again at this precision (the bracket itself holds at any).
+    b.Glo = b.lo.is_zero() ? Ball(0)
+                           : integrate_speed(s, RealAlgebraic(0), RealAlgebraic(b.lo), bits, opt.max_prec);
+    if (finish_point(c, s, b, r.target, bits, opt, r.at)) return r;
+  }
+}
+
+void exact_samples_each(const Curve& c, const Speed& s, long K, const Options& opt, Ball& mu,
+                        const LocatedSink& sink) {
+  validate(opt);
+  if (K < 2 || K > 1000000)
+    throw InvalidArgument("the number of points must be between 2 and 1000000, got " + std::to_string(K));
+  check_not_zero_speed(s);
+  check_digits_fit(opt);
+  // The chain's precision: every G(lo) is a sum of disjoint integrals, so
+  // its radius stays below about 2^-bits mu whatever K, as does the
+  // targets' k mu / (K - 1). 12 bits above the goal width leave t's
+  // uncertainty 2^-bits mu / sigma(t) below it where sigma(t) > mu / 2^10,
+  // and keep the quadrature's double-word path for up to 16 digits; where
+  // a point needs more, the chain goes on at more bits.
+  long bits = digits_to_bits(opt.digits) + 12;
+  auto compute_mu = [&]() {
+    for (;; bits = next_bits(bits)) {
+      if (bits > opt.max_prec) throw_budget("the exact samples", opt);
+      mu = mean_speed(s, bits, opt);
+      if (mu.meets_digits(opt.digits + 1)) return;
+    }
+  };
+  compute_mu();
+  sink(0, exact_point(c, 0));
+  Bracket b{Rational(0), Rational(1), Ball(0)};
+  for (long k = 1; k + 1 < K; ++k) {
+    // t_k > t_{k-1} >= lo: the previous bracket's lower end and G there
+    // start this point; hi = 1 holds as G(1) = mu > k mu / (K - 1).
+    LocatedPoint pt;
+    for (;;) {
+      check_time_budget();
+      const long prec = 2 * bits + 64;
+      Ball T;
+      arb_mul_si(T.get(), mu.get(), k, prec);
+      arb_div_si(T.get(), T.get(), K - 1, prec);
+      b.hi = Rational(1);
+      if (finish_point(c, s, b, T, bits, opt, pt)) break;
+      // More bits: mu and G(lo) again at the higher precision (the bracket
+      // holds at any).
+      bits = next_bits(bits);
+      compute_mu();
+      b.Glo = b.lo.is_zero() ? Ball(0)
+                             : integrate_speed(s, RealAlgebraic(0), RealAlgebraic(b.lo), bits, opt.max_prec);
+    }
+    sink(k, pt);
+  }
+  sink(K - 1, exact_point(c, 1));
+}
+
+ExactSamples exact_samples(const Curve& c, const Speed& s, long K, const Options& opt) {
+  ExactSamples out;
+  exact_samples_each(c, s, K, opt, out.mu, [&out](long, const LocatedPoint& p) { out.points.push_back(p); });
+  return out;
+}
+
+ArcFraction::ArcFraction(const Speed& s, long bits, const Options& opt)
+    : s_(s), bits_(bits), max_prec_(opt.max_prec), last_(0), G_last_(0) {
+  check_not_zero_speed(s);
+  mu_ = mean_speed(s, bits, opt);
+}
+
+Ball ArcFraction::G(const Rational& x) {
+  const long prec = 2 * bits_ + 64;
+  if (x == last_) return G_last_;
+  Ball g;
+  if (last_ < x) {
+    const Ball piece = integrate_speed(s_, RealAlgebraic(last_), RealAlgebraic(x), bits_, max_prec_);
+    arb_add(g.get(), G_last_.get(), piece.get(), prec);
+  } else {
+    const Ball piece = integrate_speed(s_, RealAlgebraic(x), RealAlgebraic(last_), bits_, max_prec_);
+    arb_sub(g.get(), G_last_.get(), piece.get(), prec);
+  }
+  last_ = x;
+  G_last_ = g;
+  return g;
+}
+
+Ball ArcFraction::at(const Ball& t) {
+  if (!t.is_finite()) throw DomainError("ArcFraction::at: the parameter's enclosure is not finite");
+  const long prec = 2 * bits_ + 64;
+  Ball tc = t;
+  clamp_unit(tc.get(), prec);
+  arf_t lo, hi;
+  arf_init(lo);
+  arf_init(hi);
+  arb_get_lbound_arf(lo, tc.get(), prec);
+  arb_get_ubound_arf(hi, tc.get(), prec);
+  fmpq_t q;
+  fmpq_init(q);
+  arf_get_fmpq(q, lo);
+  Rational ql(q);
+  arf_get_fmpq(q, hi);
+  Rational qh(q);
+  fmpq_clear(q);
+  arf_clear(lo);
+  arf_clear(hi);
+  if (ql.sign() < 0) ql = Rational(0);
+  if (Rational(1) < qh) qh = Rational(1);
+  // G is increasing: G(t) lies in [G(ql), G(qh)] (G(qh) last, so that the
+  // next, larger t starts from the upper end).
+  const Ball gl = G(ql), gh = G(qh);
+  Ball a, b, u;
+  arb_div(a.get(), gl.get(), mu_.get(), prec);
+  arb_div(b.get(), gh.get(), mu_.get(), prec);
+  arb_union(u.get(), a.get(), b.get(), prec);
+  return u;
+}
+
+Ball fraction_deviation(const Speed& s, const Reparameterization& r, long K, const Options& opt) {
+  validate(opt);
+  if (K < 2 || K > 1000000)
+    throw InvalidArgument("the number of points must be between 2 and 1000000, got " + std::to_string(K));
+  check_not_zero_speed(s);
+  const long bits = digits_to_bits(opt.digits) + 8;
+  const long prec = 2 * bits + 64;
+  ArcFraction frac(s, bits, opt);
+  Ball worst(0);
+  for (long k = 0; k < K; ++k) {
+    check_time_budget();
+    const Ball sk(Rational(k, K - 1), prec);
+    Ball d = frac.at(r.eval_r(sk, prec));
+    arb_sub(d.get(), d.get(), sk.get(), prec);
+    arb_abs(d.get(), d.get());
+    arb_max(worst.get(), worst.get(), d.get(), prec);
+  }
+  return worst;
+}
+
+}  // namespace uniparam
