@@ -101,6 +101,35 @@ CommandSpec sample_spec() {
 
 namespace {
 
+/// The bookkeeping of rows streamed to std::cout (after stream_stdout()): a
+/// failed write ends the command with status 1, a budget exceeded after the
+/// first row with status 4, both saying how many rows went out.
+struct RowStream {
+  explicit RowStream(long k) : K(k) {}
+  const long K;
+  long written = 0;
+  struct WriteFailed {};
+  std::ostream& out = std::cout;
+
+  /// Throws WriteFailed when the stream has failed; else counts the row.
+  void row_done() {
+    if (!out) throw WriteFailed{};
+    ++written;
+  }
+  /// The message of a failed write, with the system's reason; returns 1.
+  int write_failed() const {
+    const std::string why = stdout_stream_error();
+    std::cerr << "uniparam sample: cannot write the output to stdout" << (why.empty() ? "" : ": " + why) << " ("
+              << written << " of " << K << " rows handed over; the output is incomplete)\n";
+    return 1;
+  }
+  /// The budget error e, saying the output is incomplete.
+  BudgetExceeded incomplete(const BudgetExceeded& e) const {
+    return BudgetExceeded("the output is incomplete (" + std::to_string(written) + " of " + std::to_string(K) +
+                          " rows written): " + e.what());
+  }
+};
+
 // CSV's deviation column: a certified upper bound of |d|, rounded up to 3
 // significant digits.
 std::string upper_bound_text(const Ball& d) {
@@ -127,14 +156,8 @@ int run_sample_exact(const Args& a, const Curve& c, SpeedKind kind, const Option
   const Speed sp(c, kind);
   const std::size_t n = c.dimension();
   const long pd = printed_digits(opt.digits);
-  std::ostream& out = std::cout;
-  struct WriteFailed {};
-  long written = 0;
-  auto write_failed = [&]() {
-    std::cerr << "uniparam sample: cannot write the output (" << written << " of " << K
-              << " rows written; the output is incomplete)\n";
-    return 1;
-  };
+  RowStream rows(K);
+  std::ostream& out = rows.out;
   Ball mu;
   bool started = false;
   // mu is certified before the first row; the header goes out with it.
@@ -183,20 +206,18 @@ int run_sample_exact(const Args& a, const Curve& c, SpeedKind kind, const Option
         for (const auto& b : p.point) line += "," + b.mid_decimal(opt.digits);
         out << line << "," << mu.mid_decimal(opt.digits) << "\n";
       }
-      if (!out) throw WriteFailed{};
-      ++written;
+      rows.row_done();
     });
   } catch (const BudgetExceeded& e) {
     if (!started) throw;
     out.flush();
-    throw BudgetExceeded("the output is incomplete (" + std::to_string(written) + " of " + std::to_string(K) +
-                         " rows written): " + e.what());
-  } catch (const WriteFailed&) {
-    return write_failed();
+    throw rows.incomplete(e);
+  } catch (const RowStream::WriteFailed&) {
+    return rows.write_failed();
   }
   if (format == "json") out << "\n  ]\n}\n";
   out.flush();
-  if (!out) return write_failed();
+  if (!out) return rows.write_failed();
   return 0;
 }
 
@@ -242,23 +263,8 @@ int run_sample(int argc, char** argv) {
     return d;
   };
   stream_stdout();  // the map is certified: the rows go out as they come
-  std::ostream& out = std::cout;
-  // A failed write (full disk, closed pipe) ends the command with status 1:
-  // the output is incomplete.
-  struct WriteFailed {};
-  auto check = [&out]() {
-    if (!out) throw WriteFailed{};
-  };
-  long written = 0;
-  auto write_failed = [&]() {
-    std::cerr << "uniparam sample: cannot write the output (" << written << " of " << K
-              << " rows written; the output is incomplete)\n";
-    return 1;
-  };
-  auto incomplete = [&](const BudgetExceeded& e) {
-    return BudgetExceeded("the output is incomplete (" + std::to_string(written) +
-                          " of " + std::to_string(K) + " rows written): " + e.what());
-  };
+  RowStream rows(K);
+  std::ostream& out = rows.out;
 
   if (format == "json") {
     Json j = Json::object();
@@ -300,14 +306,13 @@ int run_sample(int argc, char** argv) {
           if (ch == '\n') line += "    ";
         }
         out << line;
-        check();
-        ++written;
+        rows.row_done();
       });
     } catch (const BudgetExceeded& e) {
       out.flush();
-      throw incomplete(e);
-    } catch (const WriteFailed&) {
-      return write_failed();
+      throw rows.incomplete(e);
+    } catch (const RowStream::WriteFailed&) {
+      return rows.write_failed();
     }
     out << "\n  ]";
     if (deviation) {
@@ -320,7 +325,7 @@ int run_sample(int argc, char** argv) {
     }
     out << "\n}\n";
     out.flush();
-    if (!out) return write_failed();
+    if (!out) return rows.write_failed();
     return target_status(r, "sample");
   }
   out << "s,t";
@@ -334,17 +339,16 @@ int run_sample(int argc, char** argv) {
       if (!p.at_joint) line += p.speed.mid_decimal(opt.digits);
       if (deviation) line += "," + upper_bound_text(deviation_of(p));
       out << line << "\n";
-      check();
-      ++written;
+      rows.row_done();
     });
   } catch (const BudgetExceeded& e) {
     out.flush();
-    throw incomplete(e);
-  } catch (const WriteFailed&) {
-    return write_failed();
+    throw rows.incomplete(e);
+  } catch (const RowStream::WriteFailed&) {
+    return rows.write_failed();
   }
   out.flush();
-  if (!out) return write_failed();
+  if (!out) return rows.write_failed();
   return target_status(r, "sample");
 }
 
