@@ -187,6 +187,11 @@ void check_plot_ends_cleanly(Ending how) {
   }
   if (!ended) waitpid(plot, &status, 0);
   const std::vector<std::string> temps = svg_arguments(d.path);
+  // After SIGKILL the child gets its parent-death signal asynchronously: give
+  // it a bounded moment to go (a survivor blocks on its FIFO and never does).
+  if (how == Ending::Sigkill)
+    for (int i = 0; i < 5 * 50 && fake > 0 && running(fake); ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
   const bool survived = fake > 0 && running(fake);
   release_survivor(d.path, fake);
   std::vector<std::string> left;
