@@ -20,7 +20,9 @@
 # baseline of bench/float_baseline.hpp. BENCH_PIECES="3 10 30 100 300" (default: unset, skipped)
 # adds a second table: reparam --pieces N on bez-plane degree 50 at 15 digits, time and peak
 # memory against N (build/bench/uniparam_probe under /usr/bin/time), to show that nothing grows
-# quadratically with the number of breakpoints.
+# quadratically with the number of breakpoints. BENCH_ONE_THREAD=1 (the default; 0 to skip)
+# also runs every certified 15-digit row with UNIPARAM_THREADS=1 and adds its time as a column,
+# so the table shows whether the default thread count is ever slower than one thread.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD=${BUILD:-build}
@@ -32,6 +34,7 @@ TIMEOUT=${BENCH_TIMEOUT:-600}
 MIN_TIME=${BENCH_MIN_TIME:-0.2}
 REPS=${BENCH_REPETITIONS:-1}
 OUT=${BENCH_OUT:-$BUILD/bench-results}
+ONE_THREAD=${BENCH_ONE_THREAD:-1}
 
 cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$BUILD" -j2 --target uniparam_bench >/dev/null
@@ -46,6 +49,18 @@ run() {  # run NAME: one benchmark in its own process, JSON to $OUT/NAME.json
   elif [[ $name == float/* ]] && UNIPARAM_BENCH_NO_REF=1 timeout "$TIMEOUT" "$BIN" --benchmark_filter="^${name}\$" \
       --benchmark_min_time="$MIN_TIME" --benchmark_repetitions="$REPS" --benchmark_format=json >"$file.tmp" 2>/dev/null; then
     mv "$file.tmp" "$file"  # the double run without its certified reference: "no ref" digits
+  else
+    echo '{"timeout": true}' >"$file"
+    rm -f "$file.tmp"
+  fi
+}
+
+# run_one_thread NAME: NAME again with UNIPARAM_THREADS=1, JSON to $OUT/NAME.t1.json.
+run_one_thread() {
+  local file="$OUT/$(echo "$1" | tr '/' '_').t1.json"
+  if UNIPARAM_THREADS=1 timeout "$TIMEOUT" "$BIN" --benchmark_filter="^${1}\$" --benchmark_min_time="$MIN_TIME" \
+      --benchmark_repetitions="$REPS" --benchmark_format=json >"$file.tmp" 2>/dev/null; then
+    mv "$file.tmp" "$file"
   else
     echo '{"timeout": true}' >"$file"
     rm -f "$file.tmp"
@@ -83,6 +98,7 @@ for fam in $FAMILIES; do
   [[ -n ${BENCH_REPORT_ONLY:-} ]] && break  # only print the table of what $OUT holds
   for d in $DEGREES; do
     for op in $OPS; do
+      if [[ $ONE_THREAD == 1 && " $DIGITS " == *" 15 "* ]]; then run_one_thread "cert/$fam/$d/$op/15"; fi
       if [[ $op == target99 ]]; then run "cert/$fam/$d/$op/15"; echo "done $fam $d $op" >&2; continue; fi
       paired=
       if [[ " $DIGITS " == *" 15 "* ]] && run_pair "cert/$fam/$d/$op/15" "float/$fam/$d/$op"; then paired=1; fi
@@ -97,8 +113,8 @@ python3 - "$OUT" "$TIMEOUT" "$FAMILIES" "$DEGREES" "$OPS" "$DIGITS" <<'PY'
 import json, os, sys
 out, timeout = sys.argv[1], sys.argv[2]
 fams, degs, ops, digs = (s.split() for s in sys.argv[3:7])
-def load(name):
-    p = os.path.join(out, name.replace('/', '_') + '.json')
+def load(name, suffix=''):
+    p = os.path.join(out, name.replace('/', '_') + suffix + '.json')
     if not os.path.exists(p):
         return None
     j = json.load(open(p))
@@ -113,9 +129,9 @@ def fmt_t(s):
     return f'{s*1e3:.3g} ms' if s < 1 else f'{s:.3g} s'
 names = {'uniformity': 'uniformity', 'radical': 'radical', 'pieces3': 'reparam --pieces 3',
          'target99': 'reparam --target 0.99'}
-rows, csv = [], ['family,degree,op,digits,cert_s,double_s,correct_digits,maxrss_mb']
-print('| curve | degree | operation | digits | certified time | double time | ratio | correct digits of double | memory (peak RSS) |')
-print('|---|---|---|---|---|---|---|---|---|')
+rows, csv = [], ['family,degree,op,digits,cert_s,one_thread_s,double_s,correct_digits,maxrss_mb']
+print('| curve | degree | operation | digits | certified time | one thread | double time | ratio | correct digits of double | memory (peak RSS) |')
+print('|---|---|---|---|---|---|---|---|---|---|')
 for f in fams:
     for d in degs:
         for op in ops:
@@ -143,8 +159,15 @@ for f in fams:
                         dig += ' (not converged)'
                     if cs != '':
                         ratio_s = f'{cs / fs:.2g}x'
-                print(f'| {f} | {d} | {names[op]} | {dg} | {ct} | {ft} | {ratio_s} | {dig} | {mem} |')
-                csv.append(f'{f},{d},{op},{dg},{cs},{fs},{dig.split(" ")[0] if dig else ""},{mem.split(" ")[0] if mem else ""}')
+                one = load(f'cert/{f}/{d}/{op}/{dg}', '.t1')
+                ot, os1 = '', ''
+                if one == 'timeout':
+                    ot = 'timeout'
+                elif isinstance(one, dict):
+                    os1 = one['seconds']
+                    ot = fmt_t(os1)
+                print(f'| {f} | {d} | {names[op]} | {dg} | {ct} | {ot} | {ft} | {ratio_s} | {dig} | {mem} |')
+                csv.append(f'{f},{d},{op},{dg},{cs},{os1},{fs},{dig.split(" ")[0] if dig else ""},{mem.split(" ")[0] if mem else ""}')
 open(os.path.join(out, 'results.csv'), 'w').write('\n'.join(csv) + '\n')
 PY
 
