@@ -116,6 +116,16 @@ struct RowStream {
     if (!out) throw WriteFailed{};
     ++written;
   }
+  /// Writes row k of the "samples" array, as Json::dump(2) indents it two
+  /// levels down (the header was written without its closing brace).
+  void json_row(long k, const Json& row) {
+    std::string line = k ? ",\n    " : "\n    ";
+    for (char ch : row.dump(2)) {
+      line += ch;
+      if (ch == '\n') line += "    ";
+    }
+    out << line;
+  }
   /// The message of a failed write, with the system's reason; returns 1.
   int write_failed() const {
     const std::string why = stdout_stream_error();
@@ -194,13 +204,7 @@ int run_sample_exact(const Args& a, const Curve& c, SpeedKind kind, const Option
         row.set("point", pt);
         row.set("speed", json_ball(mu, pd));
         row.set("at_joint", Json::boolean(false));
-        std::string text = row.dump(2);
-        std::string line = k ? ",\n    " : "\n    ";
-        for (char ch : text) {
-          line += ch;
-          if (ch == '\n') line += "    ";
-        }
-        out << line;
+        rows.json_row(k, row);
       } else {
         std::string line = decimal_string(s, opt.digits) + "," + p.t.mid_decimal(opt.digits);
         for (const auto& b : p.point) line += "," + b.mid_decimal(opt.digits);
@@ -299,13 +303,7 @@ int run_sample(int argc, char** argv) {
         row.set("speed", json_ball(p.speed, pd));
         row.set("at_joint", Json::boolean(p.at_joint));
         if (deviation) row.set("deviation", json_ball(deviation_of(p), pd));
-        std::string text = row.dump(2);
-        std::string line = k ? ",\n    " : "\n    ";
-        for (char ch : text) {
-          line += ch;
-          if (ch == '\n') line += "    ";
-        }
-        out << line;
+        rows.json_row(k, row);
         rows.row_done();
       });
     } catch (const BudgetExceeded& e) {

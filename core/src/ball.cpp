@@ -65,4 +65,23 @@ Rational mid_rational(const Ball& b) {
   return r;
 }
 
+bool all_meet_digits(const std::vector<Ball>& v, long digits) {
+  for (const auto& b : v)
+    if (!b.meets_digits(digits)) return false;
+  return true;
+}
+
+std::vector<Ball> cumulative_normalised(const std::vector<Ball>& w, const Ball& total, long prec) {
+  std::vector<Ball> out{Ball(0)};
+  Ball acc(0);
+  for (std::size_t k = 0; k + 1 < w.size(); ++k) {
+    arb_add(acc.get(), acc.get(), w[k].get(), prec);
+    Ball q;
+    arb_div(q.get(), acc.get(), total.get(), prec);
+    out.push_back(q);
+  }
+  out.push_back(Ball(1));
+  return out;
+}
+
 }  // namespace uniparam

@@ -431,12 +431,6 @@ std::vector<QuadraticSurd> bilinear_weights(const std::vector<Rational>& v, cons
   return w;
 }
 
-bool all_meet(const std::vector<Ball>& v, long digits) {
-  for (const auto& b : v)
-    if (!b.meets_digits(digits)) return false;
-  return true;
-}
-
 BezierResult optimal_integral(const BezierCurve& bz, const Curve& curve, const Options& opt) {
   BezierResult r;
   r.exact = true;
@@ -485,7 +479,7 @@ BezierResult optimal_integral(const BezierCurve& bz, const Curve& curve, const O
     arb_add(M.get(), M.get(), B.get(), prec);
     arb_div(r.u_after.get(), mu2.get(), M.get(), prec);
     if (r.mu.meets_digits(d) && r.u_before.meets_digits(d) && r.u_after.meets_digits(d) && r.alpha.meets_digits(d) &&
-        all_meet(r.weights, d))
+        all_meet_digits(r.weights, d))
       return r;
     if (bits > opt.max_prec)
       throw BudgetExceeded("could not certify the arc length and uniformity to " + std::to_string(opt.digits) +
@@ -514,8 +508,8 @@ BezierResult optimal_rational(const BezierCurve& bz, const Curve& curve, const O
     r.u_after = mr.u_after;
     const long prec = 2 * digits_to_bits(o.digits) + 64;
     r.weights = ball_weights(v, r.alpha, prec);
-    if (all_meet(r.weights, d) || o.digits >= 10000) {
-      if (!all_meet(r.weights, d))
+    if (all_meet_digits(r.weights, d) || o.digits >= 10000) {
+      if (!all_meet_digits(r.weights, d))
         throw BudgetExceeded("could not certify the new weights to " + std::to_string(opt.digits) + " digits");
       return r;
     }

@@ -222,22 +222,7 @@ namespace {
 std::vector<Ball> cumulative_unit(const std::vector<Ball>& w, long prec) {
   Ball total(0);
   for (const auto& x : w) arb_add(total.get(), total.get(), x.get(), prec);
-  std::vector<Ball> out{Ball(0)};
-  Ball acc(0);
-  for (std::size_t k = 0; k + 1 < w.size(); ++k) {
-    arb_add(acc.get(), acc.get(), w[k].get(), prec);
-    Ball q;
-    arb_div(q.get(), acc.get(), total.get(), prec);
-    out.push_back(q);
-  }
-  out.push_back(Ball(1));
-  return out;
-}
-
-bool all_meet(const std::vector<Ball>& v, long digits) {
-  for (const auto& b : v)
-    if (!b.meets_digits(digits)) return false;
-  return true;
+  return cumulative_normalised(w, total, prec);
 }
 
 std::vector<Ball> sqrts(const std::vector<PieceIntegrals>& I, Ball PieceIntegrals::*m, long prec) {
@@ -283,7 +268,7 @@ MoebiusResult refine_moebius_data(const Speed& sp, const MoebiusResult& in, long
       S = cumulative_unit(len, prec);
       alpha = detail::c1_from_pieces(T, S, I, x.mu, prec).alpha;
     }
-    if (all_meet(S, digits) && all_meet(alpha, digits)) {
+    if (all_meet_digits(S, digits) && all_meet_digits(alpha, digits)) {
       x.integrals = std::move(I);
       x.S = std::move(S);
       x.alpha = std::move(alpha);

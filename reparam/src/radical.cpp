@@ -21,30 +21,6 @@ ZeroSide RadicalResult::side(std::size_t i) const {
   return ZeroSide::None;
 }
 
-namespace {
-
-// Cumulative normalised sums: out[0] = 0, out[N] = 1, out[i] = sum_{k<i} w_k / sum w.
-std::vector<Ball> cumulative(const std::vector<Ball>& w, const Ball& total, long prec) {
-  std::vector<Ball> out{Ball(0)};
-  Ball acc(0);
-  for (std::size_t k = 0; k + 1 < w.size(); ++k) {
-    arb_add(acc.get(), acc.get(), w[k].get(), prec);
-    Ball q;
-    arb_div(q.get(), acc.get(), total.get(), prec);
-    out.push_back(q);
-  }
-  out.push_back(Ball(1));
-  return out;
-}
-
-bool all_meet(const std::vector<Ball>& v, long digits) {
-  for (const auto& b : v)
-    if (!b.meets_digits(digits)) return false;
-  return true;
-}
-
-}  // namespace
-
 RadicalResult radical(const Curve& c, SpeedKind kind, const Options& opt) {
   validate(opt);
   check_degree(c, opt);
@@ -99,8 +75,8 @@ RadicalResult radical(const Curve& c, SpeedKind kind, const Options& opt) {
       const Ball part = piece_square_integral(s, r.T[i], r.T[i + 1], r.integrals[i], bits, opt.max_prec);
       arb_add(mean_square.get(), mean_square.get(), part.get(), prec);
     }
-    r.S = cumulative(sqrtL, sumL, prec);
-    r.Z = cumulative(sqrtM, sumM, prec);
+    r.S = cumulative_normalised(sqrtL, sumL, prec);
+    r.Z = cumulative_normalised(sqrtM, sumM, prec);
     r.A.clear();
     r.B.clear();
     r.C.clear();
@@ -125,8 +101,8 @@ RadicalResult radical(const Curve& c, SpeedKind kind, const Options& opt) {
     const long d = opt.digits + 1;
     const bool mu_ok = r.mu.meets_digits(d) && r.u_before.meets_digits(d) && r.u_radical.meets_digits(d) &&
                        r.u_after.meets_digits(d);
-    bool ok = mu_ok && all_meet(r.S, d) && all_meet(r.Z, d) && all_meet(r.A, d) && all_meet(r.B, d) &&
-              all_meet(r.C, d);
+    bool ok = mu_ok && all_meet_digits(r.S, d) && all_meet_digits(r.Z, d) && all_meet_digits(r.A, d) && all_meet_digits(r.B, d) &&
+              all_meet_digits(r.C, d);
     for (const auto& pi : r.integrals) ok = ok && pi.L.meets_digits(d) && pi.M.meets_digits(d) && pi.alpha.meets_digits(d);
     if (ok) return r;
     // the quantities made with mu: mu may be the one short of accuracy
@@ -399,8 +375,8 @@ RadicalResult refine_radical_data(const Speed& sp, const RadicalResult& in, long
       arb_add(sumM.get(), sumM.get(), sqrtM[i].get(), prec);
       alpha[i] = I[i].alpha;
     }
-    std::vector<Ball> S = cumulative(sqrtL, sumL, prec), Z = cumulative(sqrtM, sumM, prec);
-    if (all_meet(S, digits) && all_meet(Z, digits) && all_meet(alpha, digits)) {
+    std::vector<Ball> S = cumulative_normalised(sqrtL, sumL, prec), Z = cumulative_normalised(sqrtM, sumM, prec);
+    if (all_meet_digits(S, digits) && all_meet_digits(Z, digits) && all_meet_digits(alpha, digits)) {
       x.A.clear();
       x.B.clear();
       x.C.clear();

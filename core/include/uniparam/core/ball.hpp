@@ -9,6 +9,7 @@
 #include <arb.h>
 
 #include <string>
+#include <vector>
 
 #include "uniparam/core/number.hpp"
 
@@ -65,5 +66,14 @@ void clamp_unit(arb_t x, long prec);
 
 /// The midpoint of b as an exact rational. \pre b finite (checked: DomainError).
 Rational mid_rational(const Ball& b);
+
+/// Whether every ball of v meets_digits(digits) (true for an empty v).
+bool all_meet_digits(const std::vector<Ball>& v, long digits);
+
+/// The normalised cumulative sums of w (N = w.size() >= 1): out[0] = 0 and
+/// out[N] = 1 exactly, out[i] a ball containing (w_0 + ... + w_{i-1}) / total
+/// for 0 < i < N, at `prec` bits. Precondition: total encloses the sum of w
+/// (a ball containing 0 gives indeterminate quotients, never wrong ones).
+std::vector<Ball> cumulative_normalised(const std::vector<Ball>& w, const Ball& total, long prec);
 
 }  // namespace uniparam
