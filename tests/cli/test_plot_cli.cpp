@@ -13,9 +13,11 @@
 #include <vector>
 
 #include "support/run.hpp"
+#include "support/svg.hpp"
 #include "uniparam/uniparam.hpp"
 
 using uniparam::Rational;
+using uniparam::test_support::group;
 using uniparam::test_support::run_uniparam;
 
 namespace {
@@ -145,18 +147,6 @@ std::size_t attribute_length(const std::string& x, std::size_t j) {
   return ::testing::AssertionSuccess();
 }
 
-// The content of the first <g class="cls"> ... matching </g> after `from`.
-std::string group(const std::string& svg, const std::string& cls, std::size_t from = 0) {
-  const std::size_t start = svg.find("<g class=\"" + cls + "\">", from);
-  if (start == std::string::npos) return "";
-  std::size_t depth = 0, i = start;
-  while (i < svg.size()) {
-    if (svg.compare(i, 2, "<g") == 0 && (svg[i + 2] == ' ' || svg[i + 2] == '>')) ++depth;
-    if (svg.compare(i, 4, "</g>") == 0 && --depth == 0) return svg.substr(start, i + 4 - start);
-    ++i;
-  }
-  return "";
-}
 
 // The visible text of a fragment (tags dropped, entities left as they are).
 std::string text_of(const std::string& frag) {

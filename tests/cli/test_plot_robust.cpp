@@ -26,10 +26,12 @@
 #include <vector>
 
 #include "support/run.hpp"
+#include "support/svg.hpp"
 #include "uniparam/uniparam.hpp"
 
 extern char** environ;
 
+using uniparam::test_support::group;
 using uniparam::test_support::run_uniparam;
 
 namespace {
@@ -282,17 +284,6 @@ TEST(PlotRobust, UnwritableOutputIsRefusedBeforeComputingWithTheReason) {
 
 namespace {
 
-std::string group(const std::string& svg, const std::string& cls, std::size_t from = 0) {
-  const std::size_t start = svg.find("<g class=\"" + cls + "\">", from);
-  if (start == std::string::npos) return "";
-  std::size_t depth = 0, i = start;
-  while (i < svg.size()) {
-    if (svg.compare(i, 2, "<g") == 0 && (svg[i + 2] == ' ' || svg[i + 2] == '>')) ++depth;
-    if (svg.compare(i, 4, "</g>") == 0 && --depth == 0) return svg.substr(start, i + 4 - start);
-    ++i;
-  }
-  return "";
-}
 
 std::string attr(const std::string& tag, const std::string& name) {
   const std::size_t a = tag.find(" " + name + "=\"");
