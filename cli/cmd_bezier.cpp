@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "nurbs_out.hpp"
 #include "report.hpp"
 #include "uniparam/reparam/bezier.hpp"
 
@@ -18,6 +19,7 @@ CommandSpec bezier_spec() {
                   "integral curves: the exact new weights as 'expanded' surds, as the 'formula' in alpha, or "
                   "'auto' (expanded while each has at most 4096 characters; their size grows like the degree squared)",
                   "auto"});
+  opts.push_back(nurbs_output_option());
   return {"bezier",
           "Optimal bilinear (Moebius) reparameterization of a Bezier curve for the parametric speed.",
           "Integral curves (no --weights): P and Q of Juettler 1997, eq. (21) as exact rationals,\n"
@@ -75,9 +77,14 @@ int run_bezier(int argc, char** argv) {
   if (a.help) { std::cout << help_text(spec); return 0; }
   const Options opt = read_options(a);
   const Format fmt = read_format(a);
+  const NurbsOutput no = read_nurbs_output(a);
   const BezierCurve bz = read_bezier(a);
   const Curve c = bz.to_curve();
   const BezierResult r = bezier_optimal(bz, opt);
+  if (no.form != NurbsOutput::Form::None) {
+    write_nurbs(bezier_nurbs(bz, r, nurbs_prec(opt)), no, opt.digits);
+    if (no.replaces_report()) return 0;
+  }
   const long pd = printed_digits(opt.digits);
   const std::size_t n1 = r.weights.size();
   const bool expanded = expand_weights(a, r, bz.degree());

@@ -5,6 +5,7 @@
 
 #include "commands.hpp"
 #include "moebius_report.hpp"
+#include "nurbs_out.hpp"
 
 namespace uniparam::cli {
 
@@ -13,6 +14,7 @@ std::vector<OptionSpec> moebius_output_options() {
       {"format", "F", "formulas of the pieces: text, latex, maple (or json, the same as --json)", "text"},
       {"rational", "", "round alpha, S and T to short rationals and certify that exact map", ""},
       {"rational-digits", "D", "with --rational: round to the simplest rationals within 10^-D", "8"},
+      nurbs_output_option(),
   };
 }
 
@@ -65,9 +67,11 @@ int run_moebius(int argc, char** argv) {
   const SpeedKind kind = parse_speed_kind(a.get("speed", "angular"));
   const MoebiusPrint how = read_moebius_print(a);
   const std::vector<RealAlgebraic> T = parse_breakpoints(a.get("breakpoints", "0,1"));
+  const NurbsOutput no = read_nurbs_output(a);
   const Curve c = read_curve(a);
   const MoebiusResult r = finish_moebius(c, moebius_c0(c, kind, T, opt), a, opt);
-  print_moebius(c, r, opt.digits, how);
+  if (!no.replaces_report()) print_moebius(c, r, opt.digits, how);
+  write_moebius_nurbs(c, r, no, opt);
   return 0;
 }
 

@@ -13,6 +13,7 @@ namespace uniparam::cli {
 CommandSpec radical_spec() {
   auto opts = common_options();
   opts.push_back({"format", "F", "formulas of the pieces: text, latex, maple (or json, the same as --json)", "text"});
+  opts.push_back({"output", "FORM", "not available: radical pieces are not rational (see --help)", ""});
   opts.push_back({"at", "Z", "also evaluate r(z), p(r(z)) and the new speed at a rational z in [0, 1]", ""});
   return {"radical",
           "Optimal piecewise radical reparameterization r = phi o m (Hong, Wang, Yang 2023, Algorithm 1).",
@@ -44,6 +45,11 @@ int run_radical(int argc, char** argv) {
   const CommandSpec spec = radical_spec();
   Args a = parse_args(spec, argc, argv, 2);
   if (a.help) { std::cout << help_text(spec); return 0; }
+  if (a.has("output"))
+    throw InvalidArgument("--output " + a.get("output", "") +
+                          ": the radical pieces are not rational functions of s, so p o r is not a NURBS curve; "
+                          "use 'uniparam sample --method exact' for certified points of it, or a rational method "
+                          "(moebius, reparam, bezier) with --output nurbs or step");
   const Options opt = read_options(a);
   const SpeedKind kind = parse_speed_kind(a.get("speed", "angular"));
   const Format fmt = read_format(a);

@@ -5,6 +5,7 @@
 
 #include "commands.hpp"
 #include "moebius_report.hpp"
+#include "nurbs_out.hpp"
 
 namespace uniparam::cli {
 
@@ -49,12 +50,14 @@ int run_reparam(int argc, char** argv) {
     if (!(target.sign() > 0 && target < Rational(1)))
       throw InvalidArgument("--target must lie strictly between 0 and 1, got " + a.get("target", ""));
   }
+  const NurbsOutput no = read_nurbs_output(a);
   const Curve c = read_curve(a);
   MoebiusResult r = pieces    ? reparam_c0(c, kind, pieces, opt)
                     : !T.empty() ? moebius_c0(c, kind, T, opt)
                                  : reparam_c1(c, kind, target, opt, max_pieces);
   r = finish_moebius(c, r, a, opt);
-  print_moebius(c, r, opt.digits, how);
+  if (!no.replaces_report()) print_moebius(c, r, opt.digits, how);
+  write_moebius_nurbs(c, r, no, opt);
   if (r.target.used && !r.target.reached) {
     std::cerr << "uniparam reparam: " << target_missed_message(r, max_pieces, opt.digits) << "\n";
     return 4;

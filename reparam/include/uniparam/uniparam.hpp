@@ -34,6 +34,7 @@
 #include "uniparam/reparam/formula.hpp"
 #include "uniparam/reparam/locate.hpp"
 #include "uniparam/reparam/moebius.hpp"
+#include "uniparam/reparam/nurbs.hpp"
 #include "uniparam/reparam/pieces.hpp"
 #include "uniparam/reparam/radical.hpp"
 #include "uniparam/reparam/sample.hpp"
