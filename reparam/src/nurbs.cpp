@@ -157,7 +157,7 @@ void positive_segments(const F& f, Segment<typename F::T> s, std::vector<Segment
     for (auto& v : s.h)
       for (auto& x : v) x = f.sub(f.q(Rational(0)), x);
   else if (!f.positive(s.h.front().back()))
-    throw BudgetExceeded("the NURBS weights' signs could not be certified at this precision: raise --max-prec or --digits");
+    throw BudgetExceeded("the signs of the NURBS weights could not be certified at the working precision: raise --digits");
   std::vector<Segment<T>> todo{s};
   std::vector<Segment<T>> done;
   const std::size_t limit = 4096;
@@ -189,7 +189,7 @@ void assemble(const F& f, std::vector<Segment<typename F::T>>& segs, long d, std
     const T lambda = f.div(prev_w, s.h.front().back());
     for (auto& v : s.h)
       for (auto& x : v) x = f.mul(x, lambda);
-    for (std::size_t j = (i == 0 ? 0 : 1); j < s.h.size(); ++j) {
+    for (std::size_t j = 0; j < s.h.size(); ++j) {
       const T w = s.h[j].back();
       std::vector<T> p;
       for (std::size_t k = 0; k + 1 < s.h[j].size(); ++k) p.push_back(f.div(s.h[j][k], w));
@@ -355,7 +355,7 @@ Nurbs bezier_nurbs(const BezierCurve& b, const BezierResult& r, long prec) {
   }
   for (const auto& w : n.weights)
     if (!w.certainly_positive())
-      throw BudgetExceeded("the NURBS weights' signs could not be certified at this precision: raise --max-prec");
+      throw BudgetExceeded("the signs of the NURBS weights could not be certified at the working precision: raise --digits");
   // the check against p(r(s)), r(s) = (1 - a) s / ((1 - a) s + a (1 - s))
   const Curve c = b.to_curve();
   const BField f{prec};
