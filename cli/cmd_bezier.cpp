@@ -81,13 +81,19 @@ int run_bezier(int argc, char** argv) {
   const BezierCurve bz = read_bezier(a);
   const Curve c = bz.to_curve();
   const BezierResult r = bezier_optimal(bz, opt);
-  if (no.form != NurbsOutput::Form::None) {
-    write_nurbs(bezier_nurbs(bz, r, nurbs_prec(opt)), no, opt.digits);
-    if (no.replaces_report()) return 0;
-  }
   const long pd = printed_digits(opt.digits);
   const std::size_t n1 = r.weights.size();
   const bool expanded = expand_weights(a, r, bz.degree());
+  if (no.form != NurbsOutput::Form::None) {
+    Nurbs n = bezier_nurbs(bz, r, nurbs_prec(opt));
+    if (!expanded && n.kind == Nurbs::Kind::Surd) {
+      // --exact-weights: surds too long to print; the certified balls instead
+      n.kind = Nurbs::Kind::Balls;
+      n.weights_surd.clear();
+    }
+    write_nurbs(n, no, opt.digits);
+    if (no.replaces_report()) return 0;
+  }
 
   if (wants_json(a)) {
     Json j = Json::object();
