@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "uniparam/core/budget.hpp"
 #include "uniparam/core/error.hpp"
 #include "uniparam/core/poly.hpp"
 #include "uniparam/core/ratfunc.hpp"
@@ -163,6 +164,7 @@ void positive_segments(const F& f, Segment<typename F::T> s, std::vector<Segment
   const std::size_t limit = 4096;
   bool split = false;
   while (!todo.empty()) {
+    check_time_budget();
     Segment<T> cur = todo.back();
     todo.pop_back();
     if (weights_positive(f, cur)) { done.push_back(cur); continue; }
@@ -288,6 +290,7 @@ Nurbs moebius_nurbs(const Curve& c, const MoebiusResult& r, long prec) {
     const QField f;
     std::vector<Segment<Rational>> segs;
     for (std::size_t i = 0; i < N; ++i) {
+      check_time_budget();
       Segment<Rational> s{r.S_exact[i], r.S_exact[i + 1],
                           piece_control(f, H, d, r.T_exact[i], r.T_exact[i + 1], r.alpha_exact[i]), i};
       positive_segments(f, s, segs, n.subdivided);
@@ -298,6 +301,7 @@ Nurbs moebius_nurbs(const Curve& c, const MoebiusResult& r, long prec) {
     fill_balls_from_exact(n, prec);
     // the check: exactly p(r(s)) at u = 0, 1/4, ..., 1 of every segment
     for (const auto& s : segs) {
+      check_time_budget();
       for (long q = 0; q <= 4; ++q) {
         const Rational sv = s.sa + (s.sb - s.sa) * Rational(q, 4);
         const Rational t = moebius_exact(r, s.piece, sv);
@@ -311,6 +315,7 @@ Nurbs moebius_nurbs(const Curve& c, const MoebiusResult& r, long prec) {
   const BField f{prec};
   std::vector<Segment<Ball>> segs;
   for (std::size_t i = 0; i < N; ++i) {
+    check_time_budget();
     Segment<Ball> s{r.S[i], r.S[i + 1],
                     piece_control(f, H, d, r.T[i].t.to_ball(prec), r.T[i + 1].t.to_ball(prec), r.alpha[i]), i};
     positive_segments(f, s, segs, n.subdivided);
@@ -319,6 +324,7 @@ Nurbs moebius_nurbs(const Curve& c, const MoebiusResult& r, long prec) {
   n.kind = Nurbs::Kind::Balls;
   n.segments = segs.size();
   for (const auto& s : segs) {
+    check_time_budget();
     for (long q = 0; q <= 4; ++q) {
       Ball sv = f.add(s.sa, f.mul(f.sub(s.sb, s.sa), f.q(Rational(q, 4))));
       if (q == 0) sv = s.sa;

@@ -69,7 +69,8 @@ struct Nurbs {
 /// \throws DomainError when r has radical pieces (never: MoebiusResult pieces
 ///         are Moebius maps); BudgetExceeded when a weight's sign cannot be
 ///         certified at `prec` bits or positivity needs more than 2^12
-///         segments per piece.
+///         segments per piece; TimeLimitExceeded when the thread's
+///         TimeBudget runs out.
 Nurbs moebius_nurbs(const Curve& c, const MoebiusResult& r, long prec);
 
 /// Bezier's optimal bilinear map (bezier_optimal) as a NURBS: one segment,
@@ -77,6 +78,7 @@ Nurbs moebius_nurbs(const Curve& c, const MoebiusResult& r, long prec);
 /// (kind Surd when r.exact, else Balls). Checked like moebius_nurbs against
 /// p(r(s)) (ball arithmetic).
 /// \pre r == bezier_optimal(b, ...) (not checkable); prec >= 16.
+/// \throws BudgetExceeded when a weight is not certainly positive at `prec`.
 Nurbs bezier_nurbs(const BezierCurve& b, const BezierResult& r, long prec);
 
 /// The NURBS at an exact s in [0, 1]: \pre n.kind == Exact; InvalidArgument
