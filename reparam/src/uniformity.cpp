@@ -27,8 +27,21 @@ namespace {
 // The integral of sigma over one piece [a, b] free of zeros of sigma inside
 // and, with square, that of sigma^2 in the same quadrature (sigma squared at
 // every point: one evaluation of the speed for both).
+// Bits of the scale on which sigma may vary: the largest coefficient size of
+// the factored form's polynomials g, K_k and D. A nonzero root of an integer
+// polynomial of height H has modulus at least 1 / (1 + H), so sigma's
+// singularities and peaks may lie that close to 0 (and, by t -> 1 - t, to
+// 1): (t, C t^2) has D = 1 + 4 C^2 t^2, a peak of width 1 / (2 C) at t = 0.
+// The quadrature may need that many bisections (QuadratureOptions::scale_bits).
+long speed_scale_bits(const Speed& s) {
+  long b = std::max(s.denominator().max_bits(), s.g().max_bits());
+  for (const Poly& k : s.cofactors()) b = std::max(b, k.max_bits());
+  return b;
+}
+
 std::vector<Ball> integrate_speed_piece(const Speed& s, const RealAlgebraic& a, const RealAlgebraic& b,
-                                        long rel_goal_bits, long max_prec, bool square = false) {
+                                        long rel_goal_bits, long max_prec, bool square = false,
+                                        long abs_goal_bits = 0) {
   const Speed::PieceSigns sign = s.piece_signs(a, b);
   // Every narrow real point (nodes, the start's probes, the ends) goes to
   // node_fast below first; f gets the points it refused and the wide balls,
@@ -39,7 +52,9 @@ std::vector<Ball> integrate_speed_piece(const Speed& s, const RealAlgebraic& a, 
   };
   QuadratureOptions qo;
   qo.rel_goal_bits = rel_goal_bits;
+  qo.abs_goal_bits = abs_goal_bits;
   qo.max_prec = max_prec;
+  qo.scale_bits = speed_scale_bits(s);
   qo.what = "the integral of the " + to_string(s.kind()) + " speed" + (square ? " and of its square" : "");
   qo.singularity_hints = s.singularity_hints(false);
   qo.node_fast = [&s, sign, square](DDBall* out, const DDBall& t, long prec) {
@@ -123,6 +138,82 @@ void check_degree(const Curve& c, const Options& opt) {
 
 namespace {
 
+// UNCERTIFIED: an estimate of the smaller of mu and (with squares) the
+// integral of sigma^2, from sigma^2 at 64 bits (Speed::eval_squared: any
+// exponent range, unlike double) on the midpoints of 64 equal cells of
+// [0, 1] and, since sigma may vary on a scale down to 2^-scale_bits at the
+// ends (speed_scale_bits), on those of the cells [2^-(k+1), 2^-k] next to 0
+// and to 1 for 7 <= k < scale_bits + 8 (a peak of width 2^-k at an end is
+// a smooth bump in k). Non-finite or non-positive samples are skipped; 0
+// where none is left. Only steers the parts' absolute goal (a narrow peak
+// between the samples makes it too small: a stricter goal, as without it;
+// one too large: the second pass of speed_integrals).
+Ball integral_estimate(const Speed& s, bool squares, long scale_bits) {
+  constexpr int kSamples = 64;
+  constexpr long kPrec = 64;
+  Ball sum(0), sum_sq(0), v;
+  acb_t z, w;
+  acb_init(z);
+  acb_init(w);
+  auto add = [&](long weight_exp) {  // the sample at z, over a cell of width 2^weight_exp
+    s.eval_squared(w, z, kPrec);
+    if (!acb_is_finite(w) || !arb_is_positive(acb_realref(w))) return;
+    arb_set_arf(v.get(), arb_midref(acb_realref(w)));
+    arb_mul_2exp_si(v.get(), v.get(), weight_exp);
+    arb_add(sum_sq.get(), sum_sq.get(), v.get(), kPrec);
+    arb_set_arf(v.get(), arb_midref(acb_realref(w)));
+    arb_sqrt(v.get(), v.get(), kPrec);
+    arb_mul_2exp_si(v.get(), v.get(), weight_exp);
+    arb_add(sum.get(), sum.get(), v.get(), kPrec);
+  };
+  for (int i = 0; i < kSamples; ++i) {
+    acb_set_si(z, 2 * i + 1);
+    acb_mul_2exp_si(z, z, -7);  // (2i + 1) / 128
+    add(-6);
+  }
+  for (long k = 7; k < scale_bits + 8; ++k) {
+    acb_set_si(z, 3);
+    acb_mul_2exp_si(z, z, -(k + 2));  // 3 * 2^-(k+2), the middle of [2^-(k+1), 2^-k]
+    add(-(k + 1));
+    acb_neg(z, z);
+    acb_add_si(z, z, 1, kPrec + k);  // exact: 1 - 3 * 2^-(k+2)
+    add(-(k + 1));
+  }
+  acb_clear(z);
+  acb_clear(w);
+  return squares && arf_cmp(arb_midref(sum_sq.get()), arb_midref(sum.get())) < 0 ? sum_sq : sum;
+}
+
+// The absolute goal 2^-share * total, in QuadratureOptions::abs_goal_bits
+// (at least 1), from x: total's midpoint (lower = false) or lower bound
+// (lower = true); 0 (no absolute goal) where that is not finite and positive.
+long abs_goal_from(const Ball& x, long share, bool lower) {
+  if (!x.is_finite()) return 0;
+  arf_t t;
+  arf_init(t);
+  if (lower) arb_get_lbound_arf(t, x.get(), 64);
+  else arf_set(t, arb_midref(x.get()));
+  long goal = 0;
+  if (arf_sgn(t) > 0) {
+    const long e = arf_abs_bound_lt_2exp_si(t);  // t >= 2^(e - 1)
+    goal = std::max(1L, share - (e - 1));
+  }
+  arf_clear(t);
+  return goal;
+}
+
+// rad(x) <= 2^-bits * |lower bound of x|.
+bool meets_rel(const Ball& x, long bits) {
+  if (!x.is_finite()) return false;
+  mag_t m;
+  mag_init(m);
+  arf_get_mag_lower(m, arb_midref(x.get()));
+  mag_mul_2exp_si(m, m, -bits);
+  const bool ok = mag_cmp(arb_radref(x.get()), m) <= 0;
+  mag_clear(m);
+  return ok;
+}
+
 // mu (and, with squares, the integral of sigma^2) over [0, 1] at relative
 // accuracy 2^-bits: the pieces between the zeros of sigma and the split
 // points are independent tasks (with squares, each integrates sigma and
@@ -150,18 +241,35 @@ void speed_integrals(const Speed& s, long bits, long max_prec, bool squares, Bal
   std::vector<Speed> speeds(workers > 1 ? workers - 1 : 0, s);
   std::vector<std::vector<RealAlgebraic>> ends_copies(speeds.size(), ends);
   std::vector<std::vector<Ball>> results(tasks);
-  parallel_for(tasks, workers, [&](std::size_t w, std::size_t i) {
-    const Speed& sw = w == 0 ? s : speeds[w - 1];
-    const std::vector<RealAlgebraic>& ew = w == 0 ? ends : ends_copies[w - 1];
-    results[i] = integrate_speed_piece(sw, ew[i], ew[i + 1], bits, max_prec, squares);
-  });
-  // sigma and sigma^2 are >= 0: the relative accuracy of every part holds
-  // for their sum.
-  mu = Ball(0);
-  mean_square = Ball(0);
-  for (const std::vector<Ball>& r : results) {
-    arb_add(mu.get(), mu.get(), r[0].get(), 2 * bits + 64);
-    if (squares) arb_add(mean_square.get(), mean_square.get(), r[1].get(), 2 * bits + 64);
+  auto run = [&](long abs_goal_bits) {
+    parallel_for(tasks, workers, [&](std::size_t w, std::size_t i) {
+      const Speed& sw = w == 0 ? s : speeds[w - 1];
+      const std::vector<RealAlgebraic>& ew = w == 0 ? ends : ends_copies[w - 1];
+      results[i] = integrate_speed_piece(sw, ew[i], ew[i + 1], bits, max_prec, squares, abs_goal_bits);
+    });
+    // sigma and sigma^2 are >= 0: the parts' radii add up to at most
+    // 2^-bits times the sum plus tasks times the absolute goal.
+    mu = Ball(0);
+    mean_square = Ball(0);
+    for (const std::vector<Ball>& r : results) {
+      arb_add(mu.get(), mu.get(), r[0].get(), 2 * bits + 64);
+      if (squares) arb_add(mean_square.get(), mean_square.get(), r[1].get(), 2 * bits + 64);
+    }
+  };
+  // Only the sums need relative accuracy 2^-bits: a part where sigma is
+  // negligible (t^1998 on [0, 1/8], or 1/(2 C t^2) away from the peak of
+  // (t, C t^2)) may stop at an absolute accuracy of 2^-bits times a share of
+  // the total, instead of costing as much as a significant part (or more:
+  // the precision its own relative accuracy would need). The total comes
+  // from an estimate (integral_estimate); where the sums then miss twice
+  // their goal (an estimate too large), the parts are integrated again with
+  // the sums' certified lower bounds in place of the estimate, which makes
+  // the absolute goal at most a quarter of the relative one.
+  const long share = bits + 2 + static_cast<long>(std::ceil(std::log2(static_cast<double>(tasks))));
+  run(abs_goal_from(integral_estimate(s, squares, speed_scale_bits(s)), share, false));
+  if (!(meets_rel(mu, bits - 1) && (!squares || meets_rel(mean_square, bits - 1)))) {
+    const long g = abs_goal_from(mu, share, true), g_sq = squares ? abs_goal_from(mean_square, share, true) : g;
+    run(g > 0 && g_sq > 0 ? std::max(g, g_sq) : 0);
   }
 }
 
