@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "uniparam/algebra/quadrature.hpp"
 #include "uniparam/core/budget.hpp"
 #include "uniparam/core/error.hpp"
 #include "uniparam/core/parallel.hpp"
+#include "uniparam/reparam/scaling.hpp"
 
 namespace uniparam {
 
@@ -27,6 +29,28 @@ namespace {
 // The integral of sigma over one piece [a, b] free of zeros of sigma inside
 // and, with square, that of sigma^2 in the same quadrature (sigma squared at
 // every point: one evaluation of the speed for both).
+// The weight 1 / m'(s) = (a s + b (1 - s))^2 / (a b) of a balanced curve's
+// integral of sigma^2 (scaling.hpp).
+struct SquareWeight {
+  Integer a, b;
+};
+
+// out = (a z + b (1 - z))^2 / (a b): a sum of two positive terms on [0, 1]
+// (no cancellation, whatever the sizes of a and b).
+void eval_weight(acb_t out, const acb_t z, const SquareWeight& w, long prec) {
+  acb_t t;
+  acb_init(t);
+  acb_neg(t, z);
+  acb_add_si(t, t, 1, prec);
+  acb_mul_fmpz(t, t, w.b.get(), prec);
+  acb_mul_fmpz(out, z, w.a.get(), prec);
+  acb_add(out, out, t, prec);
+  acb_mul(out, out, out, prec);
+  acb_div_fmpz(out, out, w.a.get(), prec);
+  acb_div_fmpz(out, out, w.b.get(), prec);
+  acb_clear(t);
+}
+
 // Bits of the scale on which sigma may vary: the largest coefficient size of
 // the factored form's polynomials g, K_k and D. A nonzero root of an integer
 // polynomial of height H has modulus at least 1 / (1 + H), so sigma's
@@ -41,14 +65,22 @@ long speed_scale_bits(const Speed& s) {
 
 std::vector<Ball> integrate_speed_piece(const Speed& s, const RealAlgebraic& a, const RealAlgebraic& b,
                                         long rel_goal_bits, long max_prec, bool square = false,
-                                        long abs_goal_bits = 0) {
+                                        long abs_goal_bits = 0, const SquareWeight* weight = nullptr) {
   const Speed::PieceSigns sign = s.piece_signs(a, b);
   // Every narrow real point (nodes, the start's probes, the ends) goes to
   // node_fast below first; f gets the points it refused and the wide balls,
   // so eval's own double-word attempt is skipped (it would refuse too).
-  Integrand f = [&s, sign, square](acb_ptr out, const acb_t z, bool analytic, long prec) {
-    s.eval(out, z, sign, analytic, prec, false);
+  // With a weight, every point goes to f (the double-word path has no weight).
+  Integrand f = [&s, sign, square, weight](acb_ptr out, const acb_t z, bool analytic, long prec) {
+    s.eval(out, z, sign, analytic, prec, weight != nullptr);
     if (square) acb_mul(out + 1, out, out, prec);
+    if (square && weight) {
+      acb_t w;
+      acb_init(w);
+      eval_weight(w, z, *weight, prec);
+      acb_mul(out + 1, out + 1, w, prec);
+      acb_clear(w);
+    }
   };
   QuadratureOptions qo;
   qo.rel_goal_bits = rel_goal_bits;
@@ -57,11 +89,12 @@ std::vector<Ball> integrate_speed_piece(const Speed& s, const RealAlgebraic& a, 
   qo.scale_bits = speed_scale_bits(s);
   qo.what = "the integral of the " + to_string(s.kind()) + " speed" + (square ? " and of its square" : "");
   qo.singularity_hints = s.singularity_hints(false);
-  qo.node_fast = [&s, sign, square](DDBall* out, const DDBall& t, long prec) {
-    if (!s.eval_dd(out[0], t, sign, false, prec)) return false;
-    if (square) out[1] = dd_mul(out[0], out[0]);
-    return true;
-  };
+  if (!weight)
+    qo.node_fast = [&s, sign, square](DDBall* out, const DDBall& t, long prec) {
+      if (!s.eval_dd(out[0], t, sign, false, prec)) return false;
+      if (square) out[1] = dd_mul(out[0], out[0]);
+      return true;
+    };
   return integrate_many(f, square ? 2 : 1, a, b, qo);
 }
 
@@ -148,7 +181,7 @@ namespace {
 // where none is left. Only steers the parts' absolute goal (a narrow peak
 // between the samples makes it too small: a stricter goal, as without it;
 // one too large: the second pass of speed_integrals).
-Ball integral_estimate(const Speed& s, bool squares, long scale_bits) {
+Ball integral_estimate(const Speed& s, bool squares, long scale_bits, const SquareWeight* weight) {
   constexpr int kSamples = 64;
   constexpr long kPrec = 64;
   Ball sum(0), sum_sq(0), v;
@@ -159,6 +192,13 @@ Ball integral_estimate(const Speed& s, bool squares, long scale_bits) {
     s.eval_squared(w, z, kPrec);
     if (!acb_is_finite(w) || !arb_is_positive(acb_realref(w))) return;
     arb_set_arf(v.get(), arb_midref(acb_realref(w)));
+    if (weight) {
+      acb_t ww;
+      acb_init(ww);
+      eval_weight(ww, z, *weight, kPrec);
+      arb_mul(v.get(), v.get(), acb_realref(ww), kPrec);
+      acb_clear(ww);
+    }
     arb_mul_2exp_si(v.get(), v.get(), weight_exp);
     arb_add(sum_sq.get(), sum_sq.get(), v.get(), kPrec);
     arb_set_arf(v.get(), arb_midref(acb_realref(w)));
@@ -224,7 +264,8 @@ bool meets_rel(const Ball& x, long bits) {
 // number at once); value-neutral: RealAlgebraic::to_ball depends on (t, prec)
 // alone. The first attempt asks for bits + 32 + RealAlgebraic::kToBallExtraBits
 // bits (integrate's working precision bits + 32, and to_ball's refinement).
-void speed_integrals(const Speed& s, long bits, long max_prec, bool squares, Ball& mu, Ball& mean_square) {
+void speed_integrals(const Speed& s, long bits, long max_prec, bool squares, Ball& mu, Ball& mean_square,
+                     const SquareWeight* weight = nullptr) {
   const RealAlgebraic zero(0), one(1);
   for (const SpeedZero& z : s.zeros()) z.t.refine(bits + 32 + RealAlgebraic::kToBallExtraBits);
   // The tasks' quadratures start by asking for the singularity hints (one
@@ -245,7 +286,7 @@ void speed_integrals(const Speed& s, long bits, long max_prec, bool squares, Bal
     parallel_for(tasks, workers, [&](std::size_t w, std::size_t i) {
       const Speed& sw = w == 0 ? s : speeds[w - 1];
       const std::vector<RealAlgebraic>& ew = w == 0 ? ends : ends_copies[w - 1];
-      results[i] = integrate_speed_piece(sw, ew[i], ew[i + 1], bits, max_prec, squares, abs_goal_bits);
+      results[i] = integrate_speed_piece(sw, ew[i], ew[i + 1], bits, max_prec, squares, abs_goal_bits, weight);
     });
     // sigma and sigma^2 are >= 0: the parts' radii add up to at most
     // 2^-bits times the sum plus tasks times the absolute goal.
@@ -266,7 +307,7 @@ void speed_integrals(const Speed& s, long bits, long max_prec, bool squares, Bal
   // the sums' certified lower bounds in place of the estimate, which makes
   // the absolute goal at most a quarter of the relative one.
   const long share = bits + 2 + static_cast<long>(std::ceil(std::log2(static_cast<double>(tasks))));
-  run(abs_goal_from(integral_estimate(s, squares, speed_scale_bits(s)), share, false));
+  run(abs_goal_from(integral_estimate(s, squares, speed_scale_bits(s), weight), share, false));
   if (!(meets_rel(mu, bits - 1) && (!squares || meets_rel(mean_square, bits - 1)))) {
     const long g = abs_goal_from(mu, share, true), g_sq = squares ? abs_goal_from(mean_square, share, true) : g;
     run(g > 0 && g_sq > 0 ? std::max(g, g_sq) : 0);
@@ -294,19 +335,20 @@ Ball mean_speed(const Speed& s, long rel_goal_bits, const Options& opt) {
   return mu;
 }
 
-UniformityResult uniformity(const Curve& c, SpeedKind kind, const Options& opt) {
-  validate(opt);
-  check_degree(c, opt);
-  return uniformity(Speed(c, kind), opt);
-}
+namespace {
 
-UniformityResult uniformity(const Speed& s, const Options& opt) {
+// uniformity() of the speed `reported` (its exact parts: sigma^2, zeros),
+// with the integrals taken from `integrated`: the same speed, or a balanced
+// curve's with the weight of its integral of sigma^2 (scaling.hpp): the
+// same mu and integral of sigma^2 exactly.
+UniformityResult uniformity_of(const Speed& reported, const Speed& integrated, const SquareWeight* weight,
+                               const Options& opt) {
   validate(opt);
   UniformityResult r;
-  r.kind = s.kind();
-  r.speed_squared = s.squared();
-  r.zeros = s.zeros();
-  r.identically_zero = s.identically_zero();
+  r.kind = reported.kind();
+  r.speed_squared = reported.squared();
+  r.zeros = reported.zeros();
+  r.identically_zero = reported.identically_zero();
   if (r.identically_zero) {
     r.mu = Ball(0);
     r.mean_square = Ball(0);
@@ -317,7 +359,7 @@ UniformityResult uniformity(const Speed& s, const Options& opt) {
   // Each integral to relative accuracy 2^-bits gives u to about 4 * 2^-bits.
   for (long bits = digits_to_bits(opt.digits); ; bits += 32) {
     check_time_budget();
-    speed_integrals(s, bits, opt.max_prec, true, r.mu, r.mean_square);
+    speed_integrals(integrated, bits, opt.max_prec, true, r.mu, r.mean_square, weight);
     const long prec = 2 * bits + 64;
     arb_mul(r.u.get(), r.mu.get(), r.mu.get(), prec);
     arb_div(r.u.get(), r.u.get(), r.mean_square.get(), prec);
@@ -332,5 +374,24 @@ UniformityResult uniformity(const Speed& s, const Options& opt) {
                            " bits of working precision (raise it with --max-prec)");
   }
 }
+
+}  // namespace
+
+UniformityResult uniformity(const Curve& c, SpeedKind kind, const Options& opt) {
+  validate(opt);
+  check_degree(c, opt);
+  const Speed s(c, kind);
+  // Weights growing geometrically (a rational Bezier curve with weights
+  // 1, 8e40, 1e82): the integrals of the balanced curve q = p o m, whose
+  // speed is spread over [0, 1] instead of within 1 / lambda of one end.
+  if (!s.identically_zero())
+    if (const std::optional<BalancedCurve> bal = balance(c)) {
+      const SquareWeight w{bal->a, bal->b};
+      return uniformity_of(s, Speed(bal->q, kind), &w, opt);
+    }
+  return uniformity_of(s, s, nullptr, opt);
+}
+
+UniformityResult uniformity(const Speed& s, const Options& opt) { return uniformity_of(s, s, nullptr, opt); }
 
 }  // namespace uniparam
