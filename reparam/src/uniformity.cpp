@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "uniparam/algebra/quadrature.hpp"
@@ -65,13 +66,17 @@ long speed_scale_bits(const Speed& s) {
 
 std::vector<Ball> integrate_speed_piece(const Speed& s, const RealAlgebraic& a, const RealAlgebraic& b,
                                         long rel_goal_bits, long max_prec, bool square = false,
-                                        long abs_goal_bits = 0, const SquareWeight* weight = nullptr) {
+                                        long abs_goal_bits = 0, const SquareWeight* weight = nullptr,
+                                        const long* exps = nullptr) {
+  // The integrands times 2^-exps[k] (exact), so that a total of about
+  // 2^exps[k] becomes about 1 and one absolute goal fits both.
+  const long e0 = exps ? exps[0] : 0, e1 = exps && square ? exps[1] : 0;
   const Speed::PieceSigns sign = s.piece_signs(a, b);
   // Every narrow real point (nodes, the start's probes, the ends) goes to
   // node_fast below first; f gets the points it refused and the wide balls,
   // so eval's own double-word attempt is skipped (it would refuse too).
   // With a weight, every point goes to f (the double-word path has no weight).
-  Integrand f = [&s, sign, square, weight](acb_ptr out, const acb_t z, bool analytic, long prec) {
+  Integrand f = [&s, sign, square, weight, e0, e1](acb_ptr out, const acb_t z, bool analytic, long prec) {
     s.eval(out, z, sign, analytic, prec, weight != nullptr);
     if (square) acb_mul(out + 1, out, out, prec);
     if (square && weight) {
@@ -81,6 +86,8 @@ std::vector<Ball> integrate_speed_piece(const Speed& s, const RealAlgebraic& a, 
       acb_mul(out + 1, out + 1, w, prec);
       acb_clear(w);
     }
+    acb_mul_2exp_si(out, out, -e0);
+    if (square) acb_mul_2exp_si(out + 1, out + 1, -e1);
   };
   QuadratureOptions qo;
   qo.rel_goal_bits = rel_goal_bits;
@@ -89,13 +96,18 @@ std::vector<Ball> integrate_speed_piece(const Speed& s, const RealAlgebraic& a, 
   qo.scale_bits = speed_scale_bits(s);
   qo.what = "the integral of the " + to_string(s.kind()) + " speed" + (square ? " and of its square" : "");
   qo.singularity_hints = s.singularity_hints(false);
-  if (!weight)
-    qo.node_fast = [&s, sign, square](DDBall* out, const DDBall& t, long prec) {
+  // Double words scale exactly by 2^e for |e| <= 64 only.
+  if (!weight && std::abs(e0) <= 64 && std::abs(e1) <= 64)
+    qo.node_fast = [&s, sign, square, e0, e1](DDBall* out, const DDBall& t, long prec) {
       if (!s.eval_dd(out[0], t, sign, false, prec)) return false;
-      if (square) out[1] = dd_mul(out[0], out[0]);
-      return true;
+      if (square) out[1] = dd_mul_2exp(dd_mul(out[0], out[0]), static_cast<int>(-e1));
+      out[0] = dd_mul_2exp(out[0], static_cast<int>(-e0));
+      return dd_is_finite(out[0]) && (!square || dd_is_finite(out[1]));
     };
-  return integrate_many(f, square ? 2 : 1, a, b, qo);
+  std::vector<Ball> r = integrate_many(f, square ? 2 : 1, a, b, qo);
+  arb_mul_2exp_si(r[0].get(), r[0].get(), e0);
+  if (square) arb_mul_2exp_si(r[1].get(), r[1].get(), e1);
+  return r;
 }
 
 // a, the zeros of sigma strictly inside (a, b), b.
@@ -171,17 +183,17 @@ void check_degree(const Curve& c, const Options& opt) {
 
 namespace {
 
-// UNCERTIFIED: an estimate of the smaller of mu and (with squares) the
-// integral of sigma^2, from sigma^2 at 64 bits (Speed::eval_squared: any
-// exponent range, unlike double) on the midpoints of 64 equal cells of
-// [0, 1] and, since sigma may vary on a scale down to 2^-scale_bits at the
-// ends (speed_scale_bits), on those of the cells [2^-(k+1), 2^-k] next to 0
-// and to 1 for 7 <= k < scale_bits + 8 (a peak of width 2^-k at an end is
-// a smooth bump in k). Non-finite or non-positive samples are skipped; 0
-// where none is left. Only steers the parts' absolute goal (a narrow peak
-// between the samples makes it too small: a stricter goal, as without it;
-// one too large: the second pass of speed_integrals).
-Ball integral_estimate(const Speed& s, bool squares, long scale_bits, const SquareWeight* weight) {
+// UNCERTIFIED: estimates of (mu, int sigma^2) from sigma^2 at 64 bits
+// (Speed::eval_squared: any exponent range, unlike double) on the midpoints
+// of 64 equal cells of [0, 1] and, since sigma may vary on a scale down to
+// 2^-scale_bits at the ends (speed_scale_bits), on those of the cells
+// [2^-(k+1), 2^-k] next to 0 and to 1 for 7 <= k < scale_bits + 8 (a peak
+// of width 2^-k at an end is a smooth bump in k). Non-finite or
+// non-positive samples are skipped (0 where none is left). Only steers the
+// parts' scaling and absolute goal (a narrow peak between the samples
+// makes an estimate too small: a stricter goal, as without it; one too
+// large: the second pass of speed_integrals).
+std::pair<Ball, Ball> integral_estimate(const Speed& s, long scale_bits, const SquareWeight* weight) {
   constexpr int kSamples = 64;
   constexpr long kPrec = 64;
   Ball sum(0), sum_sq(0), v;
@@ -221,25 +233,21 @@ Ball integral_estimate(const Speed& s, bool squares, long scale_bits, const Squa
   }
   acb_clear(z);
   acb_clear(w);
-  return squares && arf_cmp(arb_midref(sum_sq.get()), arb_midref(sum.get())) < 0 ? sum_sq : sum;
+  return {sum, sum_sq};
 }
 
-// The absolute goal 2^-share * total, in QuadratureOptions::abs_goal_bits
-// (at least 1), from x: total's midpoint (lower = false) or lower bound
-// (lower = true); 0 (no absolute goal) where that is not finite and positive.
-long abs_goal_from(const Ball& x, long share, bool lower) {
-  if (!x.is_finite()) return 0;
+// e with x >= 2^e, from x's midpoint (lower = false) or lower bound (lower =
+// true); false where that is not finite and positive.
+bool exponent_below(long& e, const Ball& x, bool lower) {
+  if (!x.is_finite()) return false;
   arf_t t;
   arf_init(t);
   if (lower) arb_get_lbound_arf(t, x.get(), 64);
   else arf_set(t, arb_midref(x.get()));
-  long goal = 0;
-  if (arf_sgn(t) > 0) {
-    const long e = arf_abs_bound_lt_2exp_si(t);  // t >= 2^(e - 1)
-    goal = std::max(1L, share - (e - 1));
-  }
+  const bool ok = arf_sgn(t) > 0;
+  if (ok) e = arf_abs_bound_lt_2exp_si(t) - 1;  // 2^(e + 1) > t >= 2^e
   arf_clear(t);
-  return goal;
+  return ok;
 }
 
 // rad(x) <= 2^-bits * |lower bound of x|.
@@ -282,11 +290,15 @@ void speed_integrals(const Speed& s, long bits, long max_prec, bool squares, Bal
   std::vector<Speed> speeds(workers > 1 ? workers - 1 : 0, s);
   std::vector<std::vector<RealAlgebraic>> ends_copies(speeds.size(), ends);
   std::vector<std::vector<Ball>> results(tasks);
-  auto run = [&](long abs_goal_bits) {
+  // One pass over the parts: each integrand scaled by 2^-exps[k] (exact)
+  // and, when abs_goal, to an absolute accuracy of 2^-share besides the
+  // relative one.
+  auto run = [&](const long* exps, bool abs_goal, long share) {
     parallel_for(tasks, workers, [&](std::size_t w, std::size_t i) {
       const Speed& sw = w == 0 ? s : speeds[w - 1];
       const std::vector<RealAlgebraic>& ew = w == 0 ? ends : ends_copies[w - 1];
-      results[i] = integrate_speed_piece(sw, ew[i], ew[i + 1], bits, max_prec, squares, abs_goal_bits, weight);
+      results[i] = integrate_speed_piece(sw, ew[i], ew[i + 1], bits, max_prec, squares, abs_goal ? share : 0, weight,
+                                         exps);
     });
     // sigma and sigma^2 are >= 0: the parts' radii add up to at most
     // 2^-bits times the sum plus tasks times the absolute goal.
@@ -301,16 +313,22 @@ void speed_integrals(const Speed& s, long bits, long max_prec, bool squares, Bal
   // negligible (t^1998 on [0, 1/8], or 1/(2 C t^2) away from the peak of
   // (t, C t^2)) may stop at an absolute accuracy of 2^-bits times a share of
   // the total, instead of costing as much as a significant part (or more:
-  // the precision its own relative accuracy would need). The total comes
-  // from an estimate (integral_estimate); where the sums then miss twice
+  // the precision its own relative accuracy would need). Each integrand is
+  // scaled exactly by a power of 2 that brings its estimated total
+  // (integral_estimate) to [1, 2), so that one absolute goal 2^-share fits
+  // both integrals, whatever their size. Where the sums then miss twice
   // their goal (an estimate too large), the parts are integrated again with
-  // the sums' certified lower bounds in place of the estimate, which makes
+  // the sums' certified lower bounds in place of the estimates, which makes
   // the absolute goal at most a quarter of the relative one.
   const long share = bits + 2 + static_cast<long>(std::ceil(std::log2(static_cast<double>(tasks))));
-  run(abs_goal_from(integral_estimate(s, squares, speed_scale_bits(s), weight), share, false));
+  const std::pair<Ball, Ball> est = integral_estimate(s, speed_scale_bits(s), weight);
+  long exps[2] = {0, 0};
+  bool known = exponent_below(exps[0], est.first, false) && (!squares || exponent_below(exps[1], est.second, false));
+  run(exps, known, share);
   if (!(meets_rel(mu, bits - 1) && (!squares || meets_rel(mean_square, bits - 1)))) {
-    const long g = abs_goal_from(mu, share, true), g_sq = squares ? abs_goal_from(mean_square, share, true) : g;
-    run(g > 0 && g_sq > 0 ? std::max(g, g_sq) : 0);
+    known = exponent_below(exps[0], mu, true) && (!squares || exponent_below(exps[1], mean_square, true));
+    if (!known) exps[0] = exps[1] = 0;
+    run(exps, known, share);
   }
 }
 
