@@ -25,6 +25,8 @@ void validate(const Options& o) {
 
 long digits_to_bits(long digits) { return static_cast<long>(std::ceil(digits * 3.3219280948873623)) + 8; }
 
+long default_max_prec(long digits) { return std::max(Options{}.max_prec, 2 * digits_to_bits(digits)); }
+
 namespace {
 
 // The integral of sigma over one piece [a, b] free of zeros of sigma inside
