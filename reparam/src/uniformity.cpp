@@ -29,9 +29,6 @@ long default_max_prec(long digits) { return std::max(Options{}.max_prec, 2 * dig
 
 namespace {
 
-// The integral of sigma over one piece [a, b] free of zeros of sigma inside
-// and, with square, that of sigma^2 in the same quadrature (sigma squared at
-// every point: one evaluation of the speed for both).
 // The weight 1 / m'(s) = (a s + b (1 - s))^2 / (a b) of a balanced curve's
 // integral of sigma^2 (scaling.hpp).
 struct SquareWeight {
@@ -66,6 +63,11 @@ long speed_scale_bits(const Speed& s) {
   return b;
 }
 
+// The integral of sigma over one piece [a, b] free of zeros of sigma inside
+// and, with square, that of sigma^2 in the same quadrature (sigma squared at
+// every point: one evaluation of the speed for both), with the
+// weight on sigma^2 where given, to relative accuracy 2^-rel_goal_bits or
+// absolute 2^-abs_goal_bits (0: none) of the scaled integrands below.
 std::vector<Ball> integrate_speed_piece(const Speed& s, const RealAlgebraic& a, const RealAlgebraic& b,
                                         long rel_goal_bits, long max_prec, bool square = false,
                                         long abs_goal_bits = 0, const SquareWeight* weight = nullptr,
