@@ -71,8 +71,9 @@ std::vector<OptionSpec> common_options() {
       {"speed", "KIND", "speed to make uniform: angular or parametric (arc length; also 'arclength')", "angular"},
       {"digits", "D", "correct decimal digits: every ball has radius <= 10^-D * max(1, |mid|)", "15"},
       {"json", "", "print JSON: certified reals as {\"mid\", \"rad\"}", ""},
-      {"max-prec", "BITS", "largest working precision before giving up", "16384"},
-      {"max-degree", "N", "largest degree of the curve and of any polynomial or exponent read in CURVE", "2000"},
+      {"max-prec", "BITS", "largest working precision before giving up",
+       "16384, or twice the bits the digits need where that is more"},
+      {"max-degree", "N", "largest degree of the curve and of any polynomial or exponent read in CURVE", "1000"},
       {"max-bits", "BITS", "largest size of a number or polynomial read in CURVE, (degree + 1) * coefficient bits",
        "268435456"},
       {"max-length", "N", "largest length of CURVE in characters", "1048576"},
@@ -88,7 +89,7 @@ std::vector<OptionSpec> common_options() {
 Options read_options(const Args& a) {
   Options o;
   o.digits = a.get_long("digits", o.digits, 1, 10000);
-  o.max_prec = a.get_long("max-prec", o.max_prec, 64, 1L << 24);
+  o.max_prec = a.get_long("max-prec", default_max_prec(o.digits), 64, 1L << 24);
   o.max_degree = a.get_long("max-degree", o.max_degree, 1, 20000);  // root isolation refuses degrees above 20000
   return o;
 }

@@ -776,6 +776,7 @@ std::vector<Ball> integrate_many(const Integrand& f, std::size_t count, const Re
     throw InvalidArgument("integrate: accuracy goals must be non-negative");
   if (opt.max_prec < 2) throw InvalidArgument("integrate: max_prec must be at least 2 bits");
   if (opt.initial_prec < 0) throw InvalidArgument("integrate: initial_prec must be non-negative");
+  if (opt.scale_bits < 0) throw InvalidArgument("integrate: scale_bits must be non-negative");
   const int c = compare(a, b);
   if (c > 0) throw InvalidArgument("integrate: lower end " + a.str() + " exceeds upper end " + b.str());
   if (c == 0) return std::vector<Ball>(count, Ball(0L));
@@ -819,7 +820,11 @@ std::vector<Ball> integrate_many(const Integrand& f, std::size_t count, const Re
     check_time_budget();
     // eval_limit 0: Arb's default (1000 prec + prec^2), capped so that one
     // hopeless attempt at thousands of bits cannot run for hours.
-    const long eval_limit = opt.eval_limit > 0 ? opt.eval_limit : std::min(1000 * prec + prec * prec, 2000000L);
+    // scale_bits adds its levels' evaluations (and depth) beyond that cap.
+    const long eval_limit = opt.eval_limit > 0 ? opt.eval_limit
+                                               : std::min(1000 * prec + prec * prec, 2000000L) +
+                                                     kEvalsPerScaleBit * opt.scale_bits;
+    const long depth_limit = opt.depth_limit > 0 ? opt.depth_limit : 2 * prec + opt.scale_bits;
     const EndBalls& ends = ends_at(prec);
     const Ball& ea = ends.a;
     const Ball& eb = ends.b;
@@ -844,7 +849,7 @@ std::vector<Ball> integrate_many(const Integrand& f, std::size_t count, const Re
     // prec - rel_goal_bits is what the start precision added for them.
     Context ctx{&f, count, nullptr, std::max(64L, prec - opt.rel_goal_bits + 32), &opt.singularity_hints,
                 &opt.node_fast, std::vector<DDBall>(count)};
-    const int status = adaptive_integrate(res.v, ctx, ma.v, mb.v, goal, tol.v, eval_limit, opt.depth_limit, prec);
+    const int status = adaptive_integrate(res.v, ctx, ma.v, mb.v, goal, tol.v, eval_limit, depth_limit, prec);
     if (ctx.error) std::rethrow_exception(ctx.error);
     // The enclosures are valid whatever the status; NO_CONVERGENCE only
     // means they may be wide, which the goal check below sees.

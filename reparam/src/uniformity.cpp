@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <utility>
 #include <vector>
 
 #include "uniparam/algebra/quadrature.hpp"
 #include "uniparam/core/budget.hpp"
 #include "uniparam/core/error.hpp"
 #include "uniparam/core/parallel.hpp"
+#include "uniparam/reparam/scaling.hpp"
 
 namespace uniparam {
 
@@ -22,32 +25,93 @@ void validate(const Options& o) {
 
 long digits_to_bits(long digits) { return static_cast<long>(std::ceil(digits * 3.3219280948873623)) + 8; }
 
+long default_max_prec(long digits) { return std::max(Options{}.max_prec, 2 * digits_to_bits(digits)); }
+
 namespace {
+
+// The weight 1 / m'(s) = (a s + b (1 - s))^2 / (a b) of a balanced curve's
+// integral of sigma^2 (scaling.hpp).
+struct SquareWeight {
+  Integer a, b;
+};
+
+// out = (a z + b (1 - z))^2 / (a b): a sum of two positive terms on [0, 1]
+// (no cancellation, whatever the sizes of a and b).
+void eval_weight(acb_t out, const acb_t z, const SquareWeight& w, long prec) {
+  acb_t t;
+  acb_init(t);
+  acb_neg(t, z);
+  acb_add_si(t, t, 1, prec);
+  acb_mul_fmpz(t, t, w.b.get(), prec);
+  acb_mul_fmpz(out, z, w.a.get(), prec);
+  acb_add(out, out, t, prec);
+  acb_mul(out, out, out, prec);
+  acb_div_fmpz(out, out, w.a.get(), prec);
+  acb_div_fmpz(out, out, w.b.get(), prec);
+  acb_clear(t);
+}
+
+// Bits of the scale on which sigma may vary: the largest coefficient size of
+// the factored form's polynomials g, K_k and D. A nonzero root of an integer
+// polynomial of height H has modulus at least 1 / (1 + H), so sigma's
+// singularities and peaks may lie that close to 0 (and, by t -> 1 - t, to
+// 1): (t, C t^2) has D = 1 + 4 C^2 t^2, a peak of width 1 / (2 C) at t = 0.
+// The quadrature may need that many bisections (QuadratureOptions::scale_bits).
+long speed_scale_bits(const Speed& s) {
+  long b = std::max(s.denominator().max_bits(), s.g().max_bits());
+  for (const Poly& k : s.cofactors()) b = std::max(b, k.max_bits());
+  return b;
+}
 
 // The integral of sigma over one piece [a, b] free of zeros of sigma inside
 // and, with square, that of sigma^2 in the same quadrature (sigma squared at
-// every point: one evaluation of the speed for both).
+// every point: one evaluation of the speed for both), with the
+// weight on sigma^2 where given, to relative accuracy 2^-rel_goal_bits or
+// absolute 2^-abs_goal_bits (0: none) of the scaled integrands below.
 std::vector<Ball> integrate_speed_piece(const Speed& s, const RealAlgebraic& a, const RealAlgebraic& b,
-                                        long rel_goal_bits, long max_prec, bool square = false) {
+                                        long rel_goal_bits, long max_prec, bool square = false,
+                                        long abs_goal_bits = 0, const SquareWeight* weight = nullptr,
+                                        const long* exps = nullptr) {
+  // The integrands times 2^-exps[k] (exact), so that a total of about
+  // 2^exps[k] becomes about 1 and one absolute goal fits both.
+  const long e0 = exps ? exps[0] : 0, e1 = exps && square ? exps[1] : 0;
   const Speed::PieceSigns sign = s.piece_signs(a, b);
   // Every narrow real point (nodes, the start's probes, the ends) goes to
   // node_fast below first; f gets the points it refused and the wide balls,
   // so eval's own double-word attempt is skipped (it would refuse too).
-  Integrand f = [&s, sign, square](acb_ptr out, const acb_t z, bool analytic, long prec) {
-    s.eval(out, z, sign, analytic, prec, false);
+  // With a weight, every point goes to f (the double-word path has no weight).
+  Integrand f = [&s, sign, square, weight, e0, e1](acb_ptr out, const acb_t z, bool analytic, long prec) {
+    s.eval(out, z, sign, analytic, prec, weight != nullptr);
     if (square) acb_mul(out + 1, out, out, prec);
+    if (square && weight) {
+      acb_t w;
+      acb_init(w);
+      eval_weight(w, z, *weight, prec);
+      acb_mul(out + 1, out + 1, w, prec);
+      acb_clear(w);
+    }
+    acb_mul_2exp_si(out, out, -e0);
+    if (square) acb_mul_2exp_si(out + 1, out + 1, -e1);
   };
   QuadratureOptions qo;
   qo.rel_goal_bits = rel_goal_bits;
+  qo.abs_goal_bits = abs_goal_bits;
   qo.max_prec = max_prec;
+  qo.scale_bits = speed_scale_bits(s);
   qo.what = "the integral of the " + to_string(s.kind()) + " speed" + (square ? " and of its square" : "");
   qo.singularity_hints = s.singularity_hints(false);
-  qo.node_fast = [&s, sign, square](DDBall* out, const DDBall& t, long prec) {
-    if (!s.eval_dd(out[0], t, sign, false, prec)) return false;
-    if (square) out[1] = dd_mul(out[0], out[0]);
-    return true;
-  };
-  return integrate_many(f, square ? 2 : 1, a, b, qo);
+  // Double words scale exactly by 2^e for |e| <= 64 only.
+  if (!weight && std::abs(e0) <= 64 && std::abs(e1) <= 64)
+    qo.node_fast = [&s, sign, square, e0, e1](DDBall* out, const DDBall& t, long prec) {
+      if (!s.eval_dd(out[0], t, sign, false, prec)) return false;
+      if (square) out[1] = dd_mul_2exp(dd_mul(out[0], out[0]), static_cast<int>(-e1));
+      out[0] = dd_mul_2exp(out[0], static_cast<int>(-e0));
+      return dd_is_finite(out[0]) && (!square || dd_is_finite(out[1]));
+    };
+  std::vector<Ball> r = integrate_many(f, square ? 2 : 1, a, b, qo);
+  arb_mul_2exp_si(r[0].get(), r[0].get(), e0);
+  if (square) arb_mul_2exp_si(r[1].get(), r[1].get(), e1);
+  return r;
 }
 
 // a, the zeros of sigma strictly inside (a, b), b.
@@ -123,6 +187,85 @@ void check_degree(const Curve& c, const Options& opt) {
 
 namespace {
 
+// UNCERTIFIED: estimates of (mu, int sigma^2) from sigma^2 at 64 bits
+// (Speed::eval_squared: any exponent range, unlike double) on the midpoints
+// of 64 equal cells of [0, 1] and, since sigma may vary on a scale down to
+// 2^-scale_bits at the ends (speed_scale_bits), on those of the cells
+// [2^-(k+1), 2^-k] next to 0 and to 1 for 7 <= k < scale_bits + 8 (a peak
+// of width 2^-k at an end is a smooth bump in k). Non-finite or
+// non-positive samples are skipped (0 where none is left). Only steers the
+// parts' scaling and absolute goal (a narrow peak between the samples
+// makes an estimate too small: a stricter goal, as without it; one too
+// large: the second pass of speed_integrals).
+std::pair<Ball, Ball> integral_estimate(const Speed& s, long scale_bits, const SquareWeight* weight) {
+  constexpr int kSamples = 64;
+  constexpr long kPrec = 64;
+  Ball sum(0), sum_sq(0), v;
+  acb_t z, w;
+  acb_init(z);
+  acb_init(w);
+  auto add = [&](long weight_exp) {  // the sample at z, over a cell of width 2^weight_exp
+    s.eval_squared(w, z, kPrec);
+    if (!acb_is_finite(w) || !arb_is_positive(acb_realref(w))) return;
+    arb_set_arf(v.get(), arb_midref(acb_realref(w)));
+    if (weight) {
+      acb_t ww;
+      acb_init(ww);
+      eval_weight(ww, z, *weight, kPrec);
+      arb_mul(v.get(), v.get(), acb_realref(ww), kPrec);
+      acb_clear(ww);
+    }
+    arb_mul_2exp_si(v.get(), v.get(), weight_exp);
+    arb_add(sum_sq.get(), sum_sq.get(), v.get(), kPrec);
+    arb_set_arf(v.get(), arb_midref(acb_realref(w)));
+    arb_sqrt(v.get(), v.get(), kPrec);
+    arb_mul_2exp_si(v.get(), v.get(), weight_exp);
+    arb_add(sum.get(), sum.get(), v.get(), kPrec);
+  };
+  for (int i = 0; i < kSamples; ++i) {
+    acb_set_si(z, 2 * i + 1);
+    acb_mul_2exp_si(z, z, -7);  // (2i + 1) / 128
+    add(-6);
+  }
+  for (long k = 7; k < scale_bits + 8; ++k) {
+    acb_set_si(z, 3);
+    acb_mul_2exp_si(z, z, -(k + 2));  // 3 * 2^-(k+2), the middle of [2^-(k+1), 2^-k]
+    add(-(k + 1));
+    acb_neg(z, z);
+    acb_add_si(z, z, 1, kPrec + k);  // exact: 1 - 3 * 2^-(k+2)
+    add(-(k + 1));
+  }
+  acb_clear(z);
+  acb_clear(w);
+  return {sum, sum_sq};
+}
+
+// e with x >= 2^e, from x's midpoint (lower = false) or lower bound (lower =
+// true); false where that is not finite and positive.
+bool exponent_below(long& e, const Ball& x, bool lower) {
+  if (!x.is_finite()) return false;
+  arf_t t;
+  arf_init(t);
+  if (lower) arb_get_lbound_arf(t, x.get(), 64);
+  else arf_set(t, arb_midref(x.get()));
+  const bool ok = arf_sgn(t) > 0;
+  if (ok) e = arf_abs_bound_lt_2exp_si(t) - 1;  // 2^(e + 1) > t >= 2^e
+  arf_clear(t);
+  return ok;
+}
+
+// rad(x) <= 2^-bits * |lower bound of x|.
+bool meets_rel(const Ball& x, long bits) {
+  if (!x.is_finite()) return false;
+  mag_t m;
+  mag_init(m);
+  arf_get_mag_lower(m, arb_midref(x.get()));
+  mag_mul_2exp_si(m, m, -bits);
+  const bool ok = mag_cmp(arb_radref(x.get()), m) <= 0;
+  mag_clear(m);
+  return ok;
+}
+
 // mu (and, with squares, the integral of sigma^2) over [0, 1] at relative
 // accuracy 2^-bits: the pieces between the zeros of sigma and the split
 // points are independent tasks (with squares, each integrates sigma and
@@ -133,7 +276,8 @@ namespace {
 // number at once); value-neutral: RealAlgebraic::to_ball depends on (t, prec)
 // alone. The first attempt asks for bits + 32 + RealAlgebraic::kToBallExtraBits
 // bits (integrate's working precision bits + 32, and to_ball's refinement).
-void speed_integrals(const Speed& s, long bits, long max_prec, bool squares, Ball& mu, Ball& mean_square) {
+void speed_integrals(const Speed& s, long bits, long max_prec, bool squares, Ball& mu, Ball& mean_square,
+                     const SquareWeight* weight = nullptr) {
   const RealAlgebraic zero(0), one(1);
   for (const SpeedZero& z : s.zeros()) z.t.refine(bits + 32 + RealAlgebraic::kToBallExtraBits);
   // The tasks' quadratures start by asking for the singularity hints (one
@@ -151,24 +295,52 @@ void speed_integrals(const Speed& s, long bits, long max_prec, bool squares, Bal
   std::vector<Speed> speeds;
   std::vector<std::vector<RealAlgebraic>> ends_copies;
   std::vector<std::vector<Ball>> results(tasks);
-  parallel_for(
-      tasks, workers,
-      [&](std::size_t w, std::size_t i) {
-        const Speed& sw = w == 0 ? s : speeds[w - 1];
-        const std::vector<RealAlgebraic>& ew = w == 0 ? ends : ends_copies[w - 1];
-        results[i] = integrate_speed_piece(sw, ew[i], ew[i + 1], bits, max_prec, squares);
-      },
-      [&](std::size_t k) {
-        speeds.assign(k - 1, s);
-        ends_copies.assign(k - 1, ends);
-      });
-  // sigma and sigma^2 are >= 0: the relative accuracy of every part holds
-  // for their sum.
-  mu = Ball(0);
-  mean_square = Ball(0);
-  for (const std::vector<Ball>& r : results) {
-    arb_add(mu.get(), mu.get(), r[0].get(), 2 * bits + 64);
-    if (squares) arb_add(mean_square.get(), mean_square.get(), r[1].get(), 2 * bits + 64);
+  // One pass over the parts: each integrand scaled by 2^-exps[k] (exact)
+  // and, when abs_goal, to an absolute accuracy of 2^-share besides the
+  // relative one.
+  auto run = [&](const long* exps, bool abs_goal, long share) {
+    parallel_for(
+        tasks, workers,
+        [&](std::size_t w, std::size_t i) {
+          const Speed& sw = w == 0 ? s : speeds[w - 1];
+          const std::vector<RealAlgebraic>& ew = w == 0 ? ends : ends_copies[w - 1];
+          results[i] = integrate_speed_piece(sw, ew[i], ew[i + 1], bits, max_prec, squares, abs_goal ? share : 0,
+                                             weight, exps);
+        },
+        [&](std::size_t k) {
+          if (speeds.size() + 1 >= k) return;  // the copies of an earlier pass serve
+          speeds.assign(k - 1, s);
+          ends_copies.assign(k - 1, ends);
+        });
+    // sigma and sigma^2 are >= 0: the parts' radii add up to at most
+    // 2^-bits times the sum plus tasks times the absolute goal.
+    mu = Ball(0);
+    mean_square = Ball(0);
+    for (const std::vector<Ball>& r : results) {
+      arb_add(mu.get(), mu.get(), r[0].get(), 2 * bits + 64);
+      if (squares) arb_add(mean_square.get(), mean_square.get(), r[1].get(), 2 * bits + 64);
+    }
+  };
+  // Only the sums need relative accuracy 2^-bits: a part where sigma is
+  // negligible (t^1998 on [0, 1/8], or 1/(2 C t^2) away from the peak of
+  // (t, C t^2)) may stop at an absolute accuracy of 2^-bits times a share of
+  // the total, instead of costing as much as a significant part (or more:
+  // the precision its own relative accuracy would need). Each integrand is
+  // scaled exactly by a power of 2 that brings its estimated total
+  // (integral_estimate) to [1, 2), so that one absolute goal 2^-share fits
+  // both integrals, whatever their size. Where the sums then miss twice
+  // their goal (an estimate too large), the parts are integrated again with
+  // the sums' certified lower bounds in place of the estimates, which makes
+  // the absolute goal at most a quarter of the relative one.
+  const long share = bits + 2 + static_cast<long>(std::ceil(std::log2(static_cast<double>(tasks))));
+  const std::pair<Ball, Ball> est = integral_estimate(s, speed_scale_bits(s), weight);
+  long exps[2] = {0, 0};
+  bool known = exponent_below(exps[0], est.first, false) && (!squares || exponent_below(exps[1], est.second, false));
+  run(exps, known, share);
+  if (!(meets_rel(mu, bits - 1) && (!squares || meets_rel(mean_square, bits - 1)))) {
+    known = exponent_below(exps[0], mu, true) && (!squares || exponent_below(exps[1], mean_square, true));
+    if (!known) exps[0] = exps[1] = 0;
+    run(exps, known, share);
   }
 }
 
@@ -193,19 +365,20 @@ Ball mean_speed(const Speed& s, long rel_goal_bits, const Options& opt) {
   return mu;
 }
 
-UniformityResult uniformity(const Curve& c, SpeedKind kind, const Options& opt) {
-  validate(opt);
-  check_degree(c, opt);
-  return uniformity(Speed(c, kind), opt);
-}
+namespace {
 
-UniformityResult uniformity(const Speed& s, const Options& opt) {
+// uniformity() of the speed `reported` (its exact parts: sigma^2, zeros),
+// with the integrals taken from `integrated`: the same speed, or a balanced
+// curve's with the weight of its integral of sigma^2 (scaling.hpp): the
+// same mu and integral of sigma^2 exactly.
+UniformityResult uniformity_of(const Speed& reported, const Speed& integrated, const SquareWeight* weight,
+                               const Options& opt) {
   validate(opt);
   UniformityResult r;
-  r.kind = s.kind();
-  r.speed_squared = s.squared();
-  r.zeros = s.zeros();
-  r.identically_zero = s.identically_zero();
+  r.kind = reported.kind();
+  r.speed_squared = reported.squared();
+  r.zeros = reported.zeros();
+  r.identically_zero = reported.identically_zero();
   if (r.identically_zero) {
     r.mu = Ball(0);
     r.mean_square = Ball(0);
@@ -216,7 +389,7 @@ UniformityResult uniformity(const Speed& s, const Options& opt) {
   // Each integral to relative accuracy 2^-bits gives u to about 4 * 2^-bits.
   for (long bits = digits_to_bits(opt.digits); ; bits += 32) {
     check_time_budget();
-    speed_integrals(s, bits, opt.max_prec, true, r.mu, r.mean_square);
+    speed_integrals(integrated, bits, opt.max_prec, true, r.mu, r.mean_square, weight);
     const long prec = 2 * bits + 64;
     arb_mul(r.u.get(), r.mu.get(), r.mu.get(), prec);
     arb_div(r.u.get(), r.u.get(), r.mean_square.get(), prec);
@@ -231,5 +404,24 @@ UniformityResult uniformity(const Speed& s, const Options& opt) {
                            " bits of working precision (raise it with --max-prec)");
   }
 }
+
+}  // namespace
+
+UniformityResult uniformity(const Curve& c, SpeedKind kind, const Options& opt) {
+  validate(opt);
+  check_degree(c, opt);
+  const Speed s(c, kind);
+  // Weights growing geometrically (a rational Bezier curve with weights
+  // 1, 8e40, 1e82): the integrals of the balanced curve q = p o m, whose
+  // speed is spread over [0, 1] instead of within 1 / lambda of one end.
+  if (!s.identically_zero())
+    if (const std::optional<BalancedCurve> bal = balance(c)) {
+      const SquareWeight w{bal->a, bal->b};
+      return uniformity_of(s, Speed(bal->q, kind), &w, opt);
+    }
+  return uniformity_of(s, s, nullptr, opt);
+}
+
+UniformityResult uniformity(const Speed& s, const Options& opt) { return uniformity_of(s, s, nullptr, opt); }
 
 }  // namespace uniparam

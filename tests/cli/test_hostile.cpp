@@ -129,10 +129,10 @@ std::vector<HostileRow> hostile_rows() {
       {{"moebius", "(t^2/t, t^3/t^2)"}, 0, ""},  // removable: t and t, a line
 
       // ---- budgets: exit 4, naming the limit and its option ----------------------
-      {{"uniformity", "(t, t^100000)"}, 4, "exponent limit of 2000 (raise it with --max-degree)"},
+      {{"uniformity", "(t, t^100000)"}, 4, "exponent limit of 1000 (raise it with --max-degree)"},
       {{"uniformity", "(t, t^3)", "--max-degree", "2"}, 4, "exponent limit of 2 (raise it with --max-degree)"},
       {{"uniformity", "(t, t*t*t)", "--max-degree", "2"}, 4, "degree limit of 2 (raise it with --max-degree)"},
-      {{"uniformity", "(t, t^1500*t^1500)"}, 4, "degree limit of 2000 (raise it with --max-degree)"},
+      {{"uniformity", "(t, t^800*t^800)"}, 4, "degree limit of 1000 (raise it with --max-degree)"},
       {{"uniformity", "(t, t^2^2^2^2^2)"}, 4, "--max-degree"},
       {{"uniformity", "(t, 1e999999999)"}, 4, "size limit of 268435456 bits (raise it with --max-bits)"},
       {{"uniformity", "(t, (99999t+1)^200)", "--max-bits", "1000"}, 4, "size limit of 1000 bits (raise it with --max-bits)"},
@@ -140,7 +140,7 @@ std::vector<HostileRow> hostile_rows() {
       {{"uniformity", "(t, ((((t)))))", "--max-depth", "3"}, 4, "depth limit of 3 (raise it with --max-depth)"},
       {{"uniformity", "(t, ----t)", "--max-depth", "3"}, 4, "--max-depth"},
       {{"uniformity", kCubic, "--digits", "30", "--max-prec", "64"}, 4, "precision limit of 64 bits (raise it with --max-prec)"},
-      {{"uniformity", kCubic, "--digits", "10000"}, 4, "(raise it with --max-prec)"},
+      {{"uniformity", kCubic, "--digits", "10000", "--max-prec", "16384"}, 4, "(raise it with --max-prec)"},
       {{"radical", kCubic, "--digits", "30", "--max-prec", "100"}, 4, "--max-prec"},
       {{"moebius", kCubic, "--digits", "30", "--max-prec", "100"}, 4, "--max-prec"},
       {{"uniformity", kCubic, "--timeout", "0.000001"}, 4, "within 1e-06 s (raise it with --timeout SECONDS)"},

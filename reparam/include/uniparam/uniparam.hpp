@@ -38,6 +38,7 @@
 #include "uniparam/reparam/pieces.hpp"
 #include "uniparam/reparam/radical.hpp"
 #include "uniparam/reparam/sample.hpp"
+#include "uniparam/reparam/scaling.hpp"
 #include "uniparam/reparam/speed.hpp"
 #include "uniparam/reparam/uniformity.hpp"
 

@@ -48,6 +48,10 @@ constexpr long kNodeFastSlackBits = 28;
 /// words carry about 100 bits).
 constexpr long kNodeFastMaxPrec = 110;
 
+/// Evaluations allowed per bisection level that QuadratureOptions::scale_bits
+/// adds (a Gauss-Legendre step and its error bounds on each level's pieces).
+constexpr long kEvalsPerScaleBit = 400;
+
 struct QuadratureOptions {
   /// Goal: the result's radius <= 2^-rel_goal_bits * |value|, or, when
   /// abs_goal_bits > 0, radius <= 2^-abs_goal_bits (whichever is met first).
@@ -66,6 +70,15 @@ struct QuadratureOptions {
   /// remaining subintervals' direct enclosures (rigorous, maybe wide).
   long eval_limit = 0;
   long depth_limit = 0;
+  /// Bisections the integrand's scale may need beyond the defaults: where
+  /// f varies on a scale of 2^-scale_bits (a peak of that width next to an
+  /// end of [a, b], the complex singularities that close to it), the
+  /// subdivision must go about scale_bits bisections deep, whatever the
+  /// precision. Adds scale_bits to the default depth limit (2 prec +
+  /// scale_bits) and kEvalsPerScaleBit * scale_bits to the default eval
+  /// limit (both only where those are 0), so the work grows linearly in
+  /// scale_bits instead of through the precision. 0: Arb's defaults.
+  long scale_bits = 0;
   /// Used in the BudgetExceeded message: what was being integrated.
   std::string what = "integral";
   /// UNCERTIFIED approximations (e.g. approximate_complex_roots) of the
@@ -95,7 +108,7 @@ struct QuadratureOptions {
 /// \throws BudgetExceeded when the goal is not met at max_prec ("could not
 ///         certify <what> to N bits within M bits of working precision;
 ///         raise --max-prec"), InvalidArgument when a > b, f is empty or an
-///         option is out of range (negative goal or initial_prec,
+///         option is out of range (negative goal, initial_prec or scale_bits,
 ///         max_prec < 2), DomainError when the enclosure proves the integral
 ///         is not real. An exception thrown by f propagates unchanged.
 Ball integrate(const Integrand& f, const RealAlgebraic& a, const RealAlgebraic& b,

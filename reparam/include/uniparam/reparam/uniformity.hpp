@@ -16,10 +16,13 @@ struct Options {
   /// rad <= 10^-digits * max(1, |mid|). 1 <= digits <= 10000.
   long digits = 15;
   /// Largest working precision (bits) the quadrature may use before giving up
-  /// with BudgetExceeded (CLI: --max-prec).
+  /// with BudgetExceeded (CLI: --max-prec; its default there is
+  /// default_max_prec(digits)).
   long max_prec = 16384;
-  /// Largest curve degree accepted (CLI: --max-degree).
-  long max_degree = 2000;
+  /// Largest curve degree accepted (CLI: --max-degree). Degree 1000 keeps
+  /// uniformity and radical within seconds on dense curves such as
+  /// (t, (1 + t)^1000); higher degrees are accepted when asked for.
+  long max_degree = 1000;
 };
 
 /// Throws InvalidArgument when an option is out of range.
@@ -66,6 +69,11 @@ void check_degree(const Curve& c, const Options& opt);
 
 /// Bits of relative accuracy that give `digits` decimal digits with margin.
 long digits_to_bits(long digits);
+/// The precision limit for `digits` when none is chosen: 16384 bits, or
+/// twice digits_to_bits(digits) where that is more (from 2464 digits), so
+/// that every digits in [1, 10000] is accepted with the default limit.
+/// \pre 1 <= digits <= 10000.
+long default_max_prec(long digits);
 
 namespace detail {
 /// The split of uniformity()'s integrals into tasks: the sorted union of
