@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Installs what a bare Debian 12 (bookworm) machine needs to build and test
 # uniparam: the C++ toolchain, CMake, GMP, MPFR, FLINT 2.9, Arb 2.23,
-# GoogleTest and Google Benchmark; and rsvg-convert (librsvg2-bin), which
-# 'uniparam plot -o FILE.png' runs to turn its SVG into PNG.
+# GoogleTest and Google Benchmark; rsvg-convert (librsvg2-bin), which
+# 'uniparam plot -o FILE.png' runs to turn its SVG into PNG; and OpenCASCADE's
+# STEP reader (libocct-data-exchange-dev), which only the tests use, to read
+# back the STEP files uniparam writes (the library never depends on it).
 #
 #   scripts/install-deps.sh        # quiet; prints nothing when all is present
 #   scripts/install-deps.sh -v     # (or UNIPARAM_VERBOSE=1) show apt's output
@@ -20,6 +22,7 @@ PACKAGES=(
   libgtest-dev googletest
   libbenchmark-dev
   librsvg2-bin
+  libocct-data-exchange-dev
 )
 
 verbose="${UNIPARAM_VERBOSE:-0}"

@@ -23,7 +23,7 @@ bash scripts/install-deps.sh
 
 echo "== configure ($build, Release, tests + benchmarks)"
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release \
-  -DUNIPARAM_BUILD_TESTS=ON -DUNIPARAM_BUILD_BENCH=ON
+  -DUNIPARAM_BUILD_TESTS=ON -DUNIPARAM_BUILD_BENCH=ON -DUNIPARAM_OCCT_TESTS=ON
 echo "== build (-j$jobs)"
 cmake --build "$build" --parallel "$jobs"
 echo "== test (-j$jobs)"
