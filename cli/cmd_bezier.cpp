@@ -35,17 +35,6 @@ CommandSpec bezier_spec() {
 
 namespace {
 
-Json json_surd(const QuadraticSurd& q, const Ball& b, long pd) {
-  if (q.is_rational()) return json_rational(q.rational(), pd);
-  Json j = json_ball(b, pd);
-  Json e = Json::object();
-  e.set("text", Json::string(q.str(Format::Text)));
-  e.set("latex", Json::string(q.str(Format::Latex)));
-  e.set("maple", Json::string(q.str(Format::Maple)));
-  j.set("exact", e);
-  return j;
-}
-
 /// The exact weights' formula in alpha, in format f, for degree n.
 std::string weights_formula(long n, Format f) {
   const std::string N = std::to_string(n);

@@ -56,15 +56,7 @@ const char* kind_name(Nurbs::Kind k) {
 Json weight_json(const Nurbs& n, std::size_t i, long pd) {
   if (n.kind == Nurbs::Kind::Exact) return json_rational(n.weights_exact[i], pd);
   if (n.kind == Nurbs::Kind::Surd) {
-    const QuadraticSurd& q = n.weights_surd[i];
-    if (q.is_rational()) return json_rational(q.rational(), pd);
-    Json j = json_ball(n.weights[i], pd);
-    Json e = Json::object();
-    e.set("text", Json::string(q.str(Format::Text)));
-    e.set("latex", Json::string(q.str(Format::Latex)));
-    e.set("maple", Json::string(q.str(Format::Maple)));
-    j.set("exact", e);
-    return j;
+    return json_surd(n.weights_surd[i], n.weights[i], pd);
   }
   return json_ball(n.weights[i], pd);
 }

@@ -37,4 +37,15 @@ Json json_ratfunc(const RatFunc& r) {
   return j;
 }
 
+Json json_surd(const QuadraticSurd& q, const Ball& b, long pd) {
+  if (q.is_rational()) return json_rational(q.rational(), pd);
+  Json j = json_ball(b, pd);
+  Json e = Json::object();
+  e.set("text", Json::string(q.str(Format::Text)));
+  e.set("latex", Json::string(q.str(Format::Latex)));
+  e.set("maple", Json::string(q.str(Format::Maple)));
+  j.set("exact", e);
+  return j;
+}
+
 }  // namespace uniparam::cli

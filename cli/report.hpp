@@ -22,6 +22,11 @@ std::string text_algebraic(const RealAlgebraic& x, long digits);
 /// with few digits, exactly one root inside): RealAlgebraic::short_interval.
 std::pair<Rational, Rational> short_interval(const RealAlgebraic& x);
 
+/// A quadratic surd q whose certified value is b: a rational as
+/// json_rational, otherwise json_ball(b) plus "exact": {"text", "latex",
+/// "maple"}. \pre b encloses q.
+Json json_surd(const QuadraticSurd& q, const Ball& b, long pd);
+
 /// {"text": ..., "latex": ..., "maple": ...} of a rational function.
 Json json_ratfunc(const RatFunc& r);
 
