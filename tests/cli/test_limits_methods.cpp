@@ -121,3 +121,22 @@ TEST(CliLimitsMethods, HugeCoefficientPiecesAreCertified) {
     }
   }
 }
+
+// Must show: reparam --target on the same curve ends with a certified map
+// instead of running out of time: its floating-point search for breakpoints
+// cannot represent integrals of 2^6650, so it stops, says so, and prints the
+// best map (exit 4: target not reached), whose u before contains the closed
+// form and whose u after is at least u before.
+TEST(CliLimitsMethods, HugeCoefficientTargetEndsWithCertifiedMap) {
+  const std::string c(5000, '7');
+  auto r = run_uniparam({"reparam", "(t, " + c + "*t^2)", "--target", "0.99", "--json", "--timeout", "120"});
+  ASSERT_EQ(r.exit_code, 4) << r.err;
+  EXPECT_EQ(r.err.find("time limit"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("double's range"), std::string::npos) << r.err;
+  Ball before, after;
+  ASSERT_TRUE(json_ball(r.out, "u_before", before)) << r.out.substr(0, 400);
+  ASSERT_TRUE(json_ball(r.out, "u_after", after));
+  const Ball ref = angular_u(c);
+  EXPECT_TRUE(arb_overlaps(before.get(), ref.get())) << before.str(20) << " vs " << ref.str(20);
+  EXPECT_TRUE(arb_ge(after.get(), before.get())) << after.str(20);
+}
