@@ -115,6 +115,9 @@ std::string target_missed_message(const MoebiusResult& r, long max_pieces, long 
                   "; the best map found is printed (" + std::to_string(r.pieces()) +
                   (r.pieces() == 1 ? " piece" : " pieces") + ", u = " +
                   missed_u_text(r.u_after, r.target.value, digits) + "); ";
+  if (r.target.draft_failed)
+    return m + "the floating-point search for more breakpoints cannot represent this curve's integrals "
+               "(beyond double's range): lower --target, or choose the pieces with --pieces N";
   if (max_pieces < kMaxPiecesLimit)
     return m + "raise --max-pieces (at most " + std::to_string(kMaxPiecesLimit) + ") to try more pieces";
   return m + std::to_string(kMaxPiecesLimit) + " pieces is the most --max-pieces allows: lower --target";

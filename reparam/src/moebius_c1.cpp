@@ -559,7 +559,7 @@ MoebiusResult detail::reparam_c1_traced(const Curve& c, SpeedKind kind, const Ra
   std::vector<RealAlgebraic> best = T, certified_T;
   double best_u = -1;
   Built certified;
-  bool have_certified = false, reached = false;
+  bool have_certified = false, reached = false, draft_failed = false;
   long rounds = 0;
   for (;; ++rounds) {
     check_time_budget();
@@ -581,6 +581,13 @@ MoebiusResult detail::reparam_c1_traced(const Curve& c, SpeedKind kind, const Ra
       // the floating point was optimistic: refine on
     }
     if (static_cast<long>(T.size()) - 1 >= max_pieces) break;
+    // A draft whose floating point broke down (integrals beyond double's
+    // range: a huge coefficient) cannot steer the refinement: the best T so
+    // far is certified below, and target.reached says whether it is enough.
+    if (!std::isfinite(u)) {
+      draft_failed = true;
+      break;
+    }
     std::vector<C1Trace::SlidesBreakpoint> added;
     std::vector<RealAlgebraic> next = refine(slides, T, draft, trace ? &added : nullptr);
     if (next.size() == T.size()) {
@@ -622,6 +629,7 @@ MoebiusResult detail::reparam_c1_traced(const Curve& c, SpeedKind kind, const Ra
   r.target.used = true;
   r.target.value = target;
   r.target.rounds = rounds;
+  r.target.draft_failed = draft_failed;
   r.target.reached = arb_ge(r.u_after.get(), tq.get());
   return r;
 }

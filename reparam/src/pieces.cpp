@@ -1,6 +1,9 @@
 #include "uniparam/reparam/pieces.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <exception>
 #include <functional>
 #include <memory>
 #include <utility>
@@ -90,6 +93,82 @@ class PieceEnds {
   const RealAlgebraic& b_;
   std::vector<Entry> entries_;  // a handful of precisions per piece
 };
+
+// Integrands scaled by powers of 2 whose exponents are below this bound in
+// absolute value are left unscaled (integrals within 2^64 of 1 meet the
+// quadrature's absolute tolerance as they are; their double-word nodes stay).
+constexpr long kUnscaledExpBound = 64;
+
+// UNCERTIFIED: for each of the count integrands f_k of a piece, e_k with
+// 2^e_k near its integral over the piece (0 where |e_k| < kUnscaledExpBound
+// or nothing finite and positive was seen): midpoint sums of f at 64 bits
+// on 16 equal cells of the piece (in the local coordinate t~) and, since
+// the integrands may vary on a scale down to 2^-scale_bits at the ends
+// (speed_scale_bits), on the cells [2^-(j+1), 2^-j] next to either end for
+// 4 <= j < scale_bits + 8. Only steers the exact scaling of piece_integrals
+// (an estimate off by 2^d moves the quadrature's absolute tolerance by
+// 2^d against the integral: more work, or a retry at higher precision).
+std::vector<long> piece_scale_exponents(const Integrand& f, std::size_t count, PieceEnds& ends, long scale_bits) {
+  constexpr long kPrec = 64;
+  std::vector<long> exps(count, 0);
+  std::vector<Ball> sums(count, Ball(0));
+  acb_t ta, dt, z;
+  acb_ptr w = _acb_vec_init(static_cast<slong>(count));
+  acb_init(ta);
+  acb_init(dt);
+  acb_init(z);
+  ends.get(ta, dt, kPrec);
+  arb_t x, v;
+  arb_init(x);
+  arb_init(v);
+  auto add = [&](long cell_exp) {  // the sample at local x, over a cell of width 2^cell_exp
+    acb_set_arb(z, x);
+    acb_mul(z, z, dt, kPrec);
+    acb_add(z, z, ta, kPrec);
+    mag_zero(arb_radref(acb_realref(z)));
+    arb_zero(acb_imagref(z));
+    try {
+      f(w, z, false, kPrec);
+    } catch (const std::exception&) {
+      return;
+    }
+    for (std::size_t k = 0; k < count; ++k) {
+      if (!acb_is_finite(w + k) || !arb_is_positive(acb_realref(w + k))) continue;
+      arb_set_arf(v, arb_midref(acb_realref(w + k)));
+      arb_mul_2exp_si(v, v, cell_exp);
+      arb_add(sums[k].get(), sums[k].get(), v, kPrec);
+    }
+  };
+  for (int i = 0; i < 16; ++i) {
+    arb_set_si(x, 2 * i + 1);
+    arb_mul_2exp_si(x, x, -5);  // (2i + 1) / 32
+    add(-4);
+  }
+  for (long j = 4; j < scale_bits + 8; ++j) {
+    arb_set_si(x, 3);
+    arb_mul_2exp_si(x, x, -(j + 2));  // 3 * 2^-(j+2), the middle of [2^-(j+1), 2^-j]
+    add(-(j + 1));
+    arb_neg(x, x);
+    arb_add_si(x, x, 1, kPrec + j);  // exact
+    add(-(j + 1));
+  }
+  // the piece's length (t~ is the local coordinate)
+  Ball len;
+  arb_set(len.get(), acb_realref(dt));
+  for (std::size_t k = 0; k < count; ++k) {
+    arb_mul(sums[k].get(), sums[k].get(), len.get(), kPrec);
+    if (!sums[k].is_finite() || !(arf_sgn(arb_midref(sums[k].get())) > 0)) continue;
+    const long e = arf_abs_bound_lt_2exp_si(arb_midref(sums[k].get())) - 1;
+    if (std::labs(e) >= kUnscaledExpBound) exps[k] = e;
+  }
+  arb_clear(x);
+  arb_clear(v);
+  acb_clear(ta);
+  acb_clear(dt);
+  acb_clear(z);
+  _acb_vec_clear(w, static_cast<slong>(count));
+  return exps;
+}
 
 }  // namespace
 
@@ -199,7 +278,7 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
   // f_k(t) = sigma^2 rho w_k(s~): k = 0, 1, 2 for (1-s~)^2, 2 s~(1-s~), s~^2,
   // the three in one quadrature (one evaluation of the speed per point).
   PieceEnds ends(a.t, b.t);
-  Integrand f = [&s, &ends, &zero, side, mu](acb_ptr out, const acb_t z, bool, long prec) {
+  Integrand raw = [&s, &ends, &zero, side, mu](acb_ptr out, const acb_t z, bool, long prec) {
     acb_t ta, dt, tt, st, w, v;
     acb_init(ta);
     acb_init(dt);
@@ -260,9 +339,24 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
     acb_clear(w);
     acb_clear(v);
   };
+  const std::size_t count = side == ZeroSide::None ? 3 : 4;
+  const long scale_bits = speed_scale_bits(s);
+  // Each integrand times 2^-exps[k] (exact), so that an integral of about
+  // 2^exps[k] becomes about 1: the quadrature's absolute tolerance
+  // 2^-prec then stands for the relative one, whatever the size (a piece
+  // where sigma^2 is 2^-6650 would otherwise be accepted at once and
+  // certified only once prec passes 6650 bits).
+  std::vector<long> exps = piece_scale_exponents(raw, count, ends, scale_bits);
+  bool scaled = false;
+  for (long e : exps) scaled = scaled || e != 0;
+  Integrand f = [&raw, &exps, count](acb_ptr out, const acb_t z, bool analytic, long prec) {
+    raw(out, z, analytic, prec);
+    for (std::size_t k = 0; k < count; ++k) acb_mul_2exp_si(out + k, out + k, -exps[k]);
+  };
   QuadratureOptions qo;
   qo.rel_goal_bits = rel_goal_bits;
   qo.max_prec = max_prec;
+  qo.scale_bits = scale_bits;
   // next to a zero, the integral of sigma^2 too (u_before: not L / Delta t there)
   qo.what = side == ZeroSide::None ? "the piece integrals A, B, C" : "the piece integrals A, B, C and of sigma^2";
   qo.singularity_hints = s.singularity_hints(true);
@@ -270,7 +364,9 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
   // a zero, sigma^2 / (side (t - gamma))^mu by division (the nodes are not
   // at gamma; close to it, sigma^2's cancellation shows in its radius and
   // the accuracy check below sends the node to f, which deflates).
-  qo.node_fast = [&s, &ends, side, mu](DDBall* out, const DDBall& t, long prec) {
+  // Double words scale exactly by 2^e for small |e| only: a scaled piece's
+  // nodes all go to f (its unscaled values are out of double range anyway).
+  if (!scaled) qo.node_fast = [&s, &ends, side, mu](DDBall* out, const DDBall& t, long prec) {
     const PieceEnds::DD* e = ends.get_dd(prec);
     if (!e) return false;
     const DDBall &ta = e->a, &tb = e->b, &dt = e->dt;
@@ -306,7 +402,8 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
       if (!(dd_rel_rad(out[k]) <= goal)) return false;
     return true;
   };
-  std::vector<Ball> abc = integrate_many(f, side == ZeroSide::None ? 3 : 4, a.t, b.t, qo);
+  std::vector<Ball> abc = integrate_many(f, count, a.t, b.t, qo);
+  for (std::size_t k = 0; k < count; ++k) arb_mul_2exp_si(abc[k].get(), abc[k].get(), exps[k]);
   r.A = std::move(abc[0]);
   r.B = std::move(abc[1]);
   r.C = std::move(abc[2]);

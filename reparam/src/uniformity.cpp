@@ -27,6 +27,12 @@ long digits_to_bits(long digits) { return static_cast<long>(std::ceil(digits * 3
 
 long default_max_prec(long digits) { return std::max(Options{}.max_prec, 2 * digits_to_bits(digits)); }
 
+long speed_scale_bits(const Speed& s) {
+  long b = std::max(s.denominator().max_bits(), s.g().max_bits());
+  for (const Poly& k : s.cofactors()) b = std::max(b, k.max_bits());
+  return b;
+}
+
 namespace {
 
 // The weight 1 / m'(s) = (a s + b (1 - s))^2 / (a b) of a balanced curve's
@@ -49,18 +55,6 @@ void eval_weight(acb_t out, const acb_t z, const SquareWeight& w, long prec) {
   acb_div_fmpz(out, out, w.a.get(), prec);
   acb_div_fmpz(out, out, w.b.get(), prec);
   acb_clear(t);
-}
-
-// Bits of the scale on which sigma may vary: the largest coefficient size of
-// the factored form's polynomials g, K_k and D. A nonzero root of an integer
-// polynomial of height H has modulus at least 1 / (1 + H), so sigma's
-// singularities and peaks may lie that close to 0 (and, by t -> 1 - t, to
-// 1): (t, C t^2) has D = 1 + 4 C^2 t^2, a peak of width 1 / (2 C) at t = 0.
-// The quadrature may need that many bisections (QuadratureOptions::scale_bits).
-long speed_scale_bits(const Speed& s) {
-  long b = std::max(s.denominator().max_bits(), s.g().max_bits());
-  for (const Poly& k : s.cofactors()) b = std::max(b, k.max_bits());
-  return b;
 }
 
 // The integral of sigma over one piece [a, b] free of zeros of sigma inside
@@ -174,6 +168,7 @@ Ball integrate_speed_squared(const Speed& s, const RealAlgebraic& a, const RealA
   QuadratureOptions qo;
   qo.rel_goal_bits = rel_goal_bits;
   qo.max_prec = max_prec;
+  qo.scale_bits = speed_scale_bits(s);
   qo.what = "the integral of the squared " + to_string(s.kind()) + " speed";
   qo.singularity_hints = s.singularity_hints(true);
   return integrate(f, a, b, qo);

@@ -66,6 +66,10 @@ struct MoebiusResult {
     Rational value;
     bool reached = false;
     long rounds = 0;  ///< refinement rounds of T after the first construction
+    /// The floating-point draft that chooses the breakpoints broke down
+    /// (integrals beyond double's range, e.g. a huge coefficient), so the
+    /// refinement stopped early; the map is still certified.
+    bool draft_failed = false;
   } target;
 
   /// Set by make_rational: r has exactly these rational data (T, S, alpha);

@@ -28,6 +28,16 @@ struct Options {
 /// Throws InvalidArgument when an option is out of range.
 void validate(const Options& o);
 
+/// Bits of the scale on which sigma may vary: the largest coefficient size
+/// of the factored form's polynomials g, K_k and D. A nonzero root of an
+/// integer polynomial of height H has modulus at least 1 / (1 + H), so
+/// sigma's singularities and peaks may lie that close to 0 (and, by
+/// t -> 1 - t, to 1): (t, C t^2) has D = 1 + 4 C^2 t^2, a peak of width
+/// 1 / (2 C) at t = 0. A quadrature of sigma, sigma^2 or their weighted
+/// forms may need that many bisections (QuadratureOptions::scale_bits).
+/// \post >= 0; depends on s's polynomials only.
+long speed_scale_bits(const Speed& s);
+
 /// Certified integral of sigma over [a, b], split at the zeros of sigma
 /// inside, so that every piece's integrand is analytic. \pre 0 <= a <= b <= 1.
 Ball integrate_speed(const Speed& s, const RealAlgebraic& a, const RealAlgebraic& b, long rel_goal_bits,
