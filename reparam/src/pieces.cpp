@@ -108,9 +108,13 @@ constexpr long kUnscaledExpBound = 64;
 // 4 <= j < scale_bits + 8. Only steers the exact scaling of piece_integrals
 // (an estimate off by 2^d moves the quadrature's absolute tolerance by
 // 2^d against the integral: more work, or a retry at higher precision).
+// Curves whose speed has coefficients below kUnscaledExpBound bits are not
+// sampled (all e_k = 0): the samples cost as much as a low-degree piece's
+// quadrature, and such pieces are integrated unscaled.
 std::vector<long> piece_scale_exponents(const Integrand& f, std::size_t count, PieceEnds& ends, long scale_bits) {
   constexpr long kPrec = 64;
   std::vector<long> exps(count, 0);
+  if (scale_bits < kUnscaledExpBound) return exps;
   std::vector<Ball> sums(count, Ball(0));
   acb_t ta, dt, z;
   acb_ptr w = _acb_vec_init(static_cast<slong>(count));
