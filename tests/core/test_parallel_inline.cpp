@@ -3,6 +3,8 @@
 // pool threads.
 #include <gtest/gtest.h>
 
+#include <chrono>
+
 #include <time.h>
 
 #include <atomic>
@@ -31,19 +33,28 @@ void burn(std::int64_t ns) {
 // Many jobs of about a tenth of a millisecond each (the low-degree case): every item on
 // the calling thread, and no pool thread ever woken.
 TEST(ParallelInline, SmallJobsStayOnTheCallingThread) {
-  const std::uint64_t before = parallel_dispatches();
-  std::atomic<long> elsewhere{0};
+  // A job is also dispatched after 0.1 s of wall time (a caller descheduled
+  // on a busy machine): only rounds that finished well within that count,
+  // and nearly all of them must.
+  int judged = 0;
   for (int round = 0; round < 300; ++round) {
+    const std::uint64_t before = parallel_dispatches();
+    long elsewhere = 0;
     std::vector<long> sum(4, 0);
+    const auto t0 = std::chrono::steady_clock::now();
     parallel_for(64, 4, [&](std::size_t w, std::size_t i) {
       if (w != 0) ++elsewhere;
       sum[w] += static_cast<long>(i);
       burn(2000);  // 64 items: about 0.13 ms of CPU in all
     });
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     EXPECT_EQ(sum[0] + sum[1] + sum[2] + sum[3], 64 * 63 / 2);
+    if (wall > 0.05) continue;
+    ++judged;
+    EXPECT_EQ(elsewhere, 0) << "round " << round;
+    EXPECT_EQ(parallel_dispatches() - before, 0u) << "round " << round;
   }
-  EXPECT_EQ(elsewhere.load(), 0);
-  EXPECT_EQ(parallel_dispatches() - before, 0u);
+  EXPECT_GE(judged, 250);
 }
 
 // A long job (items of 2 ms of CPU time each) is dispatched: another worker
