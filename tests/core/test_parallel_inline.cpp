@@ -3,11 +3,10 @@
 // pool threads.
 #include <gtest/gtest.h>
 
-#include <chrono>
-
 #include <time.h>
 
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <vector>
 
