@@ -16,6 +16,7 @@
 
 using uniparam::Ball;
 using uniparam::test_support::certified_real;
+using uniparam::test_support::json_ball;
 using uniparam::test_support::encloses;
 using uniparam::test_support::run_uniparam;
 
@@ -30,23 +31,6 @@ long help_default(const std::string& option) {
   return std::stol(m[1]);
 }
 
-// The JSON certified real `key` as a ball (midpoint and radius read in
-// decimal at 256 bits, widened by a relative 2^-240 for the reading).
-bool json_ball(const std::string& json, const std::string& key, Ball& out) {
-  std::string mid, rad;
-  if (!certified_real(json, key, mid, rad)) return false;
-  Ball r;
-  arb_set_str(out.get(), mid.c_str(), 256);
-  arb_set_str(r.get(), rad.c_str(), 256);
-  arb_add_error(out.get(), r.get());
-  mag_t e;
-  mag_init(e);
-  arb_get_mag(e, out.get());
-  mag_mul_2exp_si(e, e, -240);
-  arb_add_error_mag(out.get(), e);
-  mag_clear(e);
-  return true;
-}
 
 }  // namespace
 

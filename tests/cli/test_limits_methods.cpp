@@ -18,35 +18,15 @@
 
 using uniparam::Ball;
 using uniparam::Rational;
+using uniparam::test_support::ball_of;
 using uniparam::test_support::certified_real;
+using uniparam::test_support::json_ball;
 using uniparam::test_support::run_uniparam;
 
 namespace {
 
 constexpr long kPrec = 20000;  // enough for K^2 with K of 5000 digits
 
-// Ball of a {"mid": ..., "rad": ...} pair read in decimal at 256 bits,
-// widened by a relative 2^-240 for the reading.
-Ball ball_of(const std::string& mid, const std::string& rad) {
-  Ball out, r;
-  arb_set_str(out.get(), mid.c_str(), 256);
-  arb_set_str(r.get(), rad.c_str(), 256);
-  arb_add_error(out.get(), r.get());
-  mag_t e;
-  mag_init(e);
-  arb_get_mag(e, out.get());
-  mag_mul_2exp_si(e, e, -240);
-  arb_add_error_mag(out.get(), e);
-  mag_clear(e);
-  return out;
-}
-
-bool json_ball(const std::string& json, const std::string& key, Ball& out) {
-  std::string mid, rad;
-  if (!certified_real(json, key, mid, rad)) return false;
-  out = ball_of(mid, rad);
-  return true;
-}
 
 // Every certified real of the JSON array `key`.
 std::vector<Ball> json_balls(const std::string& json, const std::string& key) {
