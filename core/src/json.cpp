@@ -16,7 +16,7 @@ class Parser {
     multiline_ = s.find('\n') != std::string::npos;
   }
 
-  Json parse_document() {
+  JsonValue parse_document() {
     if (lim_.max_depth < 1 || lim_.max_depth > 10000)
       throw InvalidArgument("parse_json: max_depth must be from 1 to 10000, got " + std::to_string(lim_.max_depth));
     if (s_.size() > lim_.max_length)
@@ -24,7 +24,7 @@ class Parser {
                       std::to_string(lim_.max_length));
     skip_ws();
     if (i_ >= s_.size()) fail(i_, "a JSON value", "empty input");
-    Json v = value(0);
+    JsonValue v = value(0);
     skip_ws();
     if (i_ < s_.size()) fail(i_, "end of input", "unexpected text after the JSON value");
     return v;
@@ -76,8 +76,8 @@ class Parser {
     return true;
   }
 
-  Json value(int depth) {
-    Json v;
+  JsonValue value(int depth) {
+    JsonValue v;
     v.line = line_;
     v.column = i_ - line_start_ + 1;
     const char c = s_[i_];
@@ -86,26 +86,26 @@ class Parser {
         fail(i_, "", "nesting deeper than " + std::to_string(lim_.max_depth) + " levels");
       if (c == '{') object(v, depth + 1); else array(v, depth + 1);
     } else if (c == '"') {
-      v.kind = Json::Kind::String;
+      v.kind = JsonValue::Kind::String;
       v.text = string_literal();
     } else if (c == '-' || (c >= '0' && c <= '9')) {
-      v.kind = Json::Kind::Number;
+      v.kind = JsonValue::Kind::Number;
       v.text = number();
     } else if (literal("true")) {
-      v.kind = Json::Kind::Bool;
+      v.kind = JsonValue::Kind::Bool;
       v.boolean = true;
     } else if (literal("false")) {
-      v.kind = Json::Kind::Bool;
+      v.kind = JsonValue::Kind::Bool;
     } else if (literal("null")) {
-      v.kind = Json::Kind::Null;
+      v.kind = JsonValue::Kind::Null;
     } else {
       fail(i_, "a JSON value", "unexpected " + shown(c));
     }
     return v;
   }
 
-  void array(Json& v, int depth) {
-    v.kind = Json::Kind::Array;
+  void array(JsonValue& v, int depth) {
+    v.kind = JsonValue::Kind::Array;
     ++i_;  // '['
     skip_ws();
     if (i_ < s_.size() && s_[i_] == ']') { ++i_; return; }
@@ -121,8 +121,8 @@ class Parser {
     }
   }
 
-  void object(Json& v, int depth) {
-    v.kind = Json::Kind::Object;
+  void object(JsonValue& v, int depth) {
+    v.kind = JsonValue::Kind::Object;
     ++i_;  // '{'
     skip_ws();
     if (i_ < s_.size() && s_[i_] == '}') { ++i_; return; }
@@ -140,7 +140,7 @@ class Parser {
       ++i_;
       skip_ws();
       if (i_ >= s_.size()) fail(i_, "a JSON value", "unterminated object");
-      Json member = value(depth);
+      JsonValue member = value(depth);
       v.members.emplace_back(std::move(key), std::move(member));
       skip_ws();
       if (i_ >= s_.size()) fail(i_, "',' or '}'", "unterminated object");
@@ -278,18 +278,18 @@ class Parser {
   }
 };
 
-[[noreturn]] void wrong_kind(const std::string& what, const char* want, const Json& v) {
+[[noreturn]] void wrong_kind(const std::string& what, const char* want, const JsonValue& v) {
   throw InvalidArgument(what + " must be " + want + ", got " + v.kind_name() + " (line " + std::to_string(v.line) +
                         ", column " + std::to_string(v.column) + ")");
 }
 
-void dump_to(const Json& v, std::string& out) {
+void dump_to(const JsonValue& v, std::string& out) {
   switch (v.kind) {
-    case Json::Kind::Null: out += "null"; break;
-    case Json::Kind::Bool: out += v.boolean ? "true" : "false"; break;
-    case Json::Kind::Number: out += v.text; break;
-    case Json::Kind::String: out += json_quote(v.text); break;
-    case Json::Kind::Array:
+    case JsonValue::Kind::Null: out += "null"; break;
+    case JsonValue::Kind::Bool: out += v.boolean ? "true" : "false"; break;
+    case JsonValue::Kind::Number: out += v.text; break;
+    case JsonValue::Kind::String: out += json_quote(v.text); break;
+    case JsonValue::Kind::Array:
       out += '[';
       for (std::size_t k = 0; k < v.items.size(); ++k) {
         if (k) out += ',';
@@ -297,7 +297,7 @@ void dump_to(const Json& v, std::string& out) {
       }
       out += ']';
       break;
-    case Json::Kind::Object:
+    case JsonValue::Kind::Object:
       out += '{';
       for (std::size_t k = 0; k < v.members.size(); ++k) {
         if (k) out += ',';
@@ -312,7 +312,7 @@ void dump_to(const Json& v, std::string& out) {
 
 }  // namespace
 
-const char* Json::kind_name() const {
+const char* JsonValue::kind_name() const {
   switch (kind) {
     case Kind::Null: return "null";
     case Kind::Bool: return "a boolean";
@@ -324,34 +324,34 @@ const char* Json::kind_name() const {
   return "?";
 }
 
-const Json* Json::find(const std::string& key) const {
+const JsonValue* JsonValue::find(const std::string& key) const {
   if (!is_object()) wrong_kind("a value looked up by key (\"" + key + "\")", "an object", *this);
   for (const auto& m : members)
     if (m.first == key) return &m.second;
   return nullptr;
 }
 
-bool Json::as_bool(const std::string& what) const {
+bool JsonValue::as_bool(const std::string& what) const {
   if (!is_bool()) wrong_kind(what, "true or false", *this);
   return boolean;
 }
 
-const std::string& Json::as_string(const std::string& what) const {
+const std::string& JsonValue::as_string(const std::string& what) const {
   if (!is_string()) wrong_kind(what, "a string", *this);
   return text;
 }
 
-const std::vector<Json>& Json::as_array(const std::string& what) const {
+const std::vector<JsonValue>& JsonValue::as_array(const std::string& what) const {
   if (!is_array()) wrong_kind(what, "an array", *this);
   return items;
 }
 
-const std::vector<std::pair<std::string, Json>>& Json::as_object(const std::string& what) const {
+const std::vector<std::pair<std::string, JsonValue>>& JsonValue::as_object(const std::string& what) const {
   if (!is_object()) wrong_kind(what, "an object", *this);
   return members;
 }
 
-Rational Json::as_rational(const std::string& what) const {
+Rational JsonValue::as_rational(const std::string& what) const {
   if (!is_number() && !is_string()) wrong_kind(what, "a number or a string such as \"1/3\"", *this);
   const std::string& s = text;
   const std::string where = " (line " + std::to_string(line) + ", column " + std::to_string(column) + ")";
@@ -372,7 +372,7 @@ Rational Json::as_rational(const std::string& what) const {
   }
 }
 
-long Json::as_long(const std::string& what, long lo, long hi) const {
+long JsonValue::as_long(const std::string& what, long lo, long hi) const {
   if (!is_number()) wrong_kind(what, "an integer", *this);
   const Rational r = as_rational(what);
   if (!r.is_integer() || r < Rational(lo) || r > Rational(hi))
@@ -381,13 +381,13 @@ long Json::as_long(const std::string& what, long lo, long hi) const {
   return fmpz_get_si(fmpq_numref(r.get()));
 }
 
-std::string Json::dump() const {
+std::string JsonValue::dump() const {
   std::string out;
   dump_to(*this, out);
   return out;
 }
 
-Json parse_json(const std::string& text, const JsonLimits& limits) { return Parser(text, limits).parse_document(); }
+JsonValue parse_json(const std::string& text, const JsonLimits& limits) { return Parser(text, limits).parse_document(); }
 
 std::string json_quote(const std::string& s) {
   std::string out = "\"";

@@ -36,7 +36,7 @@ std::string message_of_invalid(const std::function<void()>& f) {
 }
 
 TEST(JsonReader, ParsesEveryKind) {
-  const Json v = parse_json(R"( {"a": null, "b": true, "c": false, "d": -0.5e3, "e": "x\ty", "f": [1, [2], {}], "g": {"h": []}} )");
+  const JsonValue v = parse_json(R"( {"a": null, "b": true, "c": false, "d": -0.5e3, "e": "x\ty", "f": [1, [2], {}], "g": {"h": []}} )");
   ASSERT_TRUE(v.is_object());
   ASSERT_EQ(v.members.size(), 7u);
   EXPECT_EQ(v.members[0].first, "a");  // insertion order
@@ -53,7 +53,7 @@ TEST(JsonReader, ParsesEveryKind) {
 }
 
 TEST(JsonReader, NumbersAreExactDecimals) {
-  const Json v = parse_json("[0.1, 1e-3, -0, 123456789012345678901234567890.5, \"1/3\", \"-7/21\", 2E+2]");
+  const JsonValue v = parse_json("[0.1, 1e-3, -0, 123456789012345678901234567890.5, \"1/3\", \"-7/21\", 2E+2]");
   const auto& a = v.as_array("list");
   EXPECT_EQ(a[0].as_rational("x"), Rational(1, 10));
   EXPECT_EQ(a[1].as_rational("x"), Rational(1, 1000));
@@ -94,7 +94,7 @@ TEST(JsonReader, RoundTripThroughDump) {
   };
   for (int it = 0; it < 300; ++it) {
     const std::string text = gen(0);
-    const Json v = parse_json(text);
+    const JsonValue v = parse_json(text);
     EXPECT_EQ(v.dump(), text);
     EXPECT_EQ(parse_json(v.dump()).dump(), text);
   }
@@ -157,7 +157,7 @@ TEST(JsonReader, MultiLineErrorsNameTheLine) {
   const ParseError e = parse_error("{\n  \"a\": [1,\n   2 x]\n}");
   EXPECT_EQ(e.column(), 6u);
   EXPECT_NE(std::string(e.what()).find("line 3"), std::string::npos) << e.what();
-  const Json v = parse_json("{\n  \"a\":\n    7}");
+  const JsonValue v = parse_json("{\n  \"a\":\n    7}");
   EXPECT_EQ(v.find("a")->line, 3u);
   EXPECT_EQ(v.find("a")->column, 5u);
 }
@@ -192,7 +192,7 @@ TEST(JsonReader, LengthLimit) {
 }
 
 TEST(JsonReader, TypedAccessorsNameTheValue) {
-  const Json v = parse_json(R"({"degree": "two", "knots": 3, "w": [1e999999], "x": "1/0", "n": 2.5})");
+  const JsonValue v = parse_json(R"({"degree": "two", "knots": 3, "w": [1e999999], "x": "1/0", "n": 2.5})");
   std::string m = message_of_invalid([&] { v.find("degree")->as_long("\"degree\"", 1, 10); });
   EXPECT_NE(m.find("\"degree\" must be an integer, got a string"), std::string::npos) << m;
   m = message_of_invalid([&] { v.find("knots")->as_array("\"knots\""); });

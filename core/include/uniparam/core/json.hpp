@@ -2,7 +2,7 @@
 // input: NURBS descriptions, batch lines.
 //
 // Numbers are kept as their text, so that a caller reads them exactly
-// (Json::as_rational: "0.1" is 1/10, never the double nearest to it).
+// (JsonValue::as_rational: "0.1" is 1/10, never the double nearest to it).
 // Objects keep their keys in input order; a key given twice is an error.
 #pragma once
 
@@ -22,14 +22,14 @@ struct JsonLimits {
   std::size_t max_length = std::size_t(1) << 26;
 };
 
-/// One JSON value.
-struct Json {
+/// One JSON value read by parse_json (the writer of results is printer.hpp's Json).
+struct JsonValue {
   enum class Kind { Null, Bool, Number, String, Array, Object };
   Kind kind = Kind::Null;
   bool boolean = false;   ///< Kind::Bool
   std::string text;       ///< Kind::Number: the number's text as written; Kind::String: the value (UTF-8)
-  std::vector<Json> items;                              ///< Kind::Array
-  std::vector<std::pair<std::string, Json>> members;    ///< Kind::Object, in input order, keys distinct
+  std::vector<JsonValue> items;                              ///< Kind::Array
+  std::vector<std::pair<std::string, JsonValue>> members;    ///< Kind::Object, in input order, keys distinct
   std::size_t line = 1, column = 1;  ///< where the value starts in the parsed text (1-based)
 
   bool is_null() const { return kind == Kind::Null; }
@@ -43,15 +43,15 @@ struct Json {
 
   /// The member named `key`, or nullptr when absent.
   /// \throws InvalidArgument when this value is not an object.
-  const Json* find(const std::string& key) const;
+  const JsonValue* find(const std::string& key) const;
 
   /// Typed access. `what` names the value in the message ("\"degree\"",
   /// "knot 3"). \throws InvalidArgument "<what> must be <kind>, got <kind>"
   /// when the value has another kind.
   bool as_bool(const std::string& what) const;
   const std::string& as_string(const std::string& what) const;
-  const std::vector<Json>& as_array(const std::string& what) const;
-  const std::vector<std::pair<std::string, Json>>& as_object(const std::string& what) const;
+  const std::vector<JsonValue>& as_array(const std::string& what) const;
+  const std::vector<std::pair<std::string, JsonValue>>& as_object(const std::string& what) const;
   /// The exact rational of a number ("0.25", "-1e-3", read as decimals) or
   /// of a string holding one ("1/3", "0.25", "-2").
   /// \throws InvalidArgument naming `what` for any other kind, malformed
@@ -80,7 +80,7 @@ struct Json {
 ///         its message naming the line when the text has several, for
 ///         malformed text, a duplicate key, nesting deeper than
 ///         limits.max_depth, or text longer than limits.max_length.
-Json parse_json(const std::string& text, const JsonLimits& limits = {});
+JsonValue parse_json(const std::string& text, const JsonLimits& limits = {});
 
 /// `s` as a JSON string literal with quotes: ", \ and control characters
 /// escaped (\n, \t, ... or \u00XX); other bytes copied as they are.
