@@ -127,7 +127,7 @@ CompositeCurve::CompositeCurve(std::vector<Curve> segments, std::vector<Rational
                             std::to_string(segments_[j].dimension()) + ", segment 0 has " +
                             std::to_string(segments_.front().dimension()));
   if (labels_.empty())
-    for (std::size_t j = 0; j < segments_.size(); ++j) labels_.push_back("segment " + std::to_string(j));
+    for (std::size_t j = 0; j < segments_.size(); ++j) labels_.push_back("segment " + std::to_string(j + 1));
   if (labels_.size() != segments_.size())
     throw InvalidArgument("a composite curve needs one label per segment");
 }

@@ -36,6 +36,7 @@
 #include "uniparam/reparam/locate.hpp"
 #include "uniparam/reparam/moebius.hpp"
 #include "uniparam/reparam/nurbs.hpp"
+#include "uniparam/reparam/path.hpp"
 #include "uniparam/reparam/pieces.hpp"
 #include "uniparam/reparam/radical.hpp"
 #include "uniparam/reparam/sample.hpp"

@@ -14,7 +14,7 @@
 //     int_0^1 sigma_{p o r}^2 ds = sum E_j / (S_{j+1} - S_j),
 // least for S_{j+1} - S_j proportional to sqrt(E_j); the S_j are exact
 // rationals near that optimum, and u(p o r) is certified for the S_j used.
-// (docs/inputs.md; docs/math.md section 6.)
+// (docs/inputs.md; docs/math.md section 7.)
 #pragma once
 
 #include <memory>
