@@ -7,6 +7,7 @@
 #include "output.hpp"
 #include "input.hpp"
 #include "moebius_report.hpp"
+#include "nurbs_out.hpp"
 #include "report.hpp"
 
 namespace uniparam::cli {
@@ -194,12 +195,11 @@ CompositeMethod with_rational(const Args& a, CompositeMethod m) {
 
 int run_map_composite(const Args& a, const CompositeCurve& c, SpeedKind kind, const Options& opt,
                       const CompositeMethod& m, const std::string& command) {
-  if (a.has("output"))
-    throw InvalidArgument("--output " + a.get("output", "") +
-                          ": NURBS and STEP output of composite curves is not available; sample the map with "
-                          "'uniparam sample'");
+  const NurbsOutput no = read_nurbs_output(a);
   const std::vector<Speed> sp = c.speeds(kind);
   const CompositeMap r = composite_map(c, sp, m, opt);
+  if (no.form != NurbsOutput::Form::None) write_nurbs(composite_nurbs(c, r, nurbs_prec(opt)), no, opt.digits);
+  if (no.replaces_report()) return m.kind == CompositeMethod::Kind::Target && !r.target_reached() ? 4 : 0;
   const std::vector<Joint> joints = uniparam::joints(c, 128);
   const long pd = printed_digits(opt.digits);
   const Format fmt = read_format(a);

@@ -1,6 +1,8 @@
 #include "uniparam/reparam/nurbs.hpp"
 
 #include <algorithm>
+#include <tuple>
+#include <type_traits>
 #include <stdexcept>
 #include <string>
 
@@ -139,6 +141,24 @@ std::pair<Segment<typename F::T>, Segment<typename F::T>> halve(const F& f, cons
   }
   std::reverse(R.h.begin(), R.h.end());
   return {L, R};
+}
+
+// The same segment with its degree raised by one (homogeneous points:
+// h'_i = i/(d+1) h_{i-1} + (1 - i/(d+1)) h_i).
+template <class F>
+void elevate(const F& f, Segment<typename F::T>& s) {
+  using T = typename F::T;
+  const long d = static_cast<long>(s.h.size()) - 1;
+  std::vector<std::vector<T>> h;
+  h.push_back(s.h.front());
+  for (long i = 1; i <= d; ++i) {
+    const T a = f.q(Rational(i, d + 1)), b = f.q(Rational(d + 1 - i, d + 1));
+    std::vector<T> v;
+    for (std::size_t k = 0; k < s.h[i].size(); ++k) v.push_back(f.add(f.mul(a, s.h[i - 1][k]), f.mul(b, s.h[i][k])));
+    h.push_back(std::move(v));
+  }
+  h.push_back(s.h.back());
+  s.h = std::move(h);
 }
 
 template <class F>
@@ -332,6 +352,100 @@ Nurbs moebius_nurbs(const Curve& c, const MoebiusResult& r, long prec) {
       clamp_unit(sv.get(), prec);
       if (!overlaps(nurbs_eval(n, sv, prec), moebius_eval_point(c, r, sv, prec)))
         internal("at s = " + sv.str(10));
+    }
+  }
+  return n;
+}
+
+Nurbs composite_nurbs(const CompositeCurve& c, const CompositeMap& m, long prec) {
+  const std::size_t M = c.size();
+  std::vector<const MoebiusResult*> parts;
+  std::vector<std::vector<Poly>> H;
+  long D = 1;
+  bool exact = true;
+  for (std::size_t j = 0; j < M; ++j) {
+    const MoebiusResult* r = m.parts()[j].moebius_result();
+    if (!r)
+      throw InvalidArgument(c.label(j) + ": its map is not a Moebius map, so p o r is not a NURBS curve there");
+    parts.push_back(r);
+    exact = exact && r->rational;
+    H.push_back(homogeneous(c.segment(j)));
+    D = std::max(D, homogeneous_degree(H.back()));
+  }
+  for (const Joint& jt : joints(c, 64))
+    if (!jt.continuous)
+      throw InvalidArgument("the curve jumps at joint " + std::to_string(jt.index) +
+                            " (the segments do not meet): one NURBS curve cannot carry a jump");
+  Nurbs n;
+  n.degree = D;
+  n.dimension = c.dimension();
+  // Which (segment, piece) each NURBS segment comes from.
+  std::vector<std::pair<std::size_t, std::size_t>> origin;
+  auto build = [&](const auto& f, auto& segs, auto global_s, auto piece_data) {
+    for (std::size_t j = 0; j < M; ++j) {
+      const long d = homogeneous_degree(H[j]);
+      for (std::size_t i = 0; i < parts[j]->pieces(); ++i) {
+        check_time_budget();
+        auto [ta, tb, a] = piece_data(*parts[j], i);
+        typename std::decay_t<decltype(segs)>::value_type s{global_s(j, i), global_s(j, i + 1),
+                                                            piece_control(f, H[j], d, ta, tb, a), origin.size()};
+        origin.emplace_back(j, i);
+        for (long e = d; e < D; ++e) elevate(f, s);
+        positive_segments(f, s, segs, n.subdivided);
+      }
+    }
+  };
+  const BField bf{prec};
+  if (exact) {
+    const QField f;
+    std::vector<Segment<Rational>> segs;
+    build(f, segs,
+          [&](std::size_t j, std::size_t i) {
+            return m.S()[j] + (m.S()[j + 1] - m.S()[j]) * parts[j]->S_exact[i];
+          },
+          [](const MoebiusResult& r, std::size_t i) {
+            return std::make_tuple(r.T_exact[i], r.T_exact[i + 1], r.alpha_exact[i]);
+          });
+    assemble(f, segs, D, n.knots_exact, n.points_exact, n.weights_exact);
+    n.kind = Nurbs::Kind::Exact;
+    n.segments = segs.size();
+    fill_balls_from_exact(n, prec);
+    for (const auto& s : segs) {
+      check_time_budget();
+      const auto [j, i] = origin[s.piece];
+      for (long q = 0; q <= 4; ++q) {
+        const Rational sv = s.sa + (s.sb - s.sa) * Rational(q, 4);
+        const Rational t = moebius_exact(*parts[j], i, (sv - m.S()[j]) / (m.S()[j + 1] - m.S()[j]));
+        const std::vector<Rational> v = nurbs_eval(n, sv);
+        for (std::size_t k = 0; k < c.dimension(); ++k)
+          if (v[k] != c.segment(j).components()[k](t)) internal("at s = " + sv.str());
+      }
+    }
+    return n;
+  }
+  std::vector<Segment<Ball>> segs;
+  build(bf, segs,
+        [&](std::size_t j, std::size_t i) {
+          const Ball& loc = parts[j]->S[i];
+          return bf.add(bf.q(m.S()[j]), bf.mul(bf.q(m.S()[j + 1] - m.S()[j]), loc));
+        },
+        [&](const MoebiusResult& r, std::size_t i) {
+          return std::make_tuple(r.T[i].t.to_ball(prec), r.T[i + 1].t.to_ball(prec), r.alpha[i]);
+        });
+  // The ends exactly 0 and 1.
+  segs.front().sa = Ball(0);
+  segs.back().sb = Ball(1);
+  assemble(bf, segs, D, n.knots, n.points, n.weights);
+  n.kind = Nurbs::Kind::Balls;
+  n.segments = segs.size();
+  for (const auto& s : segs) {
+    check_time_budget();
+    for (long q = 0; q <= 4; ++q) {
+      Ball sv = bf.add(s.sa, bf.mul(bf.sub(s.sb, s.sa), bf.q(Rational(q, 4))));
+      if (q == 0) sv = s.sa;
+      if (q == 4) sv = s.sb;
+      clamp_unit(sv.get(), prec);
+      if (!overlaps(nurbs_eval(n, sv, prec), c.eval(m.eval_r(c, sv, prec), prec))) internal("at s = " + sv.str(10));
     }
   }
   return n;

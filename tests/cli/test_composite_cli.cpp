@@ -172,7 +172,6 @@ TEST(CompositeCli, RefusalsAreClear) {
       {{"uniformity", "--subpath", "0", "(t, t^2)"}, 2, "--subpath needs --svg"},
       {{"bezier", "--svg", kSplit}, 2, "takes one Bezier curve"},
       {{"radical", "--svg", "M 0 0 Q 1 2 2 2 L 5 2"}, 3, "straight"},
-      {{"moebius", "--svg", kSplit, "--speed", "parametric", "--output", "nurbs"}, 2, "composite"},
       {{"uniformity", "--svg", "M 0 0 Q 1 2"}, 2, ""},
       {{"uniformity", "--nurbs", "{\"degree\": 2}"}, 2, ""},
   };

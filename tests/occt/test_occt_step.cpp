@@ -94,10 +94,11 @@ void json_ball(const std::string& j, const std::string& key, double* mid, double
 }
 
 // `map` selects the same map for reparam (its options) and sample (--method ...).
+// `curve` is the curve's arguments, shell-quoted ("'(t, t^2)'", "--svg 'M ...'").
 void check(const std::string& curve, const std::string& reparam_map, const std::string& sample_map) {
   const std::string path = temp_step();
   int st = 0;
-  const std::string common = " '" + curve + "' --speed parametric --digits 15 ";
+  const std::string common = " " + curve + " --speed parametric --digits 15 ";
   const std::string report = run(bin() + " reparam" + common + reparam_map + " --json --output " + path, &st);
   ASSERT_EQ(st, 0) << report;
   double first = 0, last = 0;
@@ -130,16 +131,23 @@ void check(const std::string& curve, const std::string& reparam_map, const std::
 }
 
 TEST(OcctStep, C0PiecesMatchSampleAndLength) {
-  check("(t, t^3/(1+t^2))", "--pieces 3", "--method c0 --pieces 3");
+  check("'(t, t^3/(1+t^2))'", "--pieces 3", "--method c0 --pieces 3");
 }
 
 TEST(OcctStep, C1TargetMatchesSampleAndLength) {
-  check("((1-t^2)/(1+t^2), 2*t/(1+t^2))", "--target 0.999", "--method c1 --target 0.999");
+  check("'((1-t^2)/(1+t^2), 2*t/(1+t^2))'", "--target 0.999", "--method c1 --target 0.999");
 }
 
 TEST(OcctStep, SubdividedPiecesMatchSampleAndLength) {
   // W = t^2 - t + 3/10 > 0 has a negative Bernstein coefficient: pieces subdivided
-  check("(t/(t^2-t+3/10), 1/(t^2-t+3/10))", "--pieces 2", "--method c0 --pieces 2");
+  check("'(t/(t^2-t+3/10), 1/(t^2-t+3/10))'", "--pieces 2", "--method c0 --pieces 2");
+}
+
+TEST(OcctStep, CompositePathOfMixedDegreesMatchesSampleAndLength) {
+  // A line, a quadratic and a cubic: one NURBS of degree 3 (the line and the
+  // quadratic raised), pieces shared over the path.
+  check("--svg 'M 0 0 L 3 0 Q 4 0 4 1 C 4 2 3 3 2 3'", "--pieces 5", "--method c0 --pieces 5");
+  check("--svg 'M 0 0 L 3 0 Q 4 0 4 1 C 4 2 3 3 2 3'", "--target 0.999", "--method c1 --target 0.999");
 }
 
 }  // namespace

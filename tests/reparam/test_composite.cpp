@@ -231,6 +231,36 @@ TEST(Composite, LocateAgreesWithTheSingleCurveProperty) {
   }
 }
 
+TEST(Composite, NurbsOfARationalMapIsExactlyTheMapsCurve) {
+  // Degrees 1 and 3 in one NURBS (the line raised); exact data: the NURBS
+  // at rational s equals p(r(s)) computed from the pieces' exact Moebius maps.
+  const CompositeCurve cc({Curve::parse("(t, 0)"), Curve::parse("(1 + t, t^2 - t^3/3)")},
+                          {Rational(0), Rational(1, 3), Rational(1)});
+  const std::vector<Speed> sp = cc.speeds(SpeedKind::Parametric);
+  CompositeMethod m;
+  m.kind = CompositeMethod::Kind::Pieces;
+  m.pieces = 4;
+  m.rational = true;
+  const CompositeMap r = composite_map(cc, sp, m);
+  const Nurbs n = composite_nurbs(cc, r, 128);
+  EXPECT_EQ(n.kind, Nurbs::Kind::Exact);
+  EXPECT_EQ(n.degree, 3);
+  CompositeSampler smp(cc, sp, r, 30, 4096);
+  for (long k = 0; k <= 12; ++k) {
+    const Rational s(k, 12);
+    const std::vector<Rational> v = nurbs_eval(n, s);
+    const SamplePoint p = smp.at(s);
+    for (std::size_t i = 0; i < v.size(); ++i) EXPECT_TRUE(p.point[i].contains(v[i])) << k;
+  }
+  // A gap between the segments: no NURBS.
+  const CompositeCurve gap({Curve::parse("(t, t^2)"), Curve::parse("(2 + t, t)")},
+                           {Rational(0), Rational(1, 2), Rational(1)});
+  const std::vector<Speed> gsp = gap.speeds(SpeedKind::Parametric);
+  m.rational = false;
+  m.pieces = 2;
+  EXPECT_THROW(composite_nurbs(gap, composite_map(gap, gsp, m), 128), InvalidArgument);
+}
+
 TEST(Composite, BadKnotsAreRefused) {
   const Curve a = Curve::parse("(t, t^2)");
   EXPECT_THROW(CompositeCurve({a, a}, {Rational(0), Rational(1)}), InvalidArgument);

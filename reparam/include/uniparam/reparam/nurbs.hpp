@@ -22,6 +22,7 @@
 #include "uniparam/core/ball.hpp"
 #include "uniparam/core/number.hpp"
 #include "uniparam/reparam/bezier.hpp"
+#include "uniparam/reparam/composite.hpp"
 #include "uniparam/reparam/curve.hpp"
 #include "uniparam/reparam/moebius.hpp"
 
@@ -72,6 +73,18 @@ struct Nurbs {
 ///         segments per piece; TimeLimitExceeded when the thread's
 ///         TimeBudget runs out.
 Nurbs moebius_nurbs(const Curve& c, const MoebiusResult& r, long prec);
+
+/// p o r of a composite curve's Moebius map (every part a MoebiusResult) as
+/// one NURBS: each segment's pieces as in moebius_nurbs, raised to the
+/// largest degree of the segments (exact degree elevation), over the
+/// global s (segment j's pieces in [S_j, S_{j+1}]). Exact when every part is
+/// an exact rational map, balls otherwise; checked like moebius_nurbs
+/// against p(r(s)) at u = 0, 1/4, ..., 1 of every NURBS segment.
+/// \pre m was computed for c (not checkable); prec >= 16.
+/// \throws InvalidArgument for a radical part, or a gap between segments (a
+///         NURBS with interior knots of multiplicity d is continuous);
+///         as moebius_nurbs otherwise.
+Nurbs composite_nurbs(const CompositeCurve& c, const CompositeMap& m, long prec);
 
 /// Bezier's optimal bilinear map (bezier_optimal) as a NURBS: one segment,
 /// knots (0^(n+1), 1^(n+1)), the control points of b, the weights of r
