@@ -78,6 +78,48 @@ TEST(CompositeCli, OneSegmentPathIsTheBezierCurve) {
   }
 }
 
+// A clamped cubic B-spline with interior knots 1, 2 (uniform, domain [0, 3]) and
+// the SVG path of its Bezier segments are the same composite curve (knots
+// 0, 1/3, 2/3, 1): every result must be the same, bit for bit.
+TEST(CompositeCli, CubicBSplineEqualsItsBezierSegments) {
+  const std::string nurbs =
+      R"({"degree": 3, "knots": [0, 0, 0, 0, 1, 2, 3, 3, 3, 3],
+          "control": [[0, 0], [12, 36], [36, 48], [60, 12], [84, 24], [96, 0]]})";
+  const PathInput p = parse_nurbs(nurbs);
+  ASSERT_EQ(p.segments.size(), 3u);
+  EXPECT_EQ(p.knots, (std::vector<Rational>{Rational(0), Rational(1, 3), Rational(2, 3), Rational(1)}));
+  auto coord = [](const Rational& x) {
+    EXPECT_EQ(x.den(), Integer(1)) << x.str();  // the test's points are integers
+    return x.str();
+  };
+  std::string svg = "M " + coord(p.segments[0].points()[0][0]) + " " + coord(p.segments[0].points()[0][1]);
+  for (const BezierCurve& b : p.segments) {
+    svg += " C";
+    for (int i = 1; i <= 3; ++i) svg += " " + coord(b.points()[i][0]) + " " + coord(b.points()[i][1]);
+  }
+  for (const std::vector<std::string>& cmd :
+       {std::vector<std::string>{"uniformity"}, {"reparam", "--pieces", "5"}, {"radical"}, {"reparam", "--target", "0.999"}}) {
+    std::vector<std::string> a = cmd, b = cmd;
+    for (auto* v : {&a, &b}) v->insert(v->end(), {"--speed", "parametric", "--json"});
+    a.insert(a.end(), {"--nurbs", nurbs});
+    b.insert(b.end(), {"--svg", svg});
+    const auto ra = run_uniparam(a), rb = run_uniparam(b);
+    ASSERT_EQ(ra.exit_code, 0) << ra.err;
+    ASSERT_EQ(rb.exit_code, 0) << rb.err;
+    // Equal but for the description of the input and the segments' labels.
+    JsonValue ja = parse_json(ra.out), jb = parse_json(rb.out);
+    for (auto* j : {&ja, &jb})
+      for (auto& [k, v] : j->members) {
+        if (k == "curve") v = JsonValue{};
+        if (k == "parts")
+          for (auto& part : v.items)
+            for (auto& [pk, pv] : part.members)
+              if (pk == "label") pv = JsonValue{};
+      }
+    EXPECT_EQ(ja.dump(), jb.dump()) << cmd[0];
+  }
+}
+
 TEST(CompositeCli, EveryMethodRunsOnAPath) {
   const std::string path = "M 0 0 C 1 2 3 2 4 0 S 7 -2 8 0 Q 9 1 10 0";
   const auto rad = run_uniparam({"radical", "--svg", path, "--speed", "parametric", "--json"});
