@@ -206,7 +206,7 @@ TEST(NurbsInput, ValidationErrors) {
       {R"({"degree": 1, "control": [[0, 0], [1, 1]]})", "missing key \"knots\""},
       {R"({"degree": 1, "knots": [0, 0, 1, 1]})", "missing key \"control\""},
       {R"({"degree": 1, "knots": [0, 0, 1, 1], "control": [[0, 0], [1, 1]], "weight": [1, 1]})", "unknown key \"weight\""},
-      {R"({"degree": 0, "knots": [0, 1], "control": [[0, 0]]})", "\"degree\" must be an integer from 1 to 64"},
+      {R"({"degree": 0, "knots": [0, 1], "control": [[0, 0]]})", "\"degree\" must be an integer from 1 to 1000"},
       {R"({"degree": 1.5, "knots": [0, 0, 1, 1], "control": [[0, 0], [1, 1]]})", "must be an integer"},
       {R"({"degree": "1", "knots": [0, 0, 1, 1], "control": [[0, 0], [1, 1]]})", "must be an integer, got a string"},
       {R"({"degree": 2, "knots": [0, 0, 1, 1], "control": [[0, 0], [1, 1]]})", "degree 2 needs at least 3 control points"},

@@ -73,7 +73,7 @@ std::vector<PathInput> parse_svg_path(const std::string& d, const SvgLimits& lim
 
 /// Bounds of the NURBS reader.
 struct NurbsLimits {
-  long max_degree = 64;            ///< the conversion costs O(p^3) per span
+  long max_degree = 1000;          ///< the conversion costs O(p^2) combinations per knot span
   std::size_t max_points = 100000;  ///< control points
 };
 
@@ -85,7 +85,7 @@ struct NurbsLimits {
 /// (clamped or not). The result has one Bezier segment per nonempty knot
 /// span of the domain (exact blossoming in homogeneous coordinates: the
 /// segment of [u_j, u_{j+1}] has the control points f(u_j^(p-k), u_{j+1}^k),
-/// k = 0..p, of the blossom f), and the knots are the distinct domain knots
+/// k = 0..p, of the blossom f; O(p^2) combinations per span), and the knots are the distinct domain knots
 /// mapped exactly onto [0, 1] by u -> (u - u_p) / (u_{n+1} - u_p). Weights
 /// all equal give integral (unweighted) segments. Labels read
 /// "span [u_j, u_{j+1}] (knots j and j+1)".
