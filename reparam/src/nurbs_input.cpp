@@ -10,6 +10,7 @@
 // lies in [0, 1] for t_r in {a, b}, so positive weights stay positive.
 #include <algorithm>
 
+#include "uniparam/core/budget.hpp"
 #include "uniparam/core/error.hpp"
 #include "uniparam/reparam/path.hpp"
 
@@ -123,6 +124,7 @@ PathInput parse_nurbs_json(const JsonValue& j, const NurbsLimits& limits) {
   out.knots.push_back(Rational(0));
   for (std::size_t jspan = lo; jspan < hi; ++jspan) {
     if (!(u[jspan] < u[jspan + 1])) continue;
+    check_time_budget();
     const Rational& a = u[jspan];
     const Rational& b = u[jspan + 1];
     // Local homogeneous points d_i, i = j-p..j (stored at i - (j - p)).

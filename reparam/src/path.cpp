@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "svg_arc.hpp"
+#include "uniparam/core/budget.hpp"
 #include "uniparam/core/error.hpp"
 
 namespace uniparam {
@@ -209,6 +210,7 @@ class SvgReader {
     std::size_t at = cmd_at;
     bool first = true;
     for (;;) {
+      check_time_budget();
       const std::vector<Rational> v = params(cmd, count);
       apply(cmd, up, rel, first, v, at);
       first = false;

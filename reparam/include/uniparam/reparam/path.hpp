@@ -68,7 +68,8 @@ struct SvgLimits {
 ///         uniparam does not approximate"), a subpath with no segment left
 ///         ("subpath 2 at column 12 has no segment"), path data longer than
 ///         limits.max_length or with more than limits.max_segments segments,
-///         or an empty path.
+///         or an empty path; TimeLimitExceeded when the calling thread's
+///         TimeBudget (core/budget.hpp) runs out.
 std::vector<PathInput> parse_svg_path(const std::string& d, const SvgLimits& limits = {});
 
 /// Bounds of the NURBS reader.
@@ -98,7 +99,9 @@ struct NurbsLimits {
 ///         multiplicity above p or any knot of multiplicity above p + 1, a
 ///         weight count other than n + 1, a non-positive weight, and a span
 ///         of the domain whose segment is a single point (uniparam does not
-///         drop it: that would change the parameterization the knots give).
+///         drop it: that would change the parameterization the knots give);
+///         TimeLimitExceeded when the calling thread's TimeBudget
+///         (core/budget.hpp) runs out (checked once per span).
 PathInput parse_nurbs_json(const JsonValue& j, const NurbsLimits& limits = {});
 
 /// parse_nurbs_json(parse_json(text, json_limits), limits).
