@@ -63,6 +63,7 @@ class SvgReader {
   Pt cur_{Rational(0), Rational(0)}, start_{Rational(0), Rational(0)};
   std::optional<Pt> last_cubic_ctrl_, last_quad_ctrl_;  // for S and T
   std::size_t total_segments_ = 0, arcs_ = 0;
+  std::size_t total_commands_seen_ = 0;  // drawing and moveto commands read so far
 
   static bool is_command(char c) {
     switch (c) {
@@ -318,8 +319,6 @@ class SvgReader {
     last_cubic_ctrl_ = cubic_ctrl;
     last_quad_ctrl_ = quad_ctrl;
   }
-
-  std::size_t total_commands_seen_ = 0;
 };
 
 }  // namespace
