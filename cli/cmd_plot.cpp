@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "commands.hpp"
+#include "output.hpp"
 #include "svg.hpp"
 #include "uniparam/reparam/sample.hpp"
 
@@ -560,7 +561,7 @@ int run_plot(int argc, char** argv) {
   const CommandSpec spec = plot_spec();
   Args a = parse_args(spec, argc, argv, 2);  // "-o FILE" is read as "--output FILE"
 
-  if (a.help) { std::cout << help_text(spec); return 0; }
+  if (a.help) { answer() << help_text(spec); return 0; }
   if (!a.has("output")) throw InvalidArgument("plot needs -o FILE.svg or -o FILE.png (or -o - for SVG on stdout)");
   const std::string out = a.get("output", "");
   auto ends_with = [&](const char* e) {
@@ -585,7 +586,7 @@ int run_plot(int argc, char** argv) {
       try {
         svg::find_rsvg_convert();
       } catch (const std::runtime_error& e) {
-        std::cerr << "uniparam plot: " << e.what() << "\n";
+        warn() << "uniparam plot: " << e.what() << "\n";
         return 1;
       }
     }
@@ -604,7 +605,7 @@ int run_plot(int argc, char** argv) {
   const PlotData d = collect(c, sp, r, smp, proj, opt.max_prec);
   const std::string text = render(c, kind, r, d, proj, K, a);
   if (out == "-") {
-    std::cout << text;
+    answer() << text;
     return target_status(r, "plot");
   }
   try {
@@ -615,7 +616,7 @@ int run_plot(int argc, char** argv) {
     }
   } catch (const std::runtime_error& e) {
     if (dynamic_cast<const Error*>(&e)) throw;
-    std::cerr << "uniparam plot: " << e.what() << "\n";
+    warn() << "uniparam plot: " << e.what() << "\n";
     return 1;
   }
   return target_status(r, "plot");

@@ -3,6 +3,8 @@
 #include <optional>
 
 #include "commands.hpp"
+#include "output.hpp"
+#include "composite.hpp"
 #include "report.hpp"
 #include "uniparam/reparam/formula.hpp"
 #include "uniparam/reparam/radical.hpp"
@@ -41,10 +43,67 @@ Format parse_format(const std::string& s) {
   throw InvalidArgument("unknown format '" + s + "' (expected text, latex, maple or json)");
 }
 
+Json radical_json(const Curve& c, const RadicalResult& r, long digits, Format fmt) {
+  const long pd = printed_digits(digits);
+  const auto formulas = radical_formulas(c, r, fmt, digits);
+  const std::size_t N = r.pieces();
+  Json j = Json::object();
+  j.set("curve", Json::string(c.str()));
+  j.set("speed", Json::string(to_string(r.kind)));
+  j.set("digits", Json::number(digits));
+  Json t = Json::array(), mult = Json::array();
+  for (const auto& b : r.T) {
+    t.push(json_algebraic(b.t, digits));
+    mult.push(Json::number(static_cast<long>(b.multiplicity)));
+  }
+  j.set("t", t);
+  j.set("multiplicity", mult);
+  auto arr = [&](const std::vector<Ball>& v) {
+    Json x = Json::array();
+    for (const auto& b : v) x.push(json_ball(b, pd));
+    return x;
+  };
+  auto per_piece = [&](Ball PieceIntegrals::*m) {
+    Json x = Json::array();
+    for (const auto& p : r.integrals) x.push(json_ball(p.*m, pd));
+    return x;
+  };
+  j.set("s", arr(r.S));
+  j.set("z", arr(r.Z));
+  j.set("alpha", per_piece(&PieceIntegrals::alpha));
+  j.set("L", per_piece(&PieceIntegrals::L));
+  j.set("A", arr(r.A));
+  j.set("B", arr(r.B));
+  j.set("C", arr(r.C));
+  j.set("M", per_piece(&PieceIntegrals::M));
+  j.set("mu", json_ball(r.mu, pd));
+  j.set("u_before", json_ball(r.u_before, pd));
+  j.set("u_radical", json_ball(r.u_radical, pd));
+  j.set("u_after", json_ball(r.u_after, pd));
+  Json pieces = Json::array();
+  for (std::size_t i = 0; i < N; ++i) {
+    Json p = Json::object();
+    p.set("t_interval", Json::array().push(json_algebraic(r.T[i].t, digits)).push(
+                            json_algebraic(r.T[i + 1].t, digits)));
+    p.set("s_interval", Json::string(formulas[i].s_interval));
+    p.set("z_interval", Json::string(formulas[i].z_interval));
+    p.set("radical_index", Json::number(static_cast<long>(r.root_index(i))));
+    p.set("phi", Json::string(formulas[i].phi));
+    p.set("m", Json::string(formulas[i].m));
+    p.set("r", Json::string(formulas[i].r));
+    Json pr = Json::array();
+    for (const auto& s : formulas[i].p_r) pr.push(Json::string(s));
+    p.set("p_r", pr);
+    pieces.push(p);
+  }
+  j.set("pieces", pieces);
+  return j;
+}
+
 int run_radical(int argc, char** argv) {
   const CommandSpec spec = radical_spec();
   Args a = parse_args(spec, argc, argv, 2);
-  if (a.help) { std::cout << help_text(spec); return 0; }
+  if (a.help) { answer() << help_text(spec); return 0; }
   if (a.has("output"))
     throw InvalidArgument("--output " + a.get("output", "") +
                           ": the radical pieces are not rational functions of s, so p o r is not a NURBS curve; "
@@ -53,6 +112,12 @@ int run_radical(int argc, char** argv) {
   const Options opt = read_options(a);
   const SpeedKind kind = parse_speed_kind(a.get("speed", "angular"));
   const Format fmt = read_format(a);
+  if (auto cc = read_composite(a); cc && cc->size() > 1) {
+    if (a.has("at")) throw InvalidArgument("--at on a composite curve: use 'uniparam sample' (its rows are r(s))");
+    CompositeMethod m;
+    m.kind = CompositeMethod::Kind::Radical;
+    return run_map_composite(a, *cc, kind, opt, m, "radical");
+  }
   const Curve c = read_curve(a);
   std::optional<Rational> at;
   if (a.has("at")) {
@@ -70,60 +135,8 @@ int run_radical(int argc, char** argv) {
     atv = ev.at(*at);
   }
   const long pd = printed_digits(opt.digits);
-  const auto formulas = radical_formulas(c, r, fmt, opt.digits);
-  const std::size_t N = r.pieces();
-
   if (wants_json(a)) {
-    Json j = Json::object();
-    j.set("curve", Json::string(c.str()));
-    j.set("speed", Json::string(to_string(kind)));
-    j.set("digits", Json::number(opt.digits));
-    Json t = Json::array(), mult = Json::array();
-    for (const auto& b : r.T) {
-      t.push(json_algebraic(b.t, opt.digits));
-      mult.push(Json::number(static_cast<long>(b.multiplicity)));
-    }
-    j.set("t", t);
-    j.set("multiplicity", mult);
-    auto arr = [&](const std::vector<Ball>& v) {
-      Json x = Json::array();
-      for (const auto& b : v) x.push(json_ball(b, pd));
-      return x;
-    };
-    auto per_piece = [&](Ball PieceIntegrals::*m) {
-      Json x = Json::array();
-      for (const auto& p : r.integrals) x.push(json_ball(p.*m, pd));
-      return x;
-    };
-    j.set("s", arr(r.S));
-    j.set("z", arr(r.Z));
-    j.set("alpha", per_piece(&PieceIntegrals::alpha));
-    j.set("L", per_piece(&PieceIntegrals::L));
-    j.set("A", arr(r.A));
-    j.set("B", arr(r.B));
-    j.set("C", arr(r.C));
-    j.set("M", per_piece(&PieceIntegrals::M));
-    j.set("mu", json_ball(r.mu, pd));
-    j.set("u_before", json_ball(r.u_before, pd));
-    j.set("u_radical", json_ball(r.u_radical, pd));
-    j.set("u_after", json_ball(r.u_after, pd));
-    Json pieces = Json::array();
-    for (std::size_t i = 0; i < N; ++i) {
-      Json p = Json::object();
-      p.set("t_interval", Json::array().push(json_algebraic(r.T[i].t, opt.digits)).push(
-                              json_algebraic(r.T[i + 1].t, opt.digits)));
-      p.set("s_interval", Json::string(formulas[i].s_interval));
-      p.set("z_interval", Json::string(formulas[i].z_interval));
-      p.set("radical_index", Json::number(static_cast<long>(r.root_index(i))));
-      p.set("phi", Json::string(formulas[i].phi));
-      p.set("m", Json::string(formulas[i].m));
-      p.set("r", Json::string(formulas[i].r));
-      Json pr = Json::array();
-      for (const auto& s : formulas[i].p_r) pr.push(Json::string(s));
-      p.set("p_r", pr);
-      pieces.push(p);
-    }
-    j.set("pieces", pieces);
+    Json j = radical_json(c, r, opt.digits, fmt);
     if (atv) {
       Json e = Json::object();
       e.set("z", json_rational(*at, pd));
@@ -135,23 +148,25 @@ int run_radical(int argc, char** argv) {
       e.set("at_joint", Json::boolean(atv->at_joint));
       j.set("at", e);
     }
-    std::cout << j.dump(2) << "\n";
+    answer() << j.dump(2) << "\n";
     return 0;
   }
 
-  std::cout << "curve      " << c.str() << "\nspeed      " << to_string(kind) << "\n";
+  const auto formulas = radical_formulas(c, r, fmt, opt.digits);
+  const std::size_t N = r.pieces();
+  answer() << "curve      " << c.str() << "\nspeed      " << to_string(kind) << "\n";
   if (r.identically_zero)
-    std::cout << "the angular speed is identically zero (a straight line): r = id, u = 1\n";
+    answer() << "the angular speed is identically zero (a straight line): r = id, u = 1\n";
   auto list = [&](const char* name, const std::vector<Ball>& v) {
-    std::cout << name;
-    for (std::size_t i = 0; i < v.size(); ++i) std::cout << (i ? ", " : "(") << v[i].mid_decimal(pd);
-    std::cout << ")\n";
+    answer() << name;
+    for (std::size_t i = 0; i < v.size(); ++i) answer() << (i ? ", " : "(") << v[i].mid_decimal(pd);
+    answer() << ")\n";
   };
-  std::cout << "T          (";
-  for (std::size_t i = 0; i < r.T.size(); ++i) std::cout << (i ? ", " : "") << text_algebraic(r.T[i].t, opt.digits);
-  std::cout << ")\nmult       (";
-  for (std::size_t i = 0; i < r.T.size(); ++i) std::cout << (i ? ", " : "") << r.T[i].multiplicity;
-  std::cout << ")\n";
+  answer() << "T          (";
+  for (std::size_t i = 0; i < r.T.size(); ++i) answer() << (i ? ", " : "") << text_algebraic(r.T[i].t, opt.digits);
+  answer() << ")\nmult       (";
+  for (std::size_t i = 0; i < r.T.size(); ++i) answer() << (i ? ", " : "") << r.T[i].multiplicity;
+  answer() << ")\n";
   list("S          ", r.S);
   list("Z          ", r.Z);
   std::vector<Ball> alpha, L, M;
@@ -163,26 +178,26 @@ int run_radical(int argc, char** argv) {
   list("C          ", r.C);
   list("M          ", M);
   for (std::size_t i = 0; i < N; ++i) {
-    std::cout << "piece " << i << "    z in " << formulas[i].z_interval << ", s in " << formulas[i].s_interval << "\n"
+    answer() << "piece " << i << "    z in " << formulas[i].z_interval << ", s in " << formulas[i].s_interval << "\n"
               << "  phi(s) = " << formulas[i].phi << "\n"
               << "  m(z)   = " << formulas[i].m << "\n"
               << "  r(z)   = " << formulas[i].r << "\n";
     for (std::size_t k = 0; k < formulas[i].p_r.size(); ++k)
-      std::cout << "  p_" << k + 1 << "(r(z)) = " << formulas[i].p_r[k] << "\n";
+      answer() << "  p_" << k + 1 << "(r(z)) = " << formulas[i].p_r[k] << "\n";
   }
-  std::cout << "mu         " << format_ball(r.mu, pd, Format::Text) << "\n"
+  answer() << "mu         " << format_ball(r.mu, pd, Format::Text) << "\n"
             << "u(p)       " << format_ball(r.u_before, pd, Format::Text) << "\n"
             << "u(p o phi) " << format_ball(r.u_radical, pd, Format::Text) << "\n"
             << "u(p o r)   " << format_ball(r.u_after, pd, Format::Text) << "\n"
             ;
   if (atv) {
-    std::cout << "at z = " << at->str() << ": r(z) = " << format_ball(atv->t, pd, Format::Text) << "\n  p(r(z)) = (";
+    answer() << "at z = " << at->str() << ": r(z) = " << format_ball(atv->t, pd, Format::Text) << "\n  p(r(z)) = (";
     for (std::size_t k = 0; k < atv->point.size(); ++k)
-      std::cout << (k ? ", " : "") << format_ball(atv->point[k], pd, Format::Text);
-    std::cout << ")\n  speed of p o r = " << format_ball(atv->speed, pd, Format::Text)
+      answer() << (k ? ", " : "") << format_ball(atv->point[k], pd, Format::Text);
+    answer() << ")\n  speed of p o r = " << format_ball(atv->speed, pd, Format::Text)
               << (atv->at_joint ? " (z is on a joint: the union of both one-sided speeds)" : "") << "\n";
   }
-  std::cout << "(every number is certified to " << opt.digits
+  answer() << "(every number is certified to " << opt.digits
             << " digits; the formulas print ball midpoints)\n";
   return 0;
 }

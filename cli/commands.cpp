@@ -1,6 +1,8 @@
 // cli/commands.cpp -- the table of subcommands and their shared options.
 #include "commands.hpp"
 
+#include "composite.hpp"
+
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
@@ -85,6 +87,9 @@ std::vector<OptionSpec> common_options() {
        ""},
       {"control", "POINTS", "the curve as Bezier control points \"[[x0,y0],[x1,y1],...]\" (instead of CURVE; @FILE reads a file, - standard input, as for CURVE)", ""},
       {"weights", "LIST", "weights \"[w0,w1,...]\" of a rational Bezier curve (with --control; positive; or @FILE, -)", ""},
+      {"svg", "PATH", "the curve as SVG path data \"M 0 0 Q 1 2 3 1 ...\" (one subpath; docs/inputs.md)", ""},
+      {"subpath", "K", "with --svg: the subpath to use, 0-based (needed when the path has several)", ""},
+      {"nurbs", "JSON", "the curve as a NURBS/B-spline {\"degree\", \"knots\", \"control\", \"weights\"}", ""},
   };
 }
 
@@ -100,15 +105,20 @@ namespace {
 // BezierCurve::parse reads at most 2^20 characters of each list.
 constexpr std::size_t kMaxListBytes = std::size_t(1) << 20;
 
-// At most one of CURVE, --control, --weights may read standard input.
+// At most one of CURVE, --control, --weights, --svg, --nurbs may read standard input.
 void check_one_stdin(const Args& a) {
-  int n = (a.has("control") && reads_stdin(a.get("control", ""))) + (a.has("weights") && reads_stdin(a.get("weights", ""))) +
-          (!a.positional.empty() && reads_stdin(a.positional.front()));
-  if (n > 1) throw InvalidArgument("at most one of CURVE, --control and --weights may be '-' (standard input)");
+  int n = !a.positional.empty() && reads_stdin(a.positional.front());
+  for (const char* o : {"control", "weights", "svg", "nurbs"}) n += a.has(o) && reads_stdin(a.get(o, ""));
+  if (n > 1)
+    throw InvalidArgument("at most one of CURVE, --control, --weights, --svg and --nurbs may be '-' (standard input)");
 }
 }  // namespace
 
 BezierCurve read_bezier(const Args& a) {
+  if (a.has("svg") || a.has("nurbs"))
+    throw InvalidArgument("'uniparam " + a.command + "' takes one Bezier curve, given with --control; for a path "
+                          "or a spline, 'uniparam moebius --speed parametric' gives each segment its optimal "
+                          "Moebius map");
   if (!a.has("control")) throw InvalidArgument("give the control points with --control \"[[x0,y0],[x1,y1],...]\"");
   check_one_stdin(a);
   const long max_degree = read_options(a).max_degree;
@@ -121,9 +131,16 @@ BezierCurve read_bezier(const Args& a) {
 }
 
 Curve read_curve(const Args& a) {
+  check_one_stdin(a);
+  if (a.has("svg") || a.has("nurbs")) {
+    const CompositeCurve cc = *read_composite(a);
+    if (cc.size() != 1)
+      throw InvalidArgument("'uniparam " + a.command + "' takes one curve, and this " + composite_description(a, cc) +
+                            " (use it with uniformity, radical, moebius, reparam, sample or locate)");
+    return cc.segment(0);
+  }
   if (a.has("control")) return read_bezier(a).to_curve();
   if (a.has("weights")) throw InvalidArgument("--weights needs --control (the weights of a rational Bezier curve)");
-  check_one_stdin(a);
   const ParseLimits lim = read_parse_limits(a);
   return Curve::parse(read_argument_text("CURVE", a.positional.at(0), lim.max_length, "--max-length"), lim);
 }

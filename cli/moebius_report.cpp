@@ -3,15 +3,16 @@
 #include <cstdio>
 #include <iostream>
 
+#include "output.hpp"
 #include "report.hpp"
 
 namespace uniparam::cli {
 
-void print_moebius(const Curve& c, const MoebiusResult& r, long digits, const MoebiusPrint& how) {
+Json moebius_json(const Curve& c, const MoebiusResult& r, long digits, const MoebiusPrint& how) {
   const long pd = printed_digits(digits);
   const std::size_t N = r.pieces();
   const auto formulas = moebius_formulas(c, r, how.format, digits);
-  if (how.json) {
+  {
     Json j = Json::object();
     j.set("curve", Json::string(c.str()));
     j.set("speed", Json::string(to_string(r.kind)));
@@ -63,40 +64,49 @@ void print_moebius(const Curve& c, const MoebiusResult& r, long digits, const Mo
       }
       j.set("pieces", pieces);
     }
-    std::cout << j.dump(2) << "\n";
+    return j;
+  }
+}
+
+void print_moebius(const Curve& c, const MoebiusResult& r, long digits, const MoebiusPrint& how) {
+  if (how.json) {
+    answer() << moebius_json(c, r, digits, how).dump(2) << "\n";
     return;
   }
-  std::cout << "curve      " << c.str() << "\nspeed      " << to_string(r.kind) << "\n"
+  const long pd = printed_digits(digits);
+  const std::size_t N = r.pieces();
+  const auto formulas = moebius_formulas(c, r, how.format, digits);
+  answer() << "curve      " << c.str() << "\nspeed      " << to_string(r.kind) << "\n"
             << "continuity " << to_string(r.continuity) << (r.rational ? " (exact rational map)" : "") << "\n";
-  if (r.identically_zero) std::cout << "the angular speed is identically zero (a straight line): r = id, u = 1\n";
+  if (r.identically_zero) answer() << "the angular speed is identically zero (a straight line): r = id, u = 1\n";
   for (std::size_t i = 0; i < N; ++i) {
-    std::cout << "piece " << i << "    t in [" << text_algebraic(r.T[i].t, digits) << ", "
+    answer() << "piece " << i << "    t in [" << text_algebraic(r.T[i].t, digits) << ", "
               << text_algebraic(r.T[i + 1].t, digits) << "], s in [";
     if (r.rational)
-      std::cout << r.S_exact[i].str() << ", " << r.S_exact[i + 1].str() << "], alpha = " << r.alpha_exact[i].str();
+      answer() << r.S_exact[i].str() << ", " << r.S_exact[i + 1].str() << "], alpha = " << r.alpha_exact[i].str();
     else
-      std::cout << r.S[i].mid_decimal(pd) << ", " << r.S[i + 1].mid_decimal(pd)
+      answer() << r.S[i].mid_decimal(pd) << ", " << r.S[i + 1].mid_decimal(pd)
                 << "], alpha = " << format_ball(r.alpha[i], pd, Format::Text);
-    std::cout << "\n";
+    answer() << "\n";
   }
-  std::cout << "mu         " << format_ball(r.mu, pd, Format::Text) << "\n"
+  answer() << "mu         " << format_ball(r.mu, pd, Format::Text) << "\n"
             << "u before   " << format_ball(r.u_before, pd, Format::Text) << "\n"
             << "u after    " << format_ball(r.u_after, pd, Format::Text) << "\n";
   if (r.optimiser.used)
-    std::cout << "optimiser  " << r.optimiser.iterations << " iterations, stationarity " << r.optimiser.stationarity
+    answer() << "optimiser  " << r.optimiser.iterations << " iterations, stationarity " << r.optimiser.stationarity
               << " (relative gradient, floating point)\n";
   if (r.target.used)
-    std::cout << "target     u >= " << r.target.value.str() << (r.target.reached ? " reached" : " NOT reached")
+    answer() << "target     u >= " << r.target.value.str() << (r.target.reached ? " reached" : " NOT reached")
               << " with " << N << " pieces after " << r.target.rounds << " refinement rounds\n";
   if (r.speed_vanishes)
-    std::cout << "note: the speed vanishes in [0, 1]; rational maps cannot lift its zeros "
+    answer() << "note: the speed vanishes in [0, 1]; rational maps cannot lift its zeros "
                  "(see 'uniparam radical')\n";
   if (how.formulas) {
-    std::cout << "\nformulas (" << (r.rational ? "exact" : "coefficients rounded to the printed digits") << "):\n";
+    answer() << "\nformulas (" << (r.rational ? "exact" : "coefficients rounded to the printed digits") << "):\n";
     for (std::size_t i = 0; i < N; ++i) {
-      std::cout << "piece " << i << ", s in " << formulas[i].s_interval << ":\n  t = " << formulas[i].r << "\n";
+      answer() << "piece " << i << ", s in " << formulas[i].s_interval << ":\n  t = " << formulas[i].r << "\n";
       for (std::size_t k = 0; k < formulas[i].p_r.size(); ++k)
-        std::cout << "  p_" << k + 1 << "(r(s)) = " << formulas[i].p_r[k] << "\n";
+        answer() << "  p_" << k + 1 << "(r(s)) = " << formulas[i].p_r[k] << "\n";
     }
   }
 }

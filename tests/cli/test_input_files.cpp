@@ -123,7 +123,7 @@ TEST(InputFiles, OtherErrors) {
   const TempFile f("[[0,0],[1,1]]");
   r = run_with_stdin({"uniformity", "--control", "-", "--weights", "-"}, f.path());
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("at most one of CURVE, --control and --weights may be '-'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("at most one of CURVE, --control, --weights, --svg and --nurbs may be '-'"), std::string::npos) << r.err;
   // A file longer than --max-length: the budget error of the parser's limit.
   const TempFile curve(kCurve);
   r = run_uniparam({"uniformity", "@" + curve.path(), "--max-length", "10"});

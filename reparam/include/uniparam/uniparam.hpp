@@ -31,6 +31,7 @@
 #include "uniparam/core/ratfunc.hpp"
 #include "uniparam/reparam/bezier.hpp"
 #include "uniparam/reparam/breakpoints.hpp"
+#include "uniparam/reparam/composite.hpp"
 #include "uniparam/reparam/curve.hpp"
 #include "uniparam/reparam/formula.hpp"
 #include "uniparam/reparam/locate.hpp"
