@@ -13,6 +13,8 @@
 #include <mutex>
 #include <thread>
 
+#include "input.hpp"
+
 namespace uniparam::cli {
 
 namespace {
@@ -83,8 +85,8 @@ std::vector<OptionSpec> common_options() {
       {"timeout", "SECONDS", "wall-clock time limit of the whole command", kDefaultTimeout},
       {"threads", "N", "worker threads for independent pieces (default: UNIPARAM_THREADS, else the cores, at most 8)",
        ""},
-      {"control", "POINTS", "the curve as Bezier control points \"[[x0,y0],[x1,y1],...]\" (instead of CURVE)", ""},
-      {"weights", "LIST", "weights \"[w0,w1,...]\" of a rational Bezier curve (with --control; positive)", ""},
+      {"control", "POINTS", "the curve as Bezier control points \"[[x0,y0],[x1,y1],...]\" (instead of CURVE; @FILE reads a file, - standard input, as for CURVE)", ""},
+      {"weights", "LIST", "weights \"[w0,w1,...]\" of a rational Bezier curve (with --control; positive; or @FILE, -)", ""},
       {"svg", "PATH", "the curve as SVG path data \"M 0 0 Q 1 2 3 1 ...\" (one subpath; docs/inputs.md)", ""},
       {"subpath", "K", "with --svg: the subpath to use, 0-based (needed when the path has several)", ""},
       {"nurbs", "JSON", "the curve as a NURBS/B-spline {\"degree\", \"knots\", \"control\", \"weights\"}", ""},
@@ -99,20 +101,37 @@ Options read_options(const Args& a) {
   return o;
 }
 
+namespace {
+// BezierCurve::parse reads at most 2^20 characters of each list.
+constexpr std::size_t kMaxListBytes = std::size_t(1) << 20;
+
+// At most one of CURVE, --control, --weights, --svg, --nurbs may read standard input.
+void check_one_stdin(const Args& a) {
+  int n = !a.positional.empty() && reads_stdin(a.positional.front());
+  for (const char* o : {"control", "weights", "svg", "nurbs"}) n += a.has(o) && reads_stdin(a.get(o, ""));
+  if (n > 1)
+    throw InvalidArgument("at most one of CURVE, --control, --weights, --svg and --nurbs may be '-' (standard input)");
+}
+}  // namespace
+
 BezierCurve read_bezier(const Args& a) {
   if (a.has("svg") || a.has("nurbs"))
     throw InvalidArgument("'uniparam " + a.command + "' takes one Bezier curve, given with --control; for a path "
                           "or a spline, 'uniparam moebius --speed parametric' gives each segment its optimal "
                           "Moebius map");
   if (!a.has("control")) throw InvalidArgument("give the control points with --control \"[[x0,y0],[x1,y1],...]\"");
+  check_one_stdin(a);
   const long max_degree = read_options(a).max_degree;
-  BezierCurve b = BezierCurve::parse(a.get("control", ""), a.get("weights", ""),
-                                     static_cast<std::size_t>(max_degree) + 1);
+  const std::string control = read_argument_text("--control", a.get("control", ""), kMaxListBytes);
+  const std::string weights =
+      a.has("weights") ? read_argument_text("--weights", a.get("weights", ""), kMaxListBytes) : std::string();
+  BezierCurve b = BezierCurve::parse(control, weights, static_cast<std::size_t>(max_degree) + 1);
   if (a.has("weights") && !b.is_rational()) throw InvalidArgument("--weights: empty list");
   return b;
 }
 
 Curve read_curve(const Args& a) {
+  check_one_stdin(a);
   if (a.has("svg") || a.has("nurbs")) {
     const CompositeCurve cc = *read_composite(a);
     if (cc.size() != 1)
@@ -122,7 +141,8 @@ Curve read_curve(const Args& a) {
   }
   if (a.has("control")) return read_bezier(a).to_curve();
   if (a.has("weights")) throw InvalidArgument("--weights needs --control (the weights of a rational Bezier curve)");
-  return Curve::parse(a.positional.at(0), read_parse_limits(a));
+  const ParseLimits lim = read_parse_limits(a);
+  return Curve::parse(read_argument_text("CURVE", a.positional.at(0), lim.max_length, "--max-length"), lim);
 }
 
 ParseLimits read_parse_limits(const Args& a) {

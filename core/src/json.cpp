@@ -353,16 +353,18 @@ const std::vector<std::pair<std::string, JsonValue>>& JsonValue::as_object(const
 
 Rational JsonValue::as_rational(const std::string& what) const {
   if (!is_number() && !is_string()) wrong_kind(what, "a number or a string such as \"1/3\"", *this);
-  const std::string& s = text;
+  std::string s = text;
   const std::string where = " (line " + std::to_string(line) + ", column " + std::to_string(column) + ")";
   const auto e = s.find_first_of("eE");
   if (e != std::string::npos) {
     std::size_t k = e + 1;
     if (k < s.size() && (s[k] == '+' || s[k] == '-')) ++k;
-    while (k < s.size() && s[k] == '0') ++k;  // leading zeros of the exponent
-    if (s.size() - k > 3)
+    std::size_t z = k;
+    while (z + 1 < s.size() && s[z] == '0') ++z;  // leading zeros of the exponent
+    if (s.size() - z > 3)
       throw InvalidArgument(what + ": the number '" + s.substr(0, 40) + (s.size() > 40 ? "..." : "") +
                             "' has a decimal exponent of 1000 or more in absolute value" + where);
+    s.erase(k, z - k);
   }
   try {
     return Rational::parse(s);

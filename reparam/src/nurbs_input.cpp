@@ -10,6 +10,7 @@
 // lies in [0, 1] for t_r in {a, b}, so positive weights stay positive.
 #include <algorithm>
 
+#include "uniparam/core/budget.hpp"
 #include "uniparam/core/error.hpp"
 #include "uniparam/reparam/path.hpp"
 
@@ -123,24 +124,32 @@ PathInput parse_nurbs_json(const JsonValue& j, const NurbsLimits& limits) {
   out.knots.push_back(Rational(0));
   for (std::size_t jspan = lo; jspan < hi; ++jspan) {
     if (!(u[jspan] < u[jspan + 1])) continue;
+    check_time_budget();
     const Rational& a = u[jspan];
     const Rational& b = u[jspan + 1];
+    // Local homogeneous points d_i, i = j-p..j (stored at i - (j - p)).
+    const long jl = static_cast<long>(jspan);
+    std::vector<std::vector<Rational>> d(hom.begin() + (jl - p), hom.begin() + jl + 1);
+    auto at = [&](long i) -> std::vector<Rational>& { return d[static_cast<std::size_t>(i - (jl - p))]; };
+    auto combine = [&](long i, const Rational& alpha) {  // d_i <- (1 - alpha) d_{i-1} + alpha d_i
+      auto& di = at(i);
+      const auto& dm = at(i - 1);
+      for (std::size_t c = 0; c < hd; ++c) di[c] = dm[c] + alpha * (di[c] - dm[c]);
+    };
+    // b-triangle: afterwards d_{j-p+r} = f(u_{j-p+r+1}, ..., u_j, b^r), r = 0..p.
+    for (long r = 1; r <= p; ++r)
+      for (long i = jl; i >= jl - p + r; --i) combine(i, (b - u[i]) / (u[i + p + 1 - r] - u[i]));
+    // a-triangle on those points, whose knots right of a are now all b: at
+    // level s, d_j = f(a^s, b^(p-s)), the Bezier control point p - s.
+    std::vector<std::vector<Rational>> hom_bez(static_cast<std::size_t>(p) + 1);
+    hom_bez[static_cast<std::size_t>(p)] = at(jl);
+    for (long s = 1; s <= p; ++s) {
+      for (long i = jl; i >= jl - p + s; --i) combine(i, (a - u[i]) / (b - u[i]));
+      hom_bez[static_cast<std::size_t>(p - s)] = at(jl);
+    }
     std::vector<std::vector<Rational>> bez_pts;
     std::vector<Rational> bez_w;
-    for (long k = 0; k <= p; ++k) {
-      // f(a^(p-k), b^k): de Boor with arguments t_r = b for r <= k, a after.
-      std::vector<std::vector<Rational>> d(hom.begin() + static_cast<long>(jspan) - p,
-                                           hom.begin() + static_cast<long>(jspan) + 1);
-      for (long r = 1; r <= p; ++r) {
-        const Rational& t = r <= k ? b : a;
-        for (long i = static_cast<long>(jspan); i >= static_cast<long>(jspan) - p + r; --i) {
-          const Rational alpha = (t - u[i]) / (u[i + p + 1 - r] - u[i]);
-          auto& di = d[static_cast<std::size_t>(i - (static_cast<long>(jspan) - p))];
-          const auto& dm = d[static_cast<std::size_t>(i - 1 - (static_cast<long>(jspan) - p))];
-          for (std::size_t c = 0; c < hd; ++c) di[c] = dm[c] + alpha * (di[c] - dm[c]);
-        }
-      }
-      std::vector<Rational>& h = d[static_cast<std::size_t>(p)];
+    for (auto& h : hom_bez) {
       if (rational) {
         const Rational wk = h[dim];
         std::vector<Rational> q(dim);

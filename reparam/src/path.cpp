@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "svg_arc.hpp"
+#include "uniparam/core/budget.hpp"
 #include "uniparam/core/error.hpp"
 
 namespace uniparam {
@@ -62,6 +63,7 @@ class SvgReader {
   Pt cur_{Rational(0), Rational(0)}, start_{Rational(0), Rational(0)};
   std::optional<Pt> last_cubic_ctrl_, last_quad_ctrl_;  // for S and T
   std::size_t total_segments_ = 0, arcs_ = 0;
+  std::size_t total_commands_seen_ = 0;  // drawing and moveto commands read so far
 
   static bool is_command(char c) {
     switch (c) {
@@ -119,17 +121,20 @@ class SvgReader {
       if (start >= d_.size()) fail(start, what, "the path data ends where a number was expected");
       fail(start, what, "unexpected " + shown(d_[start]) + " where a number was expected");
     }
+    std::string text = d_.substr(start, i_ - start);
     if (i_ < d_.size() && (d_[i_] == 'e' || d_[i_] == 'E')) {
       ++i_;
+      const bool negative = i_ < d_.size() && d_[i_] == '-';
       if (i_ < d_.size() && (d_[i_] == '+' || d_[i_] == '-')) ++i_;
       std::size_t e0 = i_;
       while (i_ < d_.size() && digit(d_[i_])) ++i_;
       if (e0 == i_) fail(i_, "a digit", "malformed exponent");
-      while (e0 < i_ && d_[e0] == '0') ++e0;
+      while (e0 + 1 < i_ && d_[e0] == '0') ++e0;  // leading zeros of the exponent
       if (i_ - e0 > 3) fail(start, "", "the number '" + d_.substr(start, std::min<std::size_t>(i_ - start, 40)) +
                                           "' has a decimal exponent of 1000 or more in absolute value");
+      text += std::string(negative ? "e-" : "e") + d_.substr(e0, i_ - e0);
     }
-    return Rational::parse(d_.substr(start, i_ - start));
+    return Rational::parse(text);
   }
 
   bool flag() {
@@ -209,6 +214,7 @@ class SvgReader {
     std::size_t at = cmd_at;
     bool first = true;
     for (;;) {
+      check_time_budget();
       const std::vector<Rational> v = params(cmd, count);
       apply(cmd, up, rel, first, v, at);
       first = false;
@@ -313,8 +319,6 @@ class SvgReader {
     last_cubic_ctrl_ = cubic_ctrl;
     last_quad_ctrl_ = quad_ctrl;
   }
-
-  std::size_t total_commands_seen_ = 0;
 };
 
 }  // namespace

@@ -62,6 +62,8 @@ TEST(JsonReader, NumbersAreExactDecimals) {
   EXPECT_EQ(a[4].as_rational("x"), Rational(1, 3));
   EXPECT_EQ(a[5].as_rational("x"), Rational(-1, 3));
   EXPECT_EQ(a[6].as_rational("x"), Rational(200));
+  EXPECT_EQ(parse_json("1e-0000000000003").as_rational("x"), Rational(1, 1000));  // leading zeros of an exponent
+  EXPECT_EQ(parse_json("\"5e00\"").as_rational("x"), Rational(5));
   EXPECT_EQ(parse_json("7").as_long("n", 1, 10), 7);
   EXPECT_EQ(parse_json("7.0").as_long("n", 1, 10), 7);
 }

@@ -206,7 +206,7 @@ TEST(NurbsInput, ValidationErrors) {
       {R"({"degree": 1, "control": [[0, 0], [1, 1]]})", "missing key \"knots\""},
       {R"({"degree": 1, "knots": [0, 0, 1, 1]})", "missing key \"control\""},
       {R"({"degree": 1, "knots": [0, 0, 1, 1], "control": [[0, 0], [1, 1]], "weight": [1, 1]})", "unknown key \"weight\""},
-      {R"({"degree": 0, "knots": [0, 1], "control": [[0, 0]]})", "\"degree\" must be an integer from 1 to 64"},
+      {R"({"degree": 0, "knots": [0, 1], "control": [[0, 0]]})", "\"degree\" must be an integer from 1 to 1000"},
       {R"({"degree": 1.5, "knots": [0, 0, 1, 1], "control": [[0, 0], [1, 1]]})", "must be an integer"},
       {R"({"degree": "1", "knots": [0, 0, 1, 1], "control": [[0, 0], [1, 1]]})", "must be an integer, got a string"},
       {R"({"degree": 2, "knots": [0, 0, 1, 1], "control": [[0, 0], [1, 1]]})", "degree 2 needs at least 3 control points"},
@@ -251,6 +251,37 @@ TEST(NurbsInput, UnclampedUniformCubic) {
   EXPECT_EQ(path.segments[0].points()[0], (std::vector<Rational>{R(7, 6), R(16, 6)}));
   for (std::size_t j = 0; j + 1 < path.segments.size(); ++j)
     EXPECT_EQ(path.segments[j].points().back(), path.segments[j + 1].points().front());
+}
+
+// Random edits of a valid description: a result or a uniparam::Error, never
+// a crash or another exception.
+TEST(NurbsInput, MutatedDescriptionsGiveResultsOrErrors) {
+  const std::string seed =
+      R"({"degree": 2, "knots": [0, 0, 0, 0.5, 0.5, 1, 1, 1], "control": [[1, 0], [1, 0.5], [0.6, 0.8], )"
+      R"([0.2, 1.1], [-0.28, 0.96]], "weights": [1, 0.8, 0.8, 0.64, 0.64]})";
+  const std::string alphabet = "0123456789.-e,[]{}\": /";
+  std::mt19937_64 rng(2023);
+  int results = 0;
+  for (int it = 0; it < 3000; ++it) {
+    std::string t = seed;
+    for (int k = 1 + static_cast<int>(rng() % 3); k > 0; --k) {
+      const std::size_t at = rng() % (t.size() + 1);
+      switch (rng() % 3) {
+        case 0: if (at < t.size()) t.erase(at, 1); break;
+        case 1: t.insert(at, 1, alphabet[rng() % alphabet.size()]); break;
+        default: if (at < t.size()) t[at] = alphabet[rng() % alphabet.size()];
+      }
+    }
+    try {
+      const PathInput p = parse_nurbs(t);
+      ASSERT_EQ(p.knots.size(), p.segments.size() + 1) << t;
+      ++results;
+    } catch (const Error&) {
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << t << ": " << e.what();
+    }
+  }
+  EXPECT_GT(results, 100);
 }
 
 }  // namespace

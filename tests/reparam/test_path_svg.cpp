@@ -229,6 +229,8 @@ TEST(SvgPath, NumberGrammarIsExact) {
   p = parse_svg_path("M1e1 2E-1L+3.,-0.1e+2")[0];
   EXPECT_EQ(p.segments[0].points()[0], (std::vector<Rational>{R(10), R(1, 5)}));
   EXPECT_EQ(p.segments[0].points()[1], (std::vector<Rational>{R(3), R(-10)}));
+  p = parse_svg_path("M1e-0000000001 0e0L2E+000 0")[0];  // leading zeros of exponents
+  EXPECT_EQ(p.segments[0].points()[0], (std::vector<Rational>{R(1, 10), R(0)}));
   p = parse_svg_path("M 0.1 0.2 L 0.3 0.7")[0];
   EXPECT_EQ(p.segments[0].points()[1], (std::vector<Rational>{R(3, 10), R(7, 10)}));
   p = parse_svg_path("M\t0\n0\r\fL 1 , 1")[0];
@@ -431,6 +433,43 @@ TEST(SvgPath, ParseErrorsWithColumns) {
   EXPECT_NO_THROW(parse_svg_path("M 0 0 1 1 2 2 3 3", lim));
   EXPECT_NE(message_of([&] { parse_svg_path("M 0 0 1 1 2 2 3 3 4 4", lim); }).find("more than 3 segments"),
             std::string::npos);
+}
+
+// Random edits of valid paths: every outcome is a result or a uniparam::Error
+// (no crash, no other exception); a result keeps the PathInput invariants.
+TEST(SvgPath, MutatedPathsGiveResultsOrErrors) {
+  const std::string seeds[] = {
+      "M 0 0 L 10 0 H 20 V 10 C 20 20 30 20 30 10 S 40 0 40 10 Q 50 20 60 10 T 80 10 A 5 5 0 0 1 88 10 Z",
+      "m1.5.5l-2-3.25e1zm4 4a10 5 90 1 0 0 16c1,2,3,4,5,6s1 1 2 2q3 3 4 4t5 5h1v1z",
+      "M10-5L.5.5A3 4 180 10 2 2"};
+  const std::string alphabet = "MmLlHhVvCcSsQqTtZzAa0123456789.-+eE, \t";
+  std::mt19937_64 rng(404);
+  int results = 0;
+  for (int it = 0; it < 3000; ++it) {
+    std::string d = seeds[rng() % 3];
+    for (int k = 1 + static_cast<int>(rng() % 4); k > 0; --k) {
+      const std::size_t at = rng() % (d.size() + 1);
+      switch (rng() % 3) {
+        case 0: if (at < d.size()) d.erase(at, 1); break;
+        case 1: d.insert(at, 1, alphabet[rng() % alphabet.size()]); break;
+        default: if (at < d.size()) d[at] = alphabet[rng() % alphabet.size()];
+      }
+    }
+    try {
+      for (const auto& p : parse_svg_path(d)) {
+        ASSERT_FALSE(p.segments.empty()) << d;
+        ASSERT_EQ(p.knots.size(), p.segments.size() + 1) << d;
+        ASSERT_EQ(p.labels.size(), p.segments.size()) << d;
+        for (std::size_t k = 0; k + 1 < p.segments.size(); ++k)
+          ASSERT_EQ(p.segments[k].points().back(), p.segments[k + 1].points().front()) << d;
+      }
+      ++results;
+    } catch (const Error&) {
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << d << ": " << e.what();
+    }
+  }
+  EXPECT_GT(results, 100);
 }
 
 }  // namespace

@@ -23,6 +23,7 @@
 #include "uniparam/core/budget.hpp"
 #include "uniparam/core/decimal.hpp"
 #include "uniparam/core/error.hpp"
+#include "uniparam/core/json.hpp"
 #include "uniparam/core/number.hpp"
 #include "uniparam/core/parser.hpp"
 #include "uniparam/core/poly.hpp"

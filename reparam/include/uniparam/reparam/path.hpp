@@ -68,12 +68,13 @@ struct SvgLimits {
 ///         uniparam does not approximate"), a subpath with no segment left
 ///         ("subpath 2 at column 12 has no segment"), path data longer than
 ///         limits.max_length or with more than limits.max_segments segments,
-///         or an empty path.
+///         or an empty path; TimeLimitExceeded when the calling thread's
+///         TimeBudget (core/budget.hpp) runs out.
 std::vector<PathInput> parse_svg_path(const std::string& d, const SvgLimits& limits = {});
 
 /// Bounds of the NURBS reader.
 struct NurbsLimits {
-  long max_degree = 64;            ///< the conversion costs O(p^3) per span
+  long max_degree = 1000;          ///< the conversion costs O(p^2) combinations per knot span
   std::size_t max_points = 100000;  ///< control points
 };
 
@@ -85,7 +86,7 @@ struct NurbsLimits {
 /// (clamped or not). The result has one Bezier segment per nonempty knot
 /// span of the domain (exact blossoming in homogeneous coordinates: the
 /// segment of [u_j, u_{j+1}] has the control points f(u_j^(p-k), u_{j+1}^k),
-/// k = 0..p, of the blossom f), and the knots are the distinct domain knots
+/// k = 0..p, of the blossom f; O(p^2) combinations per span), and the knots are the distinct domain knots
 /// mapped exactly onto [0, 1] by u -> (u - u_p) / (u_{n+1} - u_p). Weights
 /// all equal give integral (unweighted) segments. Labels read
 /// "span [u_j, u_{j+1}] (knots j and j+1)".
@@ -98,7 +99,9 @@ struct NurbsLimits {
 ///         multiplicity above p or any knot of multiplicity above p + 1, a
 ///         weight count other than n + 1, a non-positive weight, and a span
 ///         of the domain whose segment is a single point (uniparam does not
-///         drop it: that would change the parameterization the knots give).
+///         drop it: that would change the parameterization the knots give);
+///         TimeLimitExceeded when the calling thread's TimeBudget
+///         (core/budget.hpp) runs out (checked once per span).
 PathInput parse_nurbs_json(const JsonValue& j, const NurbsLimits& limits = {});
 
 /// parse_nurbs_json(parse_json(text, json_limits), limits).
