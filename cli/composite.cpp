@@ -58,8 +58,11 @@ std::optional<CompositeCurve> read_composite(const Args& a) {
   const Options opt = read_options(a);
   if (a.has("subpath") && !a.has("svg")) throw InvalidArgument("--subpath needs --svg");
   if (a.has("svg")) {
-    const std::string text = read_argument_text("--svg", a.get("svg", ""), read_parse_limits(a).max_length);
-    std::vector<PathInput> paths = parse_svg_path(text);
+    const std::size_t max_length = read_parse_limits(a).max_length;
+    const std::string text = read_argument_text("--svg", a.get("svg", ""), max_length, "--max-length");
+    SvgLimits lim;
+    lim.max_length = max_length;
+    std::vector<PathInput> paths = parse_svg_path(text, lim);
     if (paths.empty()) throw InvalidArgument("--svg: the path has no segment");
     std::size_t k = 0;
     if (a.has("subpath")) {
@@ -72,7 +75,8 @@ std::optional<CompositeCurve> read_composite(const Args& a) {
     return to_composite(paths[k], opt);
   }
   if (a.has("nurbs")) {
-    const std::string text = read_argument_text("--nurbs", a.get("nurbs", ""), read_parse_limits(a).max_length);
+    const std::string text =
+        read_argument_text("--nurbs", a.get("nurbs", ""), read_parse_limits(a).max_length, "--max-length");
     NurbsLimits lim;
     lim.max_degree = opt.max_degree;
     return to_composite(parse_nurbs(text, lim), opt);
