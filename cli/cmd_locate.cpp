@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "json_reports.hpp"
 #include "report.hpp"
 #include "uniparam/reparam/locate.hpp"
 
@@ -41,6 +42,25 @@ CommandSpec locate_spec() {
           opts};
 }
 
+Json locate_json(const Curve& c, SpeedKind kind, long digits, const std::string& option, const Rational& value,
+                 const LocateResult& r) {
+  const long pd = printed_digits(digits);
+  const char* measure = kind == SpeedKind::Parametric ? "length" : "angle";
+  Json j = Json::object();
+  j.set("curve", Json::string(c.str()));
+  j.set("speed", Json::string(to_string(kind)));
+  j.set("digits", Json::number(digits));
+  j.set("given", Json::string(option));
+  j.set("value", Json::string(value.str()));
+  j.set("mu", json_ball(r.mu, pd));
+  j.set(measure, json_ball(r.target, pd));
+  j.set("t", json_ball(r.at.t, pd));
+  Json pt = Json::array();
+  for (const Ball& x : r.at.point) pt.push(json_ball(x, pd));
+  j.set("point", pt);
+  return j;
+}
+
 int run_locate(int argc, char** argv) {
   const CommandSpec spec = locate_spec();
   Args a = parse_args(spec, argc, argv, 2);
@@ -74,19 +94,7 @@ int run_locate(int argc, char** argv) {
   const char* measure = kind == SpeedKind::Parametric ? "length" : "angle";
 
   if (wants_json(a)) {
-    Json j = Json::object();
-    j.set("curve", Json::string(c.str()));
-    j.set("speed", Json::string(to_string(kind)));
-    j.set("digits", Json::number(opt.digits));
-    j.set("given", Json::string(option));
-    j.set("value", Json::string(value.str()));
-    j.set("mu", json_ball(r.mu, pd));
-    j.set(measure, json_ball(r.target, pd));
-    j.set("t", json_ball(r.at.t, pd));
-    Json pt = Json::array();
-    for (const Ball& x : r.at.point) pt.push(json_ball(x, pd));
-    j.set("point", pt);
-    std::cout << j.dump(2) << "\n";
+    std::cout << locate_json(c, kind, opt.digits, option, value, r).dump(2) << "\n";
     return 0;
   }
   auto line = [](const std::string& label) { return label + std::string(label.size() < 11 ? 11 - label.size() : 1, ' '); };

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "commands.hpp"
+#include "json_reports.hpp"
 #include "svg.hpp"
 #include "uniparam/reparam/sample.hpp"
 
@@ -96,10 +97,11 @@ struct Projection {
   }
 };
 
-Projection read_projection(const Args& a, std::size_t n) {
+/// The projection named by `v` ("iso" or "I,J"; empty: the default, iso
+/// for 3 or more components) for a curve of n components.
+Projection read_projection(const std::string& given, std::size_t n) {
   Projection p;
-  const std::string dflt = n >= 3 ? "iso" : "1,2";
-  const std::string v = a.get("projection", dflt);
+  const std::string v = given.empty() ? (n >= 3 ? "iso" : "1,2") : given;
   if (v == "iso") {
     if (n < 3) throw InvalidArgument("--projection iso needs a curve with at least 3 components");
     p.iso = true;
@@ -372,26 +374,26 @@ PlotData collect(const Curve& c, const Speed& sp, const Reparameterization& r, c
   return d;
 }
 
-std::string method_title(const Reparameterization& r, const Args& a) {
+std::string method_title(const Reparameterization& r, const std::string& target) {
   const std::size_t N = r.pieces();
   const std::string pieces = std::to_string(N) + (N == 1 ? " piece" : " pieces");
   if (r.radical_result()) return "Optimal piecewise radical reparameterization r = \u03c6\u2218m (" + pieces + ")";
   const auto* m = r.moebius_result();
   if (m && m->continuity == Continuity::C1)
-    return "C1 piecewise M\u00f6bius reparameterization (" + pieces + ", target \u016b = " + a.get("target", "0.99") +
+    return "C1 piecewise M\u00f6bius reparameterization (" + pieces + ", target \u016b = " + target +
            (m->target.reached ? " reached" : " NOT reached") + ")";
   return "Optimal C0 piecewise M\u00f6bius reparameterization (" + pieces + ")";
 }
 
 std::string render(const Curve& c, SpeedKind kind, const Reparameterization& r, const PlotData& d,
-                   const Projection& proj, long K, const Args& a) {
+                   const Projection& proj, long K, const std::string& target) {
   const double col = 430, plot = 330, left0 = 78;
   const double W = 3 * col + 20;
   // Title, subtitle (the curve) and projection, wrapped to the page: the
   // curve panels start below them.
   const double text_w = W - 40;
   const auto title = svg::wrap_text(
-      method_title(r, a) + ", " + (kind == SpeedKind::Angular ? "angular" : "parametric") + " speed", 18, text_w, true, 2);
+      method_title(r, target) + ", " + (kind == SpeedKind::Angular ? "angular" : "parametric") + " speed", 18, text_w, true, 2);
   const auto subtitle = svg::wrap_text("p(t) = " + pretty(c.str()), 13, text_w, false, 4);
   const auto projection =
       proj.caption.empty() ? std::vector<std::string>{} : svg::wrap_text("drawn in the " + proj.caption, 12, text_w, false, 2);
@@ -556,6 +558,16 @@ std::string render(const Curve& c, SpeedKind kind, const Reparameterization& r, 
 
 }  // namespace
 
+std::string plot_svg(const Curve& c, SpeedKind kind, const Reparameterization& r, long K,
+                     const std::string& projection, const std::string& target, const Options& opt) {
+  const Projection proj = read_projection(projection, c.dimension());
+  const Speed sp(c, kind);
+  // The dots need only drawing accuracy; they are certified to 6 digits anyway.
+  const Samples smp = sample(c, sp, r, K, std::min<long>(6, opt.digits), opt.max_prec);
+  const PlotData d = collect(c, sp, r, smp, proj, opt.max_prec);
+  return render(c, kind, r, d, proj, K, target);
+}
+
 int run_plot(int argc, char** argv) {
   const CommandSpec spec = plot_spec();
   Args a = parse_args(spec, argc, argv, 2);  // "-o FILE" is read as "--output FILE"
@@ -596,13 +608,10 @@ int run_plot(int argc, char** argv) {
   const SpeedKind kind = parse_speed_kind(a.get("speed", "angular"));
   const long K = a.get_long("points", 40, 2, 100000);
   const Curve c = read_curve(a);
-  const Projection proj = read_projection(a, c.dimension());
+  const std::string projection = a.get("projection", "");
+  read_projection(projection, c.dimension());  // checked before computing
   const Reparameterization r = read_method(a, c, kind, opt, false);
-  const Speed sp(c, kind);
-  // The dots need only drawing accuracy; they are certified to 6 digits anyway.
-  const Samples smp = sample(c, sp, r, K, std::min<long>(6, opt.digits), opt.max_prec);
-  const PlotData d = collect(c, sp, r, smp, proj, opt.max_prec);
-  const std::string text = render(c, kind, r, d, proj, K, a);
+  const std::string text = plot_svg(c, kind, r, K, projection, a.get("target", "0.99"), opt);
   if (out == "-") {
     std::cout << text;
     return target_status(r, "plot");

@@ -3,6 +3,7 @@
 #include <optional>
 
 #include "commands.hpp"
+#include "json_reports.hpp"
 #include "report.hpp"
 #include "uniparam/reparam/formula.hpp"
 #include "uniparam/reparam/radical.hpp"
@@ -41,6 +42,75 @@ Format parse_format(const std::string& s) {
   throw InvalidArgument("unknown format '" + s + "' (expected text, latex, maple or json)");
 }
 
+Json radical_json(const Curve& c, SpeedKind kind, long digits, const RadicalResult& r, Format fmt,
+                  const std::optional<SamplePoint>& atv, const Rational& at) {
+  const long pd = printed_digits(digits);
+  const auto formulas = radical_formulas(c, r, fmt, digits);
+  const std::size_t N = r.pieces();
+  Json j = Json::object();
+  j.set("curve", Json::string(c.str()));
+  j.set("speed", Json::string(to_string(kind)));
+  j.set("digits", Json::number(digits));
+  Json t = Json::array(), mult = Json::array();
+  for (const auto& b : r.T) {
+    t.push(json_algebraic(b.t, digits));
+    mult.push(Json::number(static_cast<long>(b.multiplicity)));
+  }
+  j.set("t", t);
+  j.set("multiplicity", mult);
+  auto arr = [&](const std::vector<Ball>& v) {
+    Json x = Json::array();
+    for (const auto& b : v) x.push(json_ball(b, pd));
+    return x;
+  };
+  auto per_piece = [&](Ball PieceIntegrals::*m) {
+    Json x = Json::array();
+    for (const auto& p : r.integrals) x.push(json_ball(p.*m, pd));
+    return x;
+  };
+  j.set("s", arr(r.S));
+  j.set("z", arr(r.Z));
+  j.set("alpha", per_piece(&PieceIntegrals::alpha));
+  j.set("L", per_piece(&PieceIntegrals::L));
+  j.set("A", arr(r.A));
+  j.set("B", arr(r.B));
+  j.set("C", arr(r.C));
+  j.set("M", per_piece(&PieceIntegrals::M));
+  j.set("mu", json_ball(r.mu, pd));
+  j.set("u_before", json_ball(r.u_before, pd));
+  j.set("u_radical", json_ball(r.u_radical, pd));
+  j.set("u_after", json_ball(r.u_after, pd));
+  Json pieces = Json::array();
+  for (std::size_t i = 0; i < N; ++i) {
+    Json p = Json::object();
+    p.set("t_interval", Json::array().push(json_algebraic(r.T[i].t, digits)).push(
+                            json_algebraic(r.T[i + 1].t, digits)));
+    p.set("s_interval", Json::string(formulas[i].s_interval));
+    p.set("z_interval", Json::string(formulas[i].z_interval));
+    p.set("radical_index", Json::number(static_cast<long>(r.root_index(i))));
+    p.set("phi", Json::string(formulas[i].phi));
+    p.set("m", Json::string(formulas[i].m));
+    p.set("r", Json::string(formulas[i].r));
+    Json pr = Json::array();
+    for (const auto& s : formulas[i].p_r) pr.push(Json::string(s));
+    p.set("p_r", pr);
+    pieces.push(p);
+  }
+  j.set("pieces", pieces);
+  if (atv) {
+    Json e = Json::object();
+    e.set("z", json_rational(at, pd));
+    e.set("r", json_ball(atv->t, pd));
+    Json pt = Json::array();
+    for (const auto& b : atv->point) pt.push(json_ball(b, pd));
+    e.set("p_r", pt);
+    e.set("speed", json_ball(atv->speed, pd));
+    e.set("at_joint", Json::boolean(atv->at_joint));
+    j.set("at", e);
+  }
+  return j;
+}
+
 int run_radical(int argc, char** argv) {
   const CommandSpec spec = radical_spec();
   Args a = parse_args(spec, argc, argv, 2);
@@ -70,74 +140,12 @@ int run_radical(int argc, char** argv) {
     atv = ev.at(*at);
   }
   const long pd = printed_digits(opt.digits);
-  const auto formulas = radical_formulas(c, r, fmt, opt.digits);
-  const std::size_t N = r.pieces();
-
   if (wants_json(a)) {
-    Json j = Json::object();
-    j.set("curve", Json::string(c.str()));
-    j.set("speed", Json::string(to_string(kind)));
-    j.set("digits", Json::number(opt.digits));
-    Json t = Json::array(), mult = Json::array();
-    for (const auto& b : r.T) {
-      t.push(json_algebraic(b.t, opt.digits));
-      mult.push(Json::number(static_cast<long>(b.multiplicity)));
-    }
-    j.set("t", t);
-    j.set("multiplicity", mult);
-    auto arr = [&](const std::vector<Ball>& v) {
-      Json x = Json::array();
-      for (const auto& b : v) x.push(json_ball(b, pd));
-      return x;
-    };
-    auto per_piece = [&](Ball PieceIntegrals::*m) {
-      Json x = Json::array();
-      for (const auto& p : r.integrals) x.push(json_ball(p.*m, pd));
-      return x;
-    };
-    j.set("s", arr(r.S));
-    j.set("z", arr(r.Z));
-    j.set("alpha", per_piece(&PieceIntegrals::alpha));
-    j.set("L", per_piece(&PieceIntegrals::L));
-    j.set("A", arr(r.A));
-    j.set("B", arr(r.B));
-    j.set("C", arr(r.C));
-    j.set("M", per_piece(&PieceIntegrals::M));
-    j.set("mu", json_ball(r.mu, pd));
-    j.set("u_before", json_ball(r.u_before, pd));
-    j.set("u_radical", json_ball(r.u_radical, pd));
-    j.set("u_after", json_ball(r.u_after, pd));
-    Json pieces = Json::array();
-    for (std::size_t i = 0; i < N; ++i) {
-      Json p = Json::object();
-      p.set("t_interval", Json::array().push(json_algebraic(r.T[i].t, opt.digits)).push(
-                              json_algebraic(r.T[i + 1].t, opt.digits)));
-      p.set("s_interval", Json::string(formulas[i].s_interval));
-      p.set("z_interval", Json::string(formulas[i].z_interval));
-      p.set("radical_index", Json::number(static_cast<long>(r.root_index(i))));
-      p.set("phi", Json::string(formulas[i].phi));
-      p.set("m", Json::string(formulas[i].m));
-      p.set("r", Json::string(formulas[i].r));
-      Json pr = Json::array();
-      for (const auto& s : formulas[i].p_r) pr.push(Json::string(s));
-      p.set("p_r", pr);
-      pieces.push(p);
-    }
-    j.set("pieces", pieces);
-    if (atv) {
-      Json e = Json::object();
-      e.set("z", json_rational(*at, pd));
-      e.set("r", json_ball(atv->t, pd));
-      Json pt = Json::array();
-      for (const auto& b : atv->point) pt.push(json_ball(b, pd));
-      e.set("p_r", pt);
-      e.set("speed", json_ball(atv->speed, pd));
-      e.set("at_joint", Json::boolean(atv->at_joint));
-      j.set("at", e);
-    }
-    std::cout << j.dump(2) << "\n";
+    std::cout << radical_json(c, kind, opt.digits, r, fmt, atv, at ? *at : Rational(0)).dump(2) << "\n";
     return 0;
   }
+  const auto formulas = radical_formulas(c, r, fmt, opt.digits);
+  const std::size_t N = r.pieces();
 
   std::cout << "curve      " << c.str() << "\nspeed      " << to_string(kind) << "\n";
   if (r.identically_zero)

@@ -8,6 +8,7 @@
 
 #include "commands.hpp"
 #include "output.hpp"
+#include "json_reports.hpp"
 #include "report.hpp"
 #include "uniparam/reparam/locate.hpp"
 #include "uniparam/reparam/sample.hpp"
@@ -165,7 +166,6 @@ int run_sample_exact(const Args& a, const Curve& c, SpeedKind kind, const Option
   check_degree(c, opt);
   const Speed sp(c, kind);
   const std::size_t n = c.dimension();
-  const long pd = printed_digits(opt.digits);
   RowStream rows(K);
   std::ostream& out = rows.out;
   Ball mu;
@@ -175,14 +175,7 @@ int run_sample_exact(const Args& a, const Curve& c, SpeedKind kind, const Option
     started = true;
     stream_stdout();
     if (format == "json") {
-      Json j = Json::object();
-      j.set("curve", Json::string(c.str()));
-      j.set("speed", Json::string(to_string(kind)));
-      j.set("method", Json::string("exact"));
-      j.set("digits", Json::number(opt.digits));
-      j.set("points", Json::number(K));
-      j.set("mu", json_ball(mu, pd));
-      std::string head = j.dump(2);
+      std::string head = sample_exact_header_json(c, kind, opt.digits, K, mu).dump(2);
       head.resize(head.size() - 2);  // "\n}"
       out << head << ",\n  \"samples\": [";
     } else {
@@ -196,15 +189,7 @@ int run_sample_exact(const Args& a, const Curve& c, SpeedKind kind, const Option
       if (!started) start();
       const Rational s(k, K - 1);
       if (format == "json") {
-        Json row = Json::object();
-        row.set("s", json_rational(s, pd));
-        row.set("t", json_ball(p.t, pd));
-        Json pt = Json::array();
-        for (const auto& b : p.point) pt.push(json_ball(b, pd));
-        row.set("point", pt);
-        row.set("speed", json_ball(mu, pd));
-        row.set("at_joint", Json::boolean(false));
-        rows.json_row(k, row);
+        rows.json_row(k, sample_exact_row_json(s, p, mu, opt.digits));
       } else {
         std::string line = decimal_string(s, opt.digits) + "," + p.t.mid_decimal(opt.digits);
         for (const auto& b : p.point) line += "," + b.mid_decimal(opt.digits);
@@ -226,6 +211,64 @@ int run_sample_exact(const Args& a, const Curve& c, SpeedKind kind, const Option
 }
 
 }  // namespace
+
+Json sample_header_json(const Curve& c, SpeedKind kind, const Reparameterization& r, long digits, long K) {
+  const long pd = printed_digits(digits);
+  Json j = Json::object();
+  j.set("curve", Json::string(c.str()));
+  j.set("speed", Json::string(to_string(kind)));
+  j.set("method", Json::string(r.method()));
+  j.set("digits", Json::number(digits));
+  j.set("points", Json::number(K));
+  j.set("mu", json_ball(r.mu(), pd));
+  j.set("u_before", json_ball(r.u_before(), pd));
+  j.set("u_after", json_ball(r.u_after(), pd));
+  Json js = Json::array(), jt = Json::array();
+  for (const auto& b : r.joints_s()) js.push(json_ball(b, pd));
+  for (const auto& t : r.joints_t()) jt.push(json_algebraic(t, digits));
+  Json joints = Json::object();
+  joints.set("s", js);
+  joints.set("t", jt);
+  j.set("joints", joints);
+  return j;
+}
+
+Json sample_row_json(const SamplePoint& p, long digits) {
+  const long pd = printed_digits(digits);
+  Json row = Json::object();
+  row.set("s", json_rational(p.s, pd));
+  row.set("t", json_ball(p.t, pd));
+  Json pt = Json::array();
+  for (const auto& b : p.point) pt.push(json_ball(b, pd));
+  row.set("point", pt);
+  row.set("speed", json_ball(p.speed, pd));
+  row.set("at_joint", Json::boolean(p.at_joint));
+  return row;
+}
+
+Json sample_exact_header_json(const Curve& c, SpeedKind kind, long digits, long K, const Ball& mu) {
+  Json j = Json::object();
+  j.set("curve", Json::string(c.str()));
+  j.set("speed", Json::string(to_string(kind)));
+  j.set("method", Json::string("exact"));
+  j.set("digits", Json::number(digits));
+  j.set("points", Json::number(K));
+  j.set("mu", json_ball(mu, printed_digits(digits)));
+  return j;
+}
+
+Json sample_exact_row_json(const Rational& s, const LocatedPoint& p, const Ball& mu, long digits) {
+  const long pd = printed_digits(digits);
+  Json row = Json::object();
+  row.set("s", json_rational(s, pd));
+  row.set("t", json_ball(p.t, pd));
+  Json pt = Json::array();
+  for (const auto& b : p.point) pt.push(json_ball(b, pd));
+  row.set("point", pt);
+  row.set("speed", json_ball(mu, pd));
+  row.set("at_joint", Json::boolean(false));
+  return row;
+}
 
 int run_sample(int argc, char** argv) {
   const CommandSpec spec = sample_spec();
@@ -271,22 +314,7 @@ int run_sample(int argc, char** argv) {
   std::ostream& out = rows.out;
 
   if (format == "json") {
-    Json j = Json::object();
-    j.set("curve", Json::string(c.str()));
-    j.set("speed", Json::string(to_string(kind)));
-    j.set("method", Json::string(r.method()));
-    j.set("digits", Json::number(opt.digits));
-    j.set("points", Json::number(K));
-    j.set("mu", json_ball(r.mu(), pd));
-    j.set("u_before", json_ball(r.u_before(), pd));
-    j.set("u_after", json_ball(r.u_after(), pd));
-    Json js = Json::array(), jt = Json::array();
-    for (const auto& b : r.joints_s()) js.push(json_ball(b, pd));
-    for (const auto& t : r.joints_t()) jt.push(json_algebraic(t, opt.digits));
-    Json joints = Json::object();
-    joints.set("s", js);
-    joints.set("t", jt);
-    j.set("joints", joints);
+    const Json j = sample_header_json(c, kind, r, opt.digits, K);
     // The document as Json::dump(2) would print it with "samples" last: the
     // header without its closing brace, then each row indented two levels.
     std::string head = j.dump(2);
@@ -294,14 +322,7 @@ int run_sample(int argc, char** argv) {
     out << head << ",\n  \"samples\": [";
     try {
       sample_each(c, sp, r, K, opt.digits, opt.max_prec, [&](long k, const SamplePoint& p) {
-        Json row = Json::object();
-        row.set("s", json_rational(p.s, pd));
-        row.set("t", json_ball(p.t, pd));
-        Json pt = Json::array();
-        for (const auto& b : p.point) pt.push(json_ball(b, pd));
-        row.set("point", pt);
-        row.set("speed", json_ball(p.speed, pd));
-        row.set("at_joint", Json::boolean(p.at_joint));
+        Json row = sample_row_json(p, opt.digits);
         if (deviation) row.set("deviation", json_ball(deviation_of(p), pd));
         rows.json_row(k, row);
         rows.row_done();

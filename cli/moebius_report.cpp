@@ -7,65 +7,72 @@
 
 namespace uniparam::cli {
 
-void print_moebius(const Curve& c, const MoebiusResult& r, long digits, const MoebiusPrint& how) {
+Json moebius_json(const Curve& c, const MoebiusResult& r, long digits, const MoebiusPrint& how) {
   const long pd = printed_digits(digits);
   const std::size_t N = r.pieces();
   const auto formulas = moebius_formulas(c, r, how.format, digits);
+  Json j = Json::object();
+  j.set("curve", Json::string(c.str()));
+  j.set("speed", Json::string(to_string(r.kind)));
+  j.set("digits", Json::number(digits));
+  j.set("continuity", Json::string(to_string(r.continuity)));
+  Json t = Json::array(), s = Json::array(), al = Json::array();
+  for (const auto& b : r.T) t.push(json_algebraic(b.t, digits));
+  for (std::size_t i = 0; i <= N; ++i) s.push(r.rational ? json_rational(r.S_exact[i], pd) : json_ball(r.S[i], pd));
+  for (std::size_t i = 0; i < N; ++i)
+    al.push(r.rational ? json_rational(r.alpha_exact[i], pd) : json_ball(r.alpha[i], pd));
+  j.set("t", t);
+  j.set("s", s);
+  j.set("alpha", al);
+  j.set("mu", json_ball(r.mu, pd));
+  j.set("u_before", json_ball(r.u_before, pd));
+  j.set("u_after", json_ball(r.u_after, pd));
+  j.set("speed_vanishes", Json::boolean(r.speed_vanishes));
+  j.set("rational", Json::boolean(r.rational));
+  if (r.optimiser.used) {
+    Json o = Json::object();
+    o.set("iterations", Json::number(r.optimiser.iterations));
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3e", r.optimiser.stationarity);
+    o.set("stationarity", Json::number(std::string(buf)));
+    o.set("stationarity_certified", Json::boolean(false));
+    if (arb_is_finite(r.optimiser.phi.get()) && !r.rational) o.set("phi", json_ball(r.optimiser.phi, pd));
+    o.set("phi_equal_spacing", json_ball(r.optimiser.phi_equal, 12));
+    j.set("optimiser", o);
+  }
+  if (r.target.used) {
+    Json o = Json::object();
+    o.set("value", json_rational(r.target.value, pd));
+    o.set("reached", Json::boolean(r.target.reached));
+    o.set("refinement_rounds", Json::number(r.target.rounds));
+    j.set("target", o);
+  }
+  if (how.formulas) {
+    Json pieces = Json::array();
+    for (std::size_t i = 0; i < N; ++i) {
+      Json p = Json::object();
+      p.set("t_interval", Json::array().push(json_algebraic(r.T[i].t, digits)).push(json_algebraic(r.T[i + 1].t, digits)));
+      p.set("s_interval", Json::string(formulas[i].s_interval));
+      p.set("r", Json::string(formulas[i].r));
+      Json pr = Json::array();
+      for (const auto& x : formulas[i].p_r) pr.push(Json::string(x));
+      p.set("p_r", pr);
+      p.set("exact", Json::boolean(formulas[i].exact));
+      pieces.push(p);
+    }
+    j.set("pieces", pieces);
+  }
+  return j;
+}
+
+void print_moebius(const Curve& c, const MoebiusResult& r, long digits, const MoebiusPrint& how) {
   if (how.json) {
-    Json j = Json::object();
-    j.set("curve", Json::string(c.str()));
-    j.set("speed", Json::string(to_string(r.kind)));
-    j.set("digits", Json::number(digits));
-    j.set("continuity", Json::string(to_string(r.continuity)));
-    Json t = Json::array(), s = Json::array(), al = Json::array();
-    for (const auto& b : r.T) t.push(json_algebraic(b.t, digits));
-    for (std::size_t i = 0; i <= N; ++i) s.push(r.rational ? json_rational(r.S_exact[i], pd) : json_ball(r.S[i], pd));
-    for (std::size_t i = 0; i < N; ++i)
-      al.push(r.rational ? json_rational(r.alpha_exact[i], pd) : json_ball(r.alpha[i], pd));
-    j.set("t", t);
-    j.set("s", s);
-    j.set("alpha", al);
-    j.set("mu", json_ball(r.mu, pd));
-    j.set("u_before", json_ball(r.u_before, pd));
-    j.set("u_after", json_ball(r.u_after, pd));
-    j.set("speed_vanishes", Json::boolean(r.speed_vanishes));
-    j.set("rational", Json::boolean(r.rational));
-    if (r.optimiser.used) {
-      Json o = Json::object();
-      o.set("iterations", Json::number(r.optimiser.iterations));
-      char buf[32];
-      std::snprintf(buf, sizeof buf, "%.3e", r.optimiser.stationarity);
-      o.set("stationarity", Json::number(std::string(buf)));
-      o.set("stationarity_certified", Json::boolean(false));
-      if (arb_is_finite(r.optimiser.phi.get()) && !r.rational) o.set("phi", json_ball(r.optimiser.phi, pd));
-      o.set("phi_equal_spacing", json_ball(r.optimiser.phi_equal, 12));
-      j.set("optimiser", o);
-    }
-    if (r.target.used) {
-      Json o = Json::object();
-      o.set("value", json_rational(r.target.value, pd));
-      o.set("reached", Json::boolean(r.target.reached));
-      o.set("refinement_rounds", Json::number(r.target.rounds));
-      j.set("target", o);
-    }
-    if (how.formulas) {
-      Json pieces = Json::array();
-      for (std::size_t i = 0; i < N; ++i) {
-        Json p = Json::object();
-        p.set("t_interval", Json::array().push(json_algebraic(r.T[i].t, digits)).push(json_algebraic(r.T[i + 1].t, digits)));
-        p.set("s_interval", Json::string(formulas[i].s_interval));
-        p.set("r", Json::string(formulas[i].r));
-        Json pr = Json::array();
-        for (const auto& x : formulas[i].p_r) pr.push(Json::string(x));
-        p.set("p_r", pr);
-        p.set("exact", Json::boolean(formulas[i].exact));
-        pieces.push(p);
-      }
-      j.set("pieces", pieces);
-    }
-    std::cout << j.dump(2) << "\n";
+    std::cout << moebius_json(c, r, digits, how).dump(2) << "\n";
     return;
   }
+  const long pd = printed_digits(digits);
+  const std::size_t N = r.pieces();
+  const auto formulas = moebius_formulas(c, r, how.format, digits);
   std::cout << "curve      " << c.str() << "\nspeed      " << to_string(r.kind) << "\n"
             << "continuity " << to_string(r.continuity) << (r.rational ? " (exact rational map)" : "") << "\n";
   if (r.identically_zero) std::cout << "the angular speed is identically zero (a straight line): r = id, u = 1\n";
