@@ -43,3 +43,9 @@ class TimeLimitExceeded(BudgetExceeded, TimeoutError):
 class TargetNotReachedWarning(UserWarning):
     """A C1 map (``target=``) missed its target uniformity: the best map found
     is returned (the CLI's exit status 4)."""
+
+
+for _cls in (Error, ParseError, DomainError, InvalidArgument, BudgetExceeded, TimeLimitExceeded,
+             TargetNotReachedWarning):
+    _cls.__module__ = "uniparam"  # shown as uniparam.ParseError
+del _cls
