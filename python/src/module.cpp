@@ -19,6 +19,8 @@
 #include <chrono>
 #include <condition_variable>
 #include <exception>
+#include <functional>
+#include <tuple>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -29,6 +31,7 @@
 #include "commands.hpp"
 #include "json_reports.hpp"
 #include "moebius_report.hpp"
+#include "nurbs_out.hpp"
 #include "report.hpp"
 #include "svg.hpp"
 #include "uniparam/core/parallel.hpp"
@@ -198,6 +201,43 @@ std::vector<RealAlgebraic> breakpoints_of(const std::vector<std::string>& list) 
   return T;
 }
 
+/// The answer of a command with --output: ("report", its JSON document),
+/// ("nurbs", the NURBS JSON) or ("step", the STEP text), and the C1 map's
+/// missed-target message.
+using Answer = std::tuple<std::string, std::string, std::string>;
+
+/// The output form `output` names ("" none; "nurbs", "step" or a .stp/.step
+/// file, checked writable before computing: cli::parse_nurbs_output).
+cli::NurbsOutput output_of(const std::string& output) {
+  if (output.empty()) return cli::NurbsOutput{};
+  try {
+    return cli::parse_nurbs_output(output);
+  } catch (const InvalidArgument& e) {
+    const std::string m = e.what();
+    throw InvalidArgument(m.rfind("--output", 0) == 0 ? "output" + m.substr(8) : m);
+  }
+}
+
+/// The NURBS n as `o` asks, as the CLI's write_nurbs: the NURBS JSON or the
+/// STEP text in place of `report`, or the STEP file written and `report`.
+Answer nurbs_answer(const Nurbs& n, const cli::NurbsOutput& o, long digits, const std::function<Json()>& report,
+                    const std::string& missed) {
+  if (o.form == cli::NurbsOutput::Form::Json) return Answer("nurbs", dump(cli::nurbs_json(n, digits)), missed);
+  if (o.form == cli::NurbsOutput::Form::Step && o.file.empty())
+    return Answer("step", cli::nurbs_step(n, "uniparam.stp"), missed);
+  Json doc = report();  // the report first, then the file (as the CLI)
+  if (o.form == cli::NurbsOutput::Form::Step) {
+    try {
+      cli::write_nurbs(n, o, digits);
+    } catch (const Error&) {
+      throw;
+    } catch (const std::runtime_error& e) {
+      throw InvalidArgument(e.what());
+    }
+  }
+  return Answer("report", dump(doc), missed);
+}
+
 /// The C1 map's message when it missed its target ("" otherwise).
 std::string missed(const MoebiusResult& r, long max_pieces, long digits) {
   if (!r.target.used || r.target.reached) return "";
@@ -296,7 +336,7 @@ PYBIND11_MODULE(_uniparam, m) {
   m.def(
       "moebius",
       [](const Common& c, const std::vector<std::string>& breakpoints, const std::string& format, bool rational,
-         std::optional<long> rational_digits) {
+         std::optional<long> rational_digits, const std::string& output) {
         return guarded(c, [&] {
           const Options opt = options_of(c);
           const SpeedKind kind = parse_speed_kind(c.speed);
@@ -304,18 +344,22 @@ PYBIND11_MODULE(_uniparam, m) {
           how.json = true;
           how.format = cli::parse_format(format);
           const auto T = breakpoints_of(breakpoints);
+          const cli::NurbsOutput no = output_of(output);
           const Curve cv = curve_of(c);
           const MoebiusResult r = finish(cv, moebius_c0(cv, kind, T, opt), rational, rational_digits, opt);
-          return dump(cli::moebius_json(cv, r, opt.digits, how));
+          auto report = [&] { return cli::moebius_json(cv, r, opt.digits, how); };
+          if (no.form == cli::NurbsOutput::Form::None) return Answer("report", dump(report()), "");
+          return nurbs_answer(moebius_nurbs(cv, r, cli::nurbs_prec(opt)), no, opt.digits, report, "");
         });
       },
-      py::arg("common"), py::arg("breakpoints"), py::arg("format"), py::arg("rational"), py::arg("rational_digits"));
+      py::arg("common"), py::arg("breakpoints"), py::arg("format"), py::arg("rational"), py::arg("rational_digits"),
+      py::arg("output"));
 
   m.def(
       "reparam",
       [](const Common& c, std::optional<long> pieces, const std::vector<std::string>& breakpoints,
          const std::optional<std::string>& target, std::optional<long> max_pieces, const std::string& format,
-         bool rational, std::optional<long> rational_digits) {
+         bool rational, std::optional<long> rational_digits, const std::string& output) {
         return guarded(c, [&] {
           const Options opt = options_of(c);
           const SpeedKind kind = parse_speed_kind(c.speed);
@@ -335,31 +379,43 @@ PYBIND11_MODULE(_uniparam, m) {
             if (!(t.sign() > 0 && t < Rational(1)))
               throw InvalidArgument("target must lie strictly between 0 and 1, got " + *target);
           }
+          const cli::NurbsOutput no = output_of(output);
           const Curve cv = curve_of(c);
           MoebiusResult r = pieces       ? reparam_c0(cv, kind, *pieces, opt)
                             : !T.empty() ? moebius_c0(cv, kind, T, opt)
                                          : reparam_c1(cv, kind, t, opt, mp);
           r = finish(cv, r, rational, rational_digits, opt);
-          return std::make_pair(dump(cli::moebius_json(cv, r, opt.digits, how)), missed(r, mp, opt.digits));
+          auto report = [&] { return cli::moebius_json(cv, r, opt.digits, how); };
+          if (no.form == cli::NurbsOutput::Form::None) return Answer("report", dump(report()), missed(r, mp, opt.digits));
+          return nurbs_answer(moebius_nurbs(cv, r, cli::nurbs_prec(opt)), no, opt.digits, report,
+                              missed(r, mp, opt.digits));
         });
       },
       py::arg("common"), py::arg("pieces"), py::arg("breakpoints"), py::arg("target"), py::arg("max_pieces"),
-      py::arg("format"), py::arg("rational"), py::arg("rational_digits"));
+      py::arg("format"), py::arg("rational"), py::arg("rational_digits"), py::arg("output"));
 
   m.def(
       "bezier",
-      [](const Common& c, const std::string& exact_weights) {
+      [](const Common& c, const std::string& exact_weights, const std::string& output) {
         return guarded(c, [&] {
           const Options opt = options_of(c);
+          const cli::NurbsOutput no = output_of(output);
           if (c.control.empty()) throw InvalidArgument("bezier needs control points");
           BezierCurve bz = BezierCurve::parse(c.control, c.weights, static_cast<std::size_t>(opt.max_degree) + 1);
           if (!c.weights.empty() && !bz.is_rational()) throw InvalidArgument("weights: empty list");
           const BezierResult r = bezier_optimal(bz, opt);
           const bool expanded = cli::expand_weights(exact_weights, r, bz.degree());
-          return dump(cli::bezier_json(bz, r, opt.digits, expanded));
+          auto report = [&] { return cli::bezier_json(bz, r, opt.digits, expanded); };
+          if (no.form == cli::NurbsOutput::Form::None) return Answer("report", dump(report()), "");
+          Nurbs n = bezier_nurbs(bz, r, cli::nurbs_prec(opt));
+          if (!expanded && n.kind == Nurbs::Kind::Surd) {  // surds too long to print: the balls (as the CLI)
+            n.kind = Nurbs::Kind::Balls;
+            n.weights_surd.clear();
+          }
+          return nurbs_answer(n, no, opt.digits, report, "");
         });
       },
-      py::arg("common"), py::arg("exact_weights"));
+      py::arg("common"), py::arg("exact_weights"), py::arg("output"));
 
   m.def(
       "locate",

@@ -48,3 +48,28 @@ def test_sigint_cancels_radical_pieces():
     # cancellation
     late = interrupted(lambda: up.radical("(t^2, t^5 - t^3 + t/7)", digits=3000, threads=2))
     assert late < 10
+
+
+def test_gil_released_during_computation():
+    # another Python thread runs while a computation runs (here one stopped
+    # by its 1 s time budget): it wakes 0.3 s into the call and notes the
+    # time, which needs the GIL; held by the call, that note would come only
+    # after the call has returned
+    started = threading.Event()
+    noted = []
+
+    def note():
+        started.wait()
+        time.sleep(0.3)
+        noted.append(time.monotonic())
+
+    t = threading.Thread(target=note)
+    t.start()
+    try:
+        started.set()
+        with pytest.raises(up.TimeLimitExceeded):
+            up.uniformity("(t, t^7 - t^2 + 1/3)", digits=3000, timeout=1)
+        end = time.monotonic()
+    finally:
+        t.join()
+    assert noted and noted[0] < end

@@ -203,9 +203,9 @@ def _doc(text):
     return _json.loads(text)
 
 
-def _warn_missed(message):
-    if message:
-        _warnings.warn(message, TargetNotReachedWarning, stacklevel=3)
+def _warn_missed(message, stacklevel=3):
+    if message:  # the warning points at the caller of the uniparam function
+        _warnings.warn(message, TargetNotReachedWarning, stacklevel=stacklevel)
 
 
 def uniformity(curve, **options):
@@ -232,33 +232,62 @@ def _breakpoints(bp):
     return [_rational_text("breakpoints", b) for b in bp]
 
 
-def moebius(curve, breakpoints=None, format="text", rational=False, rational_digits=None, **options):
+def _answer(answer):
+    """The Python value of a command's answer (kind, text, missed)."""
+    kind, text, missed = answer
+    _warn_missed(missed, stacklevel=4)
+    return text if kind == "step" else Result(_doc(text))
+
+
+_OUTPUT_DOC = """
+    ``output`` as the CLI's --output: "nurbs" returns the NURBS of p o r
+    (a Result with the keys of docs/nurbs.md) instead of the report, "step"
+    its STEP AP214 text (a str), and a file name ending in .stp or .step
+    writes that file and returns the report."""
+
+
+def moebius(curve, breakpoints=None, format="text", rational=False, rational_digits=None, output=None, **options):
     """The optimal Moebius reparameterization (one piece), or C0 piecewise
     Moebius with fixed ``breakpoints`` (a list of exact rationals from 0 to
     1) (``uniparam moebius``). ``rational=True`` rounds alpha, S and T to
     short rationals (``rational_digits``, default 8) and certifies that map."""
     c = _curve(curve)
     bp = _breakpoints(breakpoints) if breakpoints is not None else ["0", "1"]
-    return Result(_doc(_uniparam.moebius(c._common(**options), bp, format, bool(rational), rational_digits)))
+    return _answer(_uniparam.moebius(c._common(**options), bp, format, bool(rational), rational_digits,
+                                     _output(output)))
+
+
+moebius.__doc__ += _OUTPUT_DOC
+
+
+def _output(output):
+    if output is None:
+        return ""
+    import os
+    out = os.fspath(output)
+    if not out:
+        raise InvalidArgument("output expects nurbs, step, or a file name ending in .stp or .step, got ''")
+    return out
 
 
 def reparam(curve, pieces=None, breakpoints=None, target=None, max_pieces=None, format="text", rational=False,
-            rational_digits=None, **options):
+            rational_digits=None, output=None, **options):
     """Piecewise Moebius reparameterization (``uniparam reparam``): exactly
     one of ``pieces`` (C0, N pieces, optimised breakpoints), ``breakpoints``
     (C0, fixed) and ``target`` (C1, refined until u >= target, at most
     ``max_pieces`` pieces; when missed, the best map is returned with a
     TargetNotReachedWarning and result.target["reached"] False)."""
     c = _curve(curve)
-    text, missed = _uniparam.reparam(c._common(**options), None if pieces is None else _int("pieces", pieces),
+    return _answer(_uniparam.reparam(c._common(**options), None if pieces is None else _int("pieces", pieces),
                                      _breakpoints(breakpoints), _rational_text("target", target),
                                      None if max_pieces is None else _int("max_pieces", max_pieces), format,
-                                     bool(rational), rational_digits)
-    _warn_missed(missed)
-    return Result(_doc(text))
+                                     bool(rational), rational_digits, _output(output)))
 
 
-def bezier(points, weights=None, exact_weights="auto", exact_float=False, **options):
+reparam.__doc__ += _OUTPUT_DOC
+
+
+def bezier(points, weights=None, exact_weights="auto", exact_float=False, output=None, **options):
     """The optimal bilinear reparameterization of a Bezier curve for the
     parametric speed (``uniparam bezier --control``): exact P, Q, alpha and
     weights for integral curves. ``points`` and ``weights`` as Curve.bezier,
@@ -268,7 +297,10 @@ def bezier(points, weights=None, exact_weights="auto", exact_float=False, **opti
         raise InvalidArgument("bezier needs control points: pass them, or a Curve.bezier(...)")
     if "speed" in options:
         raise TypeError("bezier works with the parametric speed only (no speed=)")
-    return Result(_doc(_uniparam.bezier(c._common(**options), exact_weights)))
+    return _answer(_uniparam.bezier(c._common(**options), exact_weights, _output(output)))
+
+
+bezier.__doc__ += _OUTPUT_DOC
 
 
 def locate(curve, length=None, angle=None, fraction=None, speed=None, **options):
