@@ -264,16 +264,19 @@ PYBIND11_MODULE(_uniparam, m) {
       .def_readwrite("timeout", &Common::timeout)
       .def_readwrite("threads", &Common::threads);
 
-  // Exceptions: the classes of uniparam._errors, most derived first.
+  // Exceptions: the classes of uniparam._errors, most derived first. The
+  // references are kept for the process's lifetime (never released: a static
+  // py::object would be destroyed after the interpreter has finalized).
   py::module_ errors = py::module_::import("uniparam._errors");
-  static py::object parse_error = errors.attr("ParseError");
-  static py::object domain_error = errors.attr("DomainError");
-  static py::object invalid_argument = errors.attr("InvalidArgument");
-  static py::object time_limit = errors.attr("TimeLimitExceeded");
-  static py::object budget_exceeded = errors.attr("BudgetExceeded");
-  static py::object base_error = errors.attr("Error");
+  auto keep = [&](const char* name) { return py::object(errors.attr(name)).release(); };
+  static const py::handle parse_error = keep("ParseError");
+  static const py::handle domain_error = keep("DomainError");
+  static const py::handle invalid_argument = keep("InvalidArgument");
+  static const py::handle time_limit = keep("TimeLimitExceeded");
+  static const py::handle budget_exceeded = keep("BudgetExceeded");
+  static const py::handle base_error = keep("Error");
   py::register_exception_translator([](std::exception_ptr p) {
-    auto raise = [](const py::object& cls, py::object value) { PyErr_SetObject(cls.ptr(), value.ptr()); };
+    auto raise = [](py::handle cls, py::object value) { PyErr_SetObject(cls.ptr(), value.ptr()); };
     try {
       std::rethrow_exception(p);
     } catch (const ParseError& e) {
