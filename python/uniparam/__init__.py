@@ -3,7 +3,7 @@
     >>> import uniparam as up
     >>> r = up.uniformity("(t, t^3)")
     >>> r.u                                   # a certified Ball
-    Ball('0.84569524315336634188', '3.02e-21')
+    Ball('0.845695243153366342', '1.2e-19')
 
 Every method takes a curve (a ``Curve``, its text "(x(t), y(t), ...)", or a
 Bezier curve from ``Curve.bezier``) and the options of the CLI as keyword
