@@ -36,6 +36,7 @@ bool curve_or_control(const CommandSpec& spec) {
 
 Args parse_args(const CommandSpec& spec, int argc, char** argv, int first) {
   Args a;
+  a.command = spec.name;
   for (int i = first; i < argc; ++i) {
     std::string arg = argv[i];
     if (arg == "--help" || arg == "-h") { a.help = true; continue; }
@@ -71,17 +72,27 @@ Args parse_args(const CommandSpec& spec, int argc, char** argv, int first) {
     a.positional.push_back(arg);
   }
   if (a.help) return a;
-  // CURVE may be replaced by --control POINTS (a Bezier curve): exactly one of the two.
+  // CURVE may be replaced by --control POINTS (a Bezier curve), --svg PATH or
+  // --nurbs JSON: exactly one of them.
   std::size_t want = spec.positionals.size();
-  if (curve_or_control(spec) && a.has("control")) {
-    if (a.positional.size() == want)
-      throw InvalidArgument("'uniparam " + spec.name + "': give the curve either as CURVE or with --control, not both");
-    --want;
+  if (curve_or_control(spec)) {
+    std::vector<std::string> given;
+    for (const char* o : {"control", "svg", "nurbs"})
+      if (a.has(o)) given.push_back(std::string("--") + o);
+    if (given.size() > 1)
+      throw InvalidArgument("'uniparam " + spec.name + "': give one curve: " + given[0] + " and " + given[1] +
+                            " were both given");
+    if (!given.empty()) {
+      if (a.positional.size() == want)
+        throw InvalidArgument("'uniparam " + spec.name + "': give the curve either as CURVE or with " + given[0] +
+                              ", not both");
+      --want;
+    }
   }
   if (a.positional.size() != want) {
     std::string names;
     for (const auto& p : spec.positionals) names += " " + p;
-    if (curve_or_control(spec)) names = " CURVE or --control POINTS";
+    if (curve_or_control(spec)) names = " CURVE (or --control, --svg, --nurbs)";
     throw InvalidArgument("'uniparam " + spec.name + "' expects" + (names.empty() ? " no arguments" : names) +
                           ", got " + std::to_string(a.positional.size()) + " argument(s) (quote the curve: \"(t, t^3)\")");
   }
@@ -91,7 +102,8 @@ Args parse_args(const CommandSpec& spec, int argc, char** argv, int first) {
 std::string help_text(const CommandSpec& spec) {
   std::string s = "usage: uniparam " + spec.name;
   for (std::size_t i = 0; i < spec.positionals.size(); ++i)
-    s += (i == 0 && curve_or_control(spec)) ? " (CURVE | --control POINTS)" : " " + spec.positionals[i];
+    s += (i == 0 && curve_or_control(spec)) ? " (CURVE | --control POINTS | --svg PATH | --nurbs JSON)"
+                                            : " " + spec.positionals[i];
   s += " [options]\n\n" + spec.synopsis + "\n";
   if (!spec.description.empty()) s += "\n" + spec.description + "\n";
   s += "\noptions:\n";

@@ -28,6 +28,7 @@ struct CommandSpec {
 
 /// The result of parsing argv against a CommandSpec.
 struct Args {
+  std::string command;  ///< the command's name (CommandSpec::name)
   std::vector<std::string> positional;
   std::map<std::string, std::string> values;  ///< options with values
   std::map<std::string, bool> flags;

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "output.hpp"
 #include "nurbs_out.hpp"
 #include "json_reports.hpp"
 #include "report.hpp"
@@ -46,11 +47,10 @@ std::string weights_formula(long n, Format f) {
   }
 }
 
-/// Whether the exact weights are printed expanded: --exact-weights, where
-/// 'auto' bounds the size of the largest, w_0 = alpha^n, by n times the size
-/// of alpha's own text (without forming it).
 }  // namespace
 
+// 'auto' bounds the size of the largest, w_0 = alpha^n, by n times the size
+// of alpha's own text (without forming it).
 bool expand_weights(const std::string& form, const BezierResult& r, long n) {
   if (form == "expanded") return true;
   if (form == "formula") return false;
@@ -123,7 +123,7 @@ Json bezier_json(const BezierCurve& bz, const BezierResult& r, long digits, bool
 int run_bezier(int argc, char** argv) {
   const CommandSpec spec = bezier_spec();
   Args a = parse_args(spec, argc, argv, 2);
-  if (a.help) { std::cout << help_text(spec); return 0; }
+  if (a.help) { answer() << help_text(spec); return 0; }
   const Options opt = read_options(a);
   const Format fmt = read_format(a);
   const NurbsOutput no = read_nurbs_output(a);
@@ -145,47 +145,47 @@ int run_bezier(int argc, char** argv) {
   }
 
   if (wants_json(a)) {
-    std::cout << bezier_json(bz, r, opt.digits, expanded).dump(2) << "\n";
+    answer() << bezier_json(bz, r, opt.digits, expanded).dump(2) << "\n";
     return 0;
   }
 
-  std::cout << "control    " << bz.str() << "\n";
+  answer() << "control    " << bz.str() << "\n";
   if (bz.is_rational()) {
-    std::cout << "weights in [";
+    answer() << "weights in [";
     const auto v = bz.weights();
-    for (std::size_t i = 0; i < v.size(); ++i) std::cout << (i ? ", " : "") << format_rational(v[i], fmt);
-    std::cout << "]\n";
+    for (std::size_t i = 0; i < v.size(); ++i) answer() << (i ? ", " : "") << format_rational(v[i], fmt);
+    answer() << "]\n";
   }
-  std::cout << "bezier     degree " << bz.degree() << ", dimension " << bz.dimension() << ", "
+  answer() << "bezier     degree " << bz.degree() << ", dimension " << bz.dimension() << ", "
             << (bz.is_rational() ? "rational" : "integral") << "\n"
             << "curve      " << c.str() << "\n"
             << "speed      parametric\n";
   if (r.exact) {
-    std::cout << "P          " << format_rational(*r.P_exact, fmt) << "  (-int (1-t)^2 |p'|^2, exact)\n"
+    answer() << "P          " << format_rational(*r.P_exact, fmt) << "  (-int (1-t)^2 |p'|^2, exact)\n"
               << "Q          " << format_rational(*r.Q_exact, fmt) << "  (int t^2 |p'|^2, exact)\n"
               << "alpha      " << r.alpha_exact->str(fmt);
-    if (!r.alpha_exact->is_rational()) std::cout << " = " << format_ball(r.alpha, pd, Format::Text);
-    std::cout << "\n";
+    if (!r.alpha_exact->is_rational()) answer() << " = " << format_ball(r.alpha, pd, Format::Text);
+    answer() << "\n";
     if (expanded) {
       for (std::size_t i = 0; i < n1; ++i) {
-        std::cout << (i ? "           w_" : "weights    w_") << i << " = " << r.weights_exact[i].str(fmt);
-        if (!r.weights_exact[i].is_rational()) std::cout << " = " << format_ball(r.weights[i], pd, Format::Text);
-        std::cout << "\n";
+        answer() << (i ? "           w_" : "weights    w_") << i << " = " << r.weights_exact[i].str(fmt);
+        if (!r.weights_exact[i].is_rational()) answer() << " = " << format_ball(r.weights[i], pd, Format::Text);
+        answer() << "\n";
       }
     } else {
-      std::cout << "weights    " << weights_formula(bz.degree(), fmt) << "  (exact; --exact-weights expanded to expand)\n";
+      answer() << "weights    " << weights_formula(bz.degree(), fmt) << "  (exact; --exact-weights expanded to expand)\n";
       for (std::size_t i = 0; i < n1; ++i)
-        std::cout << "           w_" << i << " = " << format_ball(r.weights[i], pd, Format::Text) << "\n";
+        answer() << "           w_" << i << " = " << format_ball(r.weights[i], pd, Format::Text) << "\n";
     }
   } else {
-    std::cout << "P          " << format_ball(r.P, pd, Format::Text) << "  (-int (1-t)^2 |p'|^2, certified quadrature)\n"
+    answer() << "P          " << format_ball(r.P, pd, Format::Text) << "  (-int (1-t)^2 |p'|^2, certified quadrature)\n"
               << "Q          " << format_ball(r.Q, pd, Format::Text) << "  (int t^2 |p'|^2, certified quadrature)\n"
               << "alpha      " << format_ball(r.alpha, pd, Format::Text) << "\n";
     for (std::size_t i = 0; i < n1; ++i)
-      std::cout << (i ? "           w_" : "weights    w_") << i << " = " << format_ball(r.weights[i], pd, Format::Text)
+      answer() << (i ? "           w_" : "weights    w_") << i << " = " << format_ball(r.weights[i], pd, Format::Text)
                 << "\n";
   }
-  std::cout << "mu         " << format_ball(r.mu, pd, Format::Text) << "  (arc length)\n"
+  answer() << "mu         " << format_ball(r.mu, pd, Format::Text) << "  (arc length)\n"
             << "u before   " << format_ball(r.u_before, pd, Format::Text) << "\n"
             << "u after    " << format_ball(r.u_after, pd, Format::Text) << "\n";
   return 0;

@@ -4,6 +4,8 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "output.hpp"
+#include "composite.hpp"
 #include "json_reports.hpp"
 #include "report.hpp"
 #include "uniparam/reparam/locate.hpp"
@@ -64,7 +66,7 @@ Json locate_json(const Curve& c, SpeedKind kind, long digits, const std::string&
 int run_locate(int argc, char** argv) {
   const CommandSpec spec = locate_spec();
   Args a = parse_args(spec, argc, argv, 2);
-  if (a.help) { std::cout << help_text(spec); return 0; }
+  if (a.help) { answer() << help_text(spec); return 0; }
   const Options opt = read_options(a);
   const int given = static_cast<int>(a.has("length")) + static_cast<int>(a.has("angle")) +
                     static_cast<int>(a.has("fraction"));
@@ -80,6 +82,9 @@ int run_locate(int argc, char** argv) {
     throw InvalidArgument("--angle is a turning angle, measured by the angular speed: drop --speed " +
                           a.get("speed", "") + ", or give an arc length with --length");
   const Rational value = read_rational(option, a.get(option, ""));
+  if (auto cc = read_composite(a); cc && cc->size() > 1)
+    return run_locate_composite(a, *cc, kind, opt, value,
+                                option == "fraction" ? LocateTarget::Fraction : LocateTarget::Integral, option);
   const Curve c = read_curve(a);
   check_degree(c, opt);
   const Speed s(c, kind);
@@ -94,19 +99,19 @@ int run_locate(int argc, char** argv) {
   const char* measure = kind == SpeedKind::Parametric ? "length" : "angle";
 
   if (wants_json(a)) {
-    std::cout << locate_json(c, kind, opt.digits, option, value, r).dump(2) << "\n";
+    answer() << locate_json(c, kind, opt.digits, option, value, r).dump(2) << "\n";
     return 0;
   }
   auto line = [](const std::string& label) { return label + std::string(label.size() < 11 ? 11 - label.size() : 1, ' '); };
-  std::cout << line("curve") << c.str() << "\n"
+  answer() << line("curve") << c.str() << "\n"
             << line("speed") << to_string(kind) << "\n"
             << line("mu") << format_ball(r.mu, pd, Format::Text) << "  (the whole curve's "
             << (kind == SpeedKind::Parametric ? "arc length" : "turning angle") << ")\n";
-  if (target == LocateTarget::Fraction) std::cout << line("fraction") << value.str() << "\n";
-  std::cout << line(measure) << format_ball(r.target, pd, Format::Text) << "\n"
+  if (target == LocateTarget::Fraction) answer() << line("fraction") << value.str() << "\n";
+  answer() << line(measure) << format_ball(r.target, pd, Format::Text) << "\n"
             << line("t") << format_ball(r.at.t, pd, Format::Text) << "\n";
   for (std::size_t i = 0; i < r.at.point.size(); ++i)
-    std::cout << line(coordinate_name(i, r.at.point.size())) << format_ball(r.at.point[i], pd, Format::Text)
+    answer() << line(coordinate_name(i, r.at.point.size())) << format_ball(r.at.point[i], pd, Format::Text)
               << "\n";
   return 0;
 }

@@ -4,6 +4,8 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "output.hpp"
+#include "composite.hpp"
 #include "moebius_report.hpp"
 #include "nurbs_out.hpp"
 
@@ -62,11 +64,17 @@ CommandSpec moebius_spec() {
 int run_moebius(int argc, char** argv) {
   const CommandSpec spec = moebius_spec();
   Args a = parse_args(spec, argc, argv, 2);
-  if (a.help) { std::cout << help_text(spec); return 0; }
+  if (a.help) { answer() << help_text(spec); return 0; }
   const Options opt = read_options(a);
   const SpeedKind kind = parse_speed_kind(a.get("speed", "angular"));
   const MoebiusPrint how = read_moebius_print(a);
   const std::vector<RealAlgebraic> T = parse_breakpoints(a.get("breakpoints", "0,1"));
+  if (auto cc = read_composite(a); cc && cc->size() > 1) {
+    CompositeMethod m;
+    m.kind = a.has("breakpoints") ? CompositeMethod::Kind::Breakpoints : CompositeMethod::Kind::Moebius;
+    for (const RealAlgebraic& t : T) m.breakpoints.push_back(t.rational());
+    return run_map_composite(a, *cc, kind, opt, with_rational(a, m), "moebius");
+  }
   const NurbsOutput no = read_nurbs_output(a);
   const Curve c = read_curve(a);
   const MoebiusResult r = finish_moebius(c, moebius_c0(c, kind, T, opt), a, opt);

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "commands.hpp"
+#include "output.hpp"
 #include "json_reports.hpp"
 #include "svg.hpp"
 #include "uniparam/reparam/sample.hpp"
@@ -97,8 +98,8 @@ struct Projection {
   }
 };
 
-/// The projection named by `v` ("iso" or "I,J"; empty: the default, iso
-/// for 3 or more components) for a curve of n components.
+/// The projection named by `given` ("iso" or "I,J"; empty: the default,
+/// iso for 3 or more components) for a curve of n components.
 Projection read_projection(const std::string& given, std::size_t n) {
   Projection p;
   const std::string v = given.empty() ? (n >= 3 ? "iso" : "1,2") : given;
@@ -572,7 +573,7 @@ int run_plot(int argc, char** argv) {
   const CommandSpec spec = plot_spec();
   Args a = parse_args(spec, argc, argv, 2);  // "-o FILE" is read as "--output FILE"
 
-  if (a.help) { std::cout << help_text(spec); return 0; }
+  if (a.help) { answer() << help_text(spec); return 0; }
   if (!a.has("output")) throw InvalidArgument("plot needs -o FILE.svg or -o FILE.png (or -o - for SVG on stdout)");
   const std::string out = a.get("output", "");
   auto ends_with = [&](const char* e) {
@@ -597,7 +598,7 @@ int run_plot(int argc, char** argv) {
       try {
         svg::find_rsvg_convert();
       } catch (const std::runtime_error& e) {
-        std::cerr << "uniparam plot: " << e.what() << "\n";
+        warn() << "uniparam plot: " << e.what() << "\n";
         return 1;
       }
     }
@@ -613,7 +614,7 @@ int run_plot(int argc, char** argv) {
   const Reparameterization r = read_method(a, c, kind, opt, false);
   const std::string text = plot_svg(c, kind, r, K, projection, a.get("target", "0.99"), opt);
   if (out == "-") {
-    std::cout << text;
+    answer() << text;
     return target_status(r, "plot");
   }
   try {
@@ -624,7 +625,7 @@ int run_plot(int argc, char** argv) {
     }
   } catch (const std::runtime_error& e) {
     if (dynamic_cast<const Error*>(&e)) throw;
-    std::cerr << "uniparam plot: " << e.what() << "\n";
+    warn() << "uniparam plot: " << e.what() << "\n";
     return 1;
   }
   return target_status(r, "plot");

@@ -3,6 +3,8 @@
 #include <optional>
 
 #include "commands.hpp"
+#include "output.hpp"
+#include "composite.hpp"
 #include "json_reports.hpp"
 #include "report.hpp"
 #include "uniparam/reparam/formula.hpp"
@@ -42,14 +44,26 @@ Format parse_format(const std::string& s) {
   throw InvalidArgument("unknown format '" + s + "' (expected text, latex, maple or json)");
 }
 
-Json radical_json(const Curve& c, SpeedKind kind, long digits, const RadicalResult& r, Format fmt,
-                  const std::optional<SamplePoint>& atv, const Rational& at) {
+Json radical_at_json(const Rational& z, const SamplePoint& v, long digits) {
+  const long pd = printed_digits(digits);
+  Json e = Json::object();
+  e.set("z", json_rational(z, pd));
+  e.set("r", json_ball(v.t, pd));
+  Json pt = Json::array();
+  for (const auto& b : v.point) pt.push(json_ball(b, pd));
+  e.set("p_r", pt);
+  e.set("speed", json_ball(v.speed, pd));
+  e.set("at_joint", Json::boolean(v.at_joint));
+  return e;
+}
+
+Json radical_json(const Curve& c, const RadicalResult& r, long digits, Format fmt) {
   const long pd = printed_digits(digits);
   const auto formulas = radical_formulas(c, r, fmt, digits);
   const std::size_t N = r.pieces();
   Json j = Json::object();
   j.set("curve", Json::string(c.str()));
-  j.set("speed", Json::string(to_string(kind)));
+  j.set("speed", Json::string(to_string(r.kind)));
   j.set("digits", Json::number(digits));
   Json t = Json::array(), mult = Json::array();
   for (const auto& b : r.T) {
@@ -97,24 +111,13 @@ Json radical_json(const Curve& c, SpeedKind kind, long digits, const RadicalResu
     pieces.push(p);
   }
   j.set("pieces", pieces);
-  if (atv) {
-    Json e = Json::object();
-    e.set("z", json_rational(at, pd));
-    e.set("r", json_ball(atv->t, pd));
-    Json pt = Json::array();
-    for (const auto& b : atv->point) pt.push(json_ball(b, pd));
-    e.set("p_r", pt);
-    e.set("speed", json_ball(atv->speed, pd));
-    e.set("at_joint", Json::boolean(atv->at_joint));
-    j.set("at", e);
-  }
   return j;
 }
 
 int run_radical(int argc, char** argv) {
   const CommandSpec spec = radical_spec();
   Args a = parse_args(spec, argc, argv, 2);
-  if (a.help) { std::cout << help_text(spec); return 0; }
+  if (a.help) { answer() << help_text(spec); return 0; }
   if (a.has("output"))
     throw InvalidArgument("--output " + a.get("output", "") +
                           ": the radical pieces are not rational functions of s, so p o r is not a NURBS curve; "
@@ -123,6 +126,12 @@ int run_radical(int argc, char** argv) {
   const Options opt = read_options(a);
   const SpeedKind kind = parse_speed_kind(a.get("speed", "angular"));
   const Format fmt = read_format(a);
+  if (auto cc = read_composite(a); cc && cc->size() > 1) {
+    if (a.has("at")) throw InvalidArgument("--at on a composite curve: use 'uniparam sample' (its rows are r(s))");
+    CompositeMethod m;
+    m.kind = CompositeMethod::Kind::Radical;
+    return run_map_composite(a, *cc, kind, opt, m, "radical");
+  }
   const Curve c = read_curve(a);
   std::optional<Rational> at;
   if (a.has("at")) {
@@ -141,25 +150,27 @@ int run_radical(int argc, char** argv) {
   }
   const long pd = printed_digits(opt.digits);
   if (wants_json(a)) {
-    std::cout << radical_json(c, kind, opt.digits, r, fmt, atv, at ? *at : Rational(0)).dump(2) << "\n";
+    Json j = radical_json(c, r, opt.digits, fmt);
+    if (atv) j.set("at", radical_at_json(*at, *atv, opt.digits));
+    answer() << j.dump(2) << "\n";
     return 0;
   }
+
   const auto formulas = radical_formulas(c, r, fmt, opt.digits);
   const std::size_t N = r.pieces();
-
-  std::cout << "curve      " << c.str() << "\nspeed      " << to_string(kind) << "\n";
+  answer() << "curve      " << c.str() << "\nspeed      " << to_string(kind) << "\n";
   if (r.identically_zero)
-    std::cout << "the angular speed is identically zero (a straight line): r = id, u = 1\n";
+    answer() << "the angular speed is identically zero (a straight line): r = id, u = 1\n";
   auto list = [&](const char* name, const std::vector<Ball>& v) {
-    std::cout << name;
-    for (std::size_t i = 0; i < v.size(); ++i) std::cout << (i ? ", " : "(") << v[i].mid_decimal(pd);
-    std::cout << ")\n";
+    answer() << name;
+    for (std::size_t i = 0; i < v.size(); ++i) answer() << (i ? ", " : "(") << v[i].mid_decimal(pd);
+    answer() << ")\n";
   };
-  std::cout << "T          (";
-  for (std::size_t i = 0; i < r.T.size(); ++i) std::cout << (i ? ", " : "") << text_algebraic(r.T[i].t, opt.digits);
-  std::cout << ")\nmult       (";
-  for (std::size_t i = 0; i < r.T.size(); ++i) std::cout << (i ? ", " : "") << r.T[i].multiplicity;
-  std::cout << ")\n";
+  answer() << "T          (";
+  for (std::size_t i = 0; i < r.T.size(); ++i) answer() << (i ? ", " : "") << text_algebraic(r.T[i].t, opt.digits);
+  answer() << ")\nmult       (";
+  for (std::size_t i = 0; i < r.T.size(); ++i) answer() << (i ? ", " : "") << r.T[i].multiplicity;
+  answer() << ")\n";
   list("S          ", r.S);
   list("Z          ", r.Z);
   std::vector<Ball> alpha, L, M;
@@ -171,26 +182,26 @@ int run_radical(int argc, char** argv) {
   list("C          ", r.C);
   list("M          ", M);
   for (std::size_t i = 0; i < N; ++i) {
-    std::cout << "piece " << i << "    z in " << formulas[i].z_interval << ", s in " << formulas[i].s_interval << "\n"
+    answer() << "piece " << i << "    z in " << formulas[i].z_interval << ", s in " << formulas[i].s_interval << "\n"
               << "  phi(s) = " << formulas[i].phi << "\n"
               << "  m(z)   = " << formulas[i].m << "\n"
               << "  r(z)   = " << formulas[i].r << "\n";
     for (std::size_t k = 0; k < formulas[i].p_r.size(); ++k)
-      std::cout << "  p_" << k + 1 << "(r(z)) = " << formulas[i].p_r[k] << "\n";
+      answer() << "  p_" << k + 1 << "(r(z)) = " << formulas[i].p_r[k] << "\n";
   }
-  std::cout << "mu         " << format_ball(r.mu, pd, Format::Text) << "\n"
+  answer() << "mu         " << format_ball(r.mu, pd, Format::Text) << "\n"
             << "u(p)       " << format_ball(r.u_before, pd, Format::Text) << "\n"
             << "u(p o phi) " << format_ball(r.u_radical, pd, Format::Text) << "\n"
             << "u(p o r)   " << format_ball(r.u_after, pd, Format::Text) << "\n"
             ;
   if (atv) {
-    std::cout << "at z = " << at->str() << ": r(z) = " << format_ball(atv->t, pd, Format::Text) << "\n  p(r(z)) = (";
+    answer() << "at z = " << at->str() << ": r(z) = " << format_ball(atv->t, pd, Format::Text) << "\n  p(r(z)) = (";
     for (std::size_t k = 0; k < atv->point.size(); ++k)
-      std::cout << (k ? ", " : "") << format_ball(atv->point[k], pd, Format::Text);
-    std::cout << ")\n  speed of p o r = " << format_ball(atv->speed, pd, Format::Text)
+      answer() << (k ? ", " : "") << format_ball(atv->point[k], pd, Format::Text);
+    answer() << ")\n  speed of p o r = " << format_ball(atv->speed, pd, Format::Text)
               << (atv->at_joint ? " (z is on a joint: the union of both one-sided speeds)" : "") << "\n";
   }
-  std::cout << "(every number is certified to " << opt.digits
+  answer() << "(every number is certified to " << opt.digits
             << " digits; the formulas print ball midpoints)\n";
   return 0;
 }

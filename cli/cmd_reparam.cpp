@@ -4,6 +4,8 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "output.hpp"
+#include "composite.hpp"
 #include "moebius_report.hpp"
 #include "nurbs_out.hpp"
 
@@ -32,7 +34,7 @@ CommandSpec reparam_spec() {
 int run_reparam(int argc, char** argv) {
   const CommandSpec spec = reparam_spec();
   Args a = parse_args(spec, argc, argv, 2);
-  if (a.help) { std::cout << help_text(spec); return 0; }
+  if (a.help) { answer() << help_text(spec); return 0; }
   const Options opt = read_options(a);
   const SpeedKind kind = parse_speed_kind(a.get("speed", "angular"));
   const MoebiusPrint how = read_moebius_print(a);
@@ -50,6 +52,17 @@ int run_reparam(int argc, char** argv) {
     if (!(target.sign() > 0 && target < Rational(1)))
       throw InvalidArgument("--target must lie strictly between 0 and 1, got " + a.get("target", ""));
   }
+  if (auto cc = read_composite(a); cc && cc->size() > 1) {
+    CompositeMethod m;
+    m.kind = pieces ? CompositeMethod::Kind::Pieces
+             : !T.empty() ? CompositeMethod::Kind::Breakpoints
+                          : CompositeMethod::Kind::Target;
+    m.pieces = pieces;
+    for (const RealAlgebraic& t : T) m.breakpoints.push_back(t.rational());
+    m.target = target;
+    m.max_pieces = max_pieces;
+    return run_map_composite(a, *cc, kind, opt, with_rational(a, m), "reparam");
+  }
   const NurbsOutput no = read_nurbs_output(a);
   const Curve c = read_curve(a);
   MoebiusResult r = pieces    ? reparam_c0(c, kind, pieces, opt)
@@ -59,7 +72,7 @@ int run_reparam(int argc, char** argv) {
   if (!no.replaces_report()) print_moebius(c, r, opt.digits, how);
   write_moebius_nurbs(c, r, no, opt);
   if (r.target.used && !r.target.reached) {
-    std::cerr << "uniparam reparam: " << target_missed_message(r, max_pieces, opt.digits) << "\n";
+    warn() << "uniparam reparam: " << target_missed_message(r, max_pieces, opt.digits) << "\n";
     return 4;
   }
   return 0;

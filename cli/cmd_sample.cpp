@@ -7,6 +7,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "composite.hpp"
 #include "output.hpp"
 #include "json_reports.hpp"
 #include "report.hpp"
@@ -51,7 +52,7 @@ Reparameterization read_method(const Args& a, const Curve& c, SpeedKind kind, co
 int target_status(const Reparameterization& r, const std::string& command) {
   const auto* m = r.moebius_result();
   if (!m || !m->target.used || m->target.reached) return 0;
-  std::cerr << "uniparam " << command << ": the target u >= " << m->target.value.str()
+  warn() << "uniparam " << command << ": the target u >= " << m->target.value.str()
             << " was not reached (best map used: " << m->pieces() << " pieces, u = " << m->u_after.mid_decimal(6)
             << "; raise --max-pieces)\n";
   return 4;
@@ -100,9 +101,53 @@ CommandSpec sample_spec() {
           opts};
 }
 
+Json sample_header_json(const Curve& c, SpeedKind kind, const Reparameterization& r, long digits, long K) {
+  const long pd = printed_digits(digits);
+  Json head = Json::object();
+  head.set("curve", Json::string(c.str()));
+  head.set("speed", Json::string(to_string(kind)));
+  head.set("method", Json::string(r.method()));
+  head.set("digits", Json::number(digits));
+  head.set("points", Json::number(K));
+  head.set("mu", json_ball(r.mu(), pd));
+  head.set("u_before", json_ball(r.u_before(), pd));
+  head.set("u_after", json_ball(r.u_after(), pd));
+  Json js = Json::array(), jt = Json::array();
+  for (const auto& b : r.joints_s()) js.push(json_ball(b, pd));
+  for (const auto& t : r.joints_t()) jt.push(json_algebraic(t, digits));
+  Json joints = Json::object();
+  joints.set("s", js);
+  joints.set("t", jt);
+  head.set("joints", joints);
+  return head;
+}
+
+Json sample_row_json(const SamplePoint& p, long digits) {
+  const long pd = printed_digits(digits);
+  Json row = Json::object();
+  row.set("s", json_rational(p.s, pd));
+  row.set("t", json_ball(p.t, pd));
+  Json pt = Json::array();
+  for (const auto& b : p.point) pt.push(json_ball(b, pd));
+  row.set("point", pt);
+  row.set("speed", json_ball(p.speed, pd));
+  row.set("at_joint", Json::boolean(p.at_joint));
+  return row;
+}
+
+Json sample_exact_header_json(const Curve& c, SpeedKind kind, long digits, long K) {
+  Json head = Json::object();
+  head.set("curve", Json::string(c.str()));
+  head.set("speed", Json::string(to_string(kind)));
+  head.set("method", Json::string("exact"));
+  head.set("digits", Json::number(digits));
+  head.set("points", Json::number(K));
+  return head;
+}
+
 namespace {
 
-/// The bookkeeping of rows streamed to std::cout (after stream_stdout()): a
+/// The bookkeeping of rows streamed to answer() (after stream_stdout()): a
 /// failed write ends the command with status 1, a budget exceeded after the
 /// first row with status 4, both saying how many rows went out.
 struct RowStream {
@@ -110,7 +155,7 @@ struct RowStream {
   const long K;
   long written = 0;
   struct WriteFailed {};
-  std::ostream& out = std::cout;
+  std::ostream& out = answer();
 
   /// Throws WriteFailed when the stream has failed; else counts the row.
   void row_done() {
@@ -130,7 +175,7 @@ struct RowStream {
   /// The message of a failed write, with the system's reason; returns 1.
   int write_failed() const {
     const std::string why = stdout_stream_error();
-    std::cerr << "uniparam sample: cannot write the output to stdout" << (why.empty() ? "" : ": " + why) << " ("
+    warn() << "uniparam sample: cannot write the output to stdout" << (why.empty() ? "" : ": " + why) << " ("
               << written << " of " << K << " rows handed over; the output is incomplete)\n";
     return 1;
   }
@@ -153,47 +198,51 @@ std::string upper_bound_text(const Ball& d) {
   return b.rad_decimal();
 }
 
-// sample --method exact: the rows of exact_samples_each, streamed as the
-// other methods' rows (same columns; the speed of the exactly uniform
-// parameterization is mu at every s).
-int run_sample_exact(const Args& a, const Curve& c, SpeedKind kind, const Options& opt, long K,
-                     const std::string& format) {
-  for (const char* o : {"pieces", "target", "max-pieces"})
-    if (a.has(o)) throw InvalidArgument(std::string("--") + o + " does not apply to --method exact");
-  if (a.flag("deviation"))
-    throw InvalidArgument("--deviation measures a map's rows against --method exact's; it does not apply to "
-                          "--method exact itself");
-  check_degree(c, opt);
-  const Speed sp(c, kind);
-  const std::size_t n = c.dimension();
+// Streams the rows `each` hands over: the header (JSON: `head` with the
+// rows as "samples" last; CSV: the column line) goes out before the first
+// row -- at once, or, with `late_mu`, at the first row with "mu" from there
+// (certified by then). With `deviation`, each row gets its deviation and
+// JSON ends with "max_deviation" = *worst. A failed write gives status 1; a
+// budget exceeded after the header, the error saying how many rows went out.
+int stream_samples(Json head, std::size_t n, long K, const std::string& format, const Options& opt,
+                   const std::function<void(const SampleSink&)>& each,
+                   const std::function<Ball(const SamplePoint&)>& deviation = {}, const Ball* worst = nullptr,
+                   const Ball* late_mu = nullptr) {
+  const long pd = printed_digits(opt.digits);
   RowStream rows(K);
   std::ostream& out = rows.out;
-  Ball mu;
   bool started = false;
-  // mu is certified before the first row; the header goes out with it.
   auto start = [&]() {
     started = true;
     stream_stdout();
     if (format == "json") {
-      std::string head = sample_exact_header_json(c, kind, opt.digits, K, mu).dump(2);
-      head.resize(head.size() - 2);  // "\n}"
-      out << head << ",\n  \"samples\": [";
+      if (late_mu) head.set("mu", json_ball(*late_mu, pd));
+      // The document as Json::dump(2) would print it with "samples" last:
+      // the header without its closing brace, then each row indented.
+      std::string text = head.dump(2);
+      text.resize(text.size() - 2);  // "\n}"
+      out << text << ",\n  \"samples\": [";
     } else {
       out << "s,t";
       for (std::size_t i = 0; i < n; ++i) out << "," << coordinate_name(i, n);
-      out << ",speed\n";
+      out << ",speed" << (deviation ? ",deviation" : "") << "\n";
     }
   };
+  if (!late_mu) start();
   try {
-    exact_samples_each(c, sp, K, opt, mu, [&](long k, const LocatedPoint& p) {
+    each([&](long k, const SamplePoint& p) {
       if (!started) start();
-      const Rational s(k, K - 1);
       if (format == "json") {
-        rows.json_row(k, sample_exact_row_json(s, p, mu, opt.digits));
+        Json row = sample_row_json(p, opt.digits);
+        if (deviation) row.set("deviation", json_ball(deviation(p), pd));
+        rows.json_row(k, row);
       } else {
-        std::string line = decimal_string(s, opt.digits) + "," + p.t.mid_decimal(opt.digits);
+        std::string line = decimal_string(p.s, opt.digits) + "," + p.t.mid_decimal(opt.digits);
         for (const auto& b : p.point) line += "," + b.mid_decimal(opt.digits);
-        out << line << "," << mu.mid_decimal(opt.digits) << "\n";
+        line += ",";
+        if (!p.at_joint) line += p.speed.mid_decimal(opt.digits);
+        if (deviation) line += "," + upper_bound_text(deviation(p));
+        out << line << "\n";
       }
       rows.row_done();
     });
@@ -204,76 +253,59 @@ int run_sample_exact(const Args& a, const Curve& c, SpeedKind kind, const Option
   } catch (const RowStream::WriteFailed&) {
     return rows.write_failed();
   }
-  if (format == "json") out << "\n  ]\n}\n";
+  if (format == "json") {
+    out << "\n  ]";
+    if (deviation && worst) {
+      std::string m = json_ball(*worst, pd).dump(2), indented;
+      for (char ch : m) {
+        indented += ch;
+        if (ch == '\n') indented += "  ";
+      }
+      out << ",\n  \"max_deviation\": " << indented;
+    }
+    out << "\n}\n";
+  }
   out.flush();
   if (!out) return rows.write_failed();
   return 0;
 }
 
+// sample --method exact: the rows of exact_samples_each, streamed as the
+// other methods' rows (same columns; the speed of the exactly uniform
+// parameterization is mu at every s). mu is certified before the first
+// row; the header goes out with it.
+int run_sample_exact(const Args& a, const Curve& c, SpeedKind kind, const Options& opt, long K,
+                     const std::string& format) {
+  for (const char* o : {"pieces", "target", "max-pieces"})
+    if (a.has(o)) throw InvalidArgument(std::string("--") + o + " does not apply to --method exact");
+  if (a.flag("deviation"))
+    throw InvalidArgument("--deviation measures a map's rows against --method exact's; it does not apply to "
+                          "--method exact itself");
+  check_degree(c, opt);
+  const Speed sp(c, kind);
+  Json head = sample_exact_header_json(c, kind, opt.digits, K);
+  Ball mu;
+  return stream_samples(head, c.dimension(), K, format, opt, [&](const SampleSink& sink) {
+    exact_samples_each(c, sp, K, opt, mu, [&](long k, const LocatedPoint& p) {
+      SamplePoint row;
+      row.s = Rational(k, K - 1);
+      row.t = p.t;
+      row.point = p.point;
+      row.speed = mu;
+      sink(k, row);
+    });
+  }, {}, nullptr, &mu);
+}
+
+int run_sample_composite(const Args& a, const CompositeCurve& c, SpeedKind kind, const Options& opt, long K,
+                         const std::string& format);
+
 }  // namespace
-
-Json sample_header_json(const Curve& c, SpeedKind kind, const Reparameterization& r, long digits, long K) {
-  const long pd = printed_digits(digits);
-  Json j = Json::object();
-  j.set("curve", Json::string(c.str()));
-  j.set("speed", Json::string(to_string(kind)));
-  j.set("method", Json::string(r.method()));
-  j.set("digits", Json::number(digits));
-  j.set("points", Json::number(K));
-  j.set("mu", json_ball(r.mu(), pd));
-  j.set("u_before", json_ball(r.u_before(), pd));
-  j.set("u_after", json_ball(r.u_after(), pd));
-  Json js = Json::array(), jt = Json::array();
-  for (const auto& b : r.joints_s()) js.push(json_ball(b, pd));
-  for (const auto& t : r.joints_t()) jt.push(json_algebraic(t, digits));
-  Json joints = Json::object();
-  joints.set("s", js);
-  joints.set("t", jt);
-  j.set("joints", joints);
-  return j;
-}
-
-Json sample_row_json(const SamplePoint& p, long digits) {
-  const long pd = printed_digits(digits);
-  Json row = Json::object();
-  row.set("s", json_rational(p.s, pd));
-  row.set("t", json_ball(p.t, pd));
-  Json pt = Json::array();
-  for (const auto& b : p.point) pt.push(json_ball(b, pd));
-  row.set("point", pt);
-  row.set("speed", json_ball(p.speed, pd));
-  row.set("at_joint", Json::boolean(p.at_joint));
-  return row;
-}
-
-Json sample_exact_header_json(const Curve& c, SpeedKind kind, long digits, long K, const Ball& mu) {
-  Json j = Json::object();
-  j.set("curve", Json::string(c.str()));
-  j.set("speed", Json::string(to_string(kind)));
-  j.set("method", Json::string("exact"));
-  j.set("digits", Json::number(digits));
-  j.set("points", Json::number(K));
-  j.set("mu", json_ball(mu, printed_digits(digits)));
-  return j;
-}
-
-Json sample_exact_row_json(const Rational& s, const LocatedPoint& p, const Ball& mu, long digits) {
-  const long pd = printed_digits(digits);
-  Json row = Json::object();
-  row.set("s", json_rational(s, pd));
-  row.set("t", json_ball(p.t, pd));
-  Json pt = Json::array();
-  for (const auto& b : p.point) pt.push(json_ball(b, pd));
-  row.set("point", pt);
-  row.set("speed", json_ball(mu, pd));
-  row.set("at_joint", Json::boolean(false));
-  return row;
-}
 
 int run_sample(int argc, char** argv) {
   const CommandSpec spec = sample_spec();
   Args a = parse_args(spec, argc, argv, 2);
-  if (a.help) { std::cout << help_text(spec); return 0; }
+  if (a.help) { answer() << help_text(spec); return 0; }
   const Options opt = read_options(a);
   const SpeedKind kind = parse_speed_kind(a.get("speed", "angular"));
   const long K = a.get_long("points", 40, 2, 1000000);
@@ -281,6 +313,7 @@ int run_sample(int argc, char** argv) {
   if (format != "csv" && format != "json")
     throw InvalidArgument("unknown format '" + format + "' (expected csv or json)");
   if (a.flag("json") && format != "json") throw InvalidArgument("--json conflicts with --format " + format);
+  if (auto cc = read_composite(a); cc && cc->size() > 1) return run_sample_composite(a, *cc, kind, opt, K, format);
   const Curve c = read_curve(a);
   if (a.get("method", "radical") == "exact") return run_sample_exact(a, c, kind, opt, K, format);
   // The map is certified completely (u, joints, data to 3 more digits than
@@ -294,7 +327,6 @@ int run_sample(int argc, char** argv) {
   const Reparameterization r = read_method(a, c, kind, ropt, true);
   const Speed sp(c, kind);
   const std::size_t n = c.dimension();
-  const long pd = printed_digits(opt.digits);
   // --deviation: G(r(s)) / mu for the rows in increasing s, one short
   // integral per row; mu (and the straight line's refusal) before any row.
   const bool deviation = a.flag("deviation");
@@ -309,66 +341,91 @@ int run_sample(int argc, char** argv) {
     arb_max(worst.get(), worst.get(), d.get(), prec);
     return d;
   };
-  stream_stdout();  // the map is certified: the rows go out as they come
-  RowStream rows(K);
-  std::ostream& out = rows.out;
-
-  if (format == "json") {
-    const Json j = sample_header_json(c, kind, r, opt.digits, K);
-    // The document as Json::dump(2) would print it with "samples" last: the
-    // header without its closing brace, then each row indented two levels.
-    std::string head = j.dump(2);
-    head.resize(head.size() - 2);  // "\n}"
-    out << head << ",\n  \"samples\": [";
-    try {
-      sample_each(c, sp, r, K, opt.digits, opt.max_prec, [&](long k, const SamplePoint& p) {
-        Json row = sample_row_json(p, opt.digits);
-        if (deviation) row.set("deviation", json_ball(deviation_of(p), pd));
-        rows.json_row(k, row);
-        rows.row_done();
-      });
-    } catch (const BudgetExceeded& e) {
-      out.flush();
-      throw rows.incomplete(e);
-    } catch (const RowStream::WriteFailed&) {
-      return rows.write_failed();
-    }
-    out << "\n  ]";
-    if (deviation) {
-      std::string m = json_ball(worst, pd).dump(2), indented;
-      for (char ch : m) {
-        indented += ch;
-        if (ch == '\n') indented += "  ";
-      }
-      out << ",\n  \"max_deviation\": " << indented;
-    }
-    out << "\n}\n";
-    out.flush();
-    if (!out) return rows.write_failed();
-    return target_status(r, "sample");
-  }
-  out << "s,t";
-  for (std::size_t i = 0; i < n; ++i) out << "," << coordinate_name(i, n);
-  out << ",speed" << (deviation ? ",deviation" : "") << "\n";
-  try {
-    sample_each(c, sp, r, K, opt.digits, opt.max_prec, [&](long, const SamplePoint& p) {
-      std::string line = decimal_string(p.s, opt.digits) + "," + p.t.mid_decimal(opt.digits);
-      for (const auto& b : p.point) line += "," + b.mid_decimal(opt.digits);
-      line += ",";
-      if (!p.at_joint) line += p.speed.mid_decimal(opt.digits);
-      if (deviation) line += "," + upper_bound_text(deviation_of(p));
-      out << line << "\n";
-      rows.row_done();
-    });
-  } catch (const BudgetExceeded& e) {
-    out.flush();
-    throw rows.incomplete(e);
-  } catch (const RowStream::WriteFailed&) {
-    return rows.write_failed();
-  }
-  out.flush();
-  if (!out) return rows.write_failed();
-  return target_status(r, "sample");
+  const Json head = sample_header_json(c, kind, r, opt.digits, K);
+  const int rc = stream_samples(head, n, K, format, opt, [&](const SampleSink& sink) {
+    sample_each(c, sp, r, K, opt.digits, opt.max_prec, sink);
+  }, deviation ? std::function<Ball(const SamplePoint&)>(deviation_of) : std::function<Ball(const SamplePoint&)>(),
+     &worst);
+  return rc ? rc : target_status(r, "sample");
 }
+
+namespace {
+
+int run_sample_composite(const Args& a, const CompositeCurve& c, SpeedKind kind, const Options& opt, long K,
+                         const std::string& format) {
+  if (a.flag("deviation")) throw InvalidArgument("--deviation is not available for composite curves");
+  const std::string m = a.get("method", "radical");
+  if (m != "radical" && m != "c0" && m != "c1" && m != "none" && m != "exact")
+    throw InvalidArgument("unknown method '" + m + "' (expected radical, c0, c1, none or exact)");
+  if (a.has("pieces") && m != "c0") throw InvalidArgument("--pieces applies to --method c0 only");
+  if (a.has("target") && m != "c1") throw InvalidArgument("--target applies to --method c1 only");
+  if (a.has("max-pieces") && m != "c1") throw InvalidArgument("--max-pieces applies to --method c1 only");
+  const std::vector<Speed> sp = c.speeds(kind);
+  const std::size_t n = c.dimension();
+  const long pd = printed_digits(opt.digits);
+  Json head = Json::object();
+  head.set("curve", Json::string(composite_description(a, c)));
+  head.set("speed", Json::string(to_string(kind)));
+  if (m == "exact") {
+    head.set("method", Json::string("exact"));
+    head.set("digits", Json::number(opt.digits));
+    head.set("points", Json::number(K));
+    // mu comes with the first point (exact_samples_each certifies it first).
+    Ball mu;
+    return stream_samples(head, n, K, format, opt, [&](const SampleSink& sink) {
+      exact_samples_each(c, sp, K, opt, mu, [&](long k, const LocatedPoint& p) {
+        SamplePoint row;
+        row.s = Rational(k, K - 1);
+        row.t = p.t;
+        row.point = p.point;
+        row.speed = mu;
+        sink(k, row);
+      });
+    }, {}, nullptr, &mu);
+  }
+  CompositeMethod cm;
+  Options ropt = opt;
+  ropt.digits = opt.digits + 3;
+  if (m == "radical") cm.kind = CompositeMethod::Kind::Radical;
+  if (m == "c0") {
+    cm.kind = CompositeMethod::Kind::Pieces;
+    cm.pieces = a.get_long("pieces", std::max<long>(3, static_cast<long>(c.size())), 1, 1000);
+  }
+  if (m == "c1") {
+    cm.kind = CompositeMethod::Kind::Target;
+    cm.target = read_rational("target", a.get("target", "0.99"));
+    cm.max_pieces = a.get_long("max-pieces", 64, 1, 1000);
+  }
+  const CompositeMap r = composite_map(c, sp, cm, ropt);
+  head.set("method", Json::string(m == "none" ? "none" : r.method()));
+  head.set("digits", Json::number(opt.digits));
+  head.set("points", Json::number(K));
+  head.set("mu", json_ball(r.mu(), pd));
+  head.set("u_before", json_ball(r.u_before(), pd));
+  head.set("u_after", json_ball(r.u_after(), pd));
+  Json S = Json::array(), knots = Json::array();
+  for (const Rational& x : r.S()) S.push(json_rational(x, pd));
+  for (const Rational& x : c.knots()) knots.push(json_rational(x, pd));
+  Json joints = Json::object();
+  joints.set("s", S);
+  joints.set("t", knots);
+  head.set("segment_joints", joints);
+  CompositeSampler smp(c, sp, r, opt.digits, opt.max_prec);
+  const int rc = stream_samples(head, n, K, format, opt, [&](const SampleSink& sink) {
+    for (long k = 0; k < K; ++k) {
+      check_time_budget();
+      sink(k, smp.at(Rational(k, K - 1)));
+    }
+  });
+  if (rc) return rc;
+  if (cm.kind == CompositeMethod::Kind::Target && !r.target_reached()) {
+    warn() << "uniparam sample: the target u >= " << cm.target.str()
+              << " was not reached on every segment; the best map was sampled\n";
+    return 4;
+  }
+  return 0;
+}
+
+}  // namespace
 
 }  // namespace uniparam::cli

@@ -2,6 +2,8 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "output.hpp"
+#include "composite.hpp"
 #include "json_reports.hpp"
 #include "report.hpp"
 
@@ -43,29 +45,30 @@ Json uniformity_json(const Curve& c, SpeedKind kind, long digits, const Uniformi
 int run_uniformity(int argc, char** argv) {
   const CommandSpec spec = uniformity_spec();
   Args a = parse_args(spec, argc, argv, 2);
-  if (a.help) { std::cout << help_text(spec); return 0; }
+  if (a.help) { answer() << help_text(spec); return 0; }
   const Options opt = read_options(a);
   const SpeedKind kind = parse_speed_kind(a.get("speed", "angular"));
+  if (auto cc = read_composite(a); cc && cc->size() > 1) return run_uniformity_composite(a, *cc, kind, opt);
   const Curve c = read_curve(a);
   const UniformityResult r = uniformity(c, kind, opt);
   const long pd = printed_digits(opt.digits);
   const char* sq = kind == SpeedKind::Angular ? "omega^2" : "|p'|^2";
 
   if (a.flag("json")) {
-    std::cout << uniformity_json(c, kind, opt.digits, r).dump(2) << "\n";
+    answer() << uniformity_json(c, kind, opt.digits, r).dump(2) << "\n";
     return 0;
   }
-  std::cout << "curve      " << c.str() << "\n"
+  answer() << "curve      " << c.str() << "\n"
             << "speed      " << to_string(kind) << "\n"
             << sq << std::string(11 - std::string(sq).size(), ' ') << format_ratfunc(r.speed_squared, Format::Text)
             << "\n";
-  if (r.identically_zero) std::cout << "zeros      the speed is identically zero (a straight line)\n";
-  else if (r.zeros.empty()) std::cout << "zeros      none in [0, 1]\n";
+  if (r.identically_zero) answer() << "zeros      the speed is identically zero (a straight line)\n";
+  else if (r.zeros.empty()) answer() << "zeros      none in [0, 1]\n";
   else
     for (std::size_t i = 0; i < r.zeros.size(); ++i)
-      std::cout << (i ? "           " : "zeros      ") << "t = " << text_algebraic(r.zeros[i].t, opt.digits)
+      answer() << (i ? "           " : "zeros      ") << "t = " << text_algebraic(r.zeros[i].t, opt.digits)
                 << ", multiplicity " << r.zeros[i].multiplicity << "\n";
-  std::cout << "mu         " << format_ball(r.mu, pd, Format::Text) << "\n"
+  answer() << "mu         " << format_ball(r.mu, pd, Format::Text) << "\n"
             << "int s^2    " << format_ball(r.mean_square, pd, Format::Text) << "\n"
             << "u          " << format_ball(r.u, pd, Format::Text) << "\n";
   return 0;

@@ -1,6 +1,8 @@
 // cli/commands.cpp -- the table of subcommands and their shared options.
 #include "commands.hpp"
 
+#include "composite.hpp"
+
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
@@ -83,6 +85,9 @@ std::vector<OptionSpec> common_options() {
        ""},
       {"control", "POINTS", "the curve as Bezier control points \"[[x0,y0],[x1,y1],...]\" (instead of CURVE)", ""},
       {"weights", "LIST", "weights \"[w0,w1,...]\" of a rational Bezier curve (with --control; positive)", ""},
+      {"svg", "PATH", "the curve as SVG path data \"M 0 0 Q 1 2 3 1 ...\" (one subpath; docs/inputs.md)", ""},
+      {"subpath", "K", "with --svg: the subpath to use, 0-based (needed when the path has several)", ""},
+      {"nurbs", "JSON", "the curve as a NURBS/B-spline {\"degree\", \"knots\", \"control\", \"weights\"}", ""},
   };
 }
 
@@ -95,6 +100,10 @@ Options read_options(const Args& a) {
 }
 
 BezierCurve read_bezier(const Args& a) {
+  if (a.has("svg") || a.has("nurbs"))
+    throw InvalidArgument("'uniparam " + a.command + "' takes one Bezier curve, given with --control; for a path "
+                          "or a spline, 'uniparam moebius --speed parametric' gives each segment its optimal "
+                          "Moebius map");
   if (!a.has("control")) throw InvalidArgument("give the control points with --control \"[[x0,y0],[x1,y1],...]\"");
   const long max_degree = read_options(a).max_degree;
   BezierCurve b = BezierCurve::parse(a.get("control", ""), a.get("weights", ""),
@@ -104,6 +113,13 @@ BezierCurve read_bezier(const Args& a) {
 }
 
 Curve read_curve(const Args& a) {
+  if (a.has("svg") || a.has("nurbs")) {
+    const CompositeCurve cc = *read_composite(a);
+    if (cc.size() != 1)
+      throw InvalidArgument("'uniparam " + a.command + "' takes one curve, and this " + composite_description(a, cc) +
+                            " (use it with uniformity, radical, moebius, reparam, sample or locate)");
+    return cc.segment(0);
+  }
   if (a.has("control")) return read_bezier(a).to_curve();
   if (a.has("weights")) throw InvalidArgument("--weights needs --control (the weights of a rational Bezier curve)");
   return Curve::parse(a.positional.at(0), read_parse_limits(a));

@@ -59,6 +59,8 @@ CommandSpec uniformity_spec();
 int run_uniformity(int argc, char** argv);
 CommandSpec radical_spec();
 int run_radical(int argc, char** argv);
+/// The JSON document `radical --json` prints for r (without "at").
+Json radical_json(const Curve& c, const RadicalResult& r, long digits, Format fmt);
 CommandSpec moebius_spec();
 int run_moebius(int argc, char** argv);
 CommandSpec reparam_spec();
@@ -75,6 +77,8 @@ CommandSpec sample_spec();
 int run_sample(int argc, char** argv);
 CommandSpec plot_spec();
 int run_plot(int argc, char** argv);
+/// `uniparam batch COMMAND ...` (cmd_batch.cpp): argv[2] is COMMAND.
+int run_batch(int argc, char** argv);
 CommandSpec locate_spec();
 int run_locate(int argc, char** argv);
 /// --method, --pieces, --target (cmd_sample.cpp); `with_none` adds

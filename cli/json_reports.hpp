@@ -1,5 +1,6 @@
 // cli/json_reports.hpp -- the JSON documents of the commands, built from the
-// library's results. The CLI prints them for --json; the Python module
+// library's results (with radical_json, commands.hpp, and moebius_json,
+// moebius_report.hpp). The CLI prints them for --json; the Python module
 // (python/) returns the same documents, so both give identical strings.
 //
 // `digits` is the precision the result was computed for (Options::digits):
@@ -17,12 +18,10 @@ namespace uniparam::cli {
 /// identically_zero, mu, mean_square, u.
 Json uniformity_json(const Curve& c, SpeedKind kind, long digits, const UniformityResult& r);
 
-/// `uniparam radical --json`: t, multiplicity, s, z, alpha, L, A, B, C, M,
-/// mu, u_before, u_radical, u_after, pieces (formulas in `fmt`) and, when
-/// `atv` holds the values at z = `at`, "at".
-/// \throws as radical_formulas.
-Json radical_json(const Curve& c, SpeedKind kind, long digits, const RadicalResult& r, Format fmt,
-                  const std::optional<SamplePoint>& atv, const Rational& at);
+/// The "at" object of `uniparam radical --at Z --json`: z, r, p_r, speed,
+/// at_joint of the values v of p o r at z (radical_json, commands.hpp, gives
+/// the rest of the document).
+Json radical_at_json(const Rational& z, const SamplePoint& v, long digits);
 
 /// Whether the exact weights of a Bezier result of degree n are printed
 /// expanded, for --exact-weights `form` ("expanded", "formula" or "auto":
@@ -44,10 +43,9 @@ Json locate_json(const Curve& c, SpeedKind kind, long digits, const std::string&
 Json sample_header_json(const Curve& c, SpeedKind kind, const Reparameterization& r, long digits, long K);
 /// One row of "samples": s, t, point, speed, at_joint.
 Json sample_row_json(const SamplePoint& p, long digits);
-/// `uniparam sample --method exact --json` without its "samples".
-Json sample_exact_header_json(const Curve& c, SpeedKind kind, long digits, long K, const Ball& mu);
-/// One row of --method exact at s: the speed is mu, at_joint false.
-Json sample_exact_row_json(const Rational& s, const LocatedPoint& p, const Ball& mu, long digits);
+/// `uniparam sample --method exact --json` without "mu" (set once known)
+/// and "samples"; its rows are sample_row_json of points whose speed is mu.
+Json sample_exact_header_json(const Curve& c, SpeedKind kind, long digits, long K);
 
 /// The SVG document of `uniparam plot` for c reparameterized by r (K sample
 /// points; `projection` as --projection, empty for the default; `target` the

@@ -31,11 +31,14 @@ const char* kMainHelp =
     "  plot CURVE -o F    SVG or PNG: p and p o r sampled at equal steps, and both speeds\n"
     "  locate CURVE (--length S | --fraction F | --angle A)\n"
     "                     the parameter t at arc length S (or turning angle A), certified\n"
+    "  batch COMMAND      COMMAND on every JSON line of stdin, one JSON result per line\n"
     "\n"
     "CURVE is a tuple of rational functions of t, e.g. \"(t, t^3)\" or\n"
     "\"((1-t^2)/(1+t^2), 2t/(1+t^2), t)\"; decimals are read exactly (0.1 = 1/10).\n"
     "Every command also takes a Bezier curve instead of CURVE: --control\n"
-    "\"[[x0,y0],[x1,y1],...]\" and, for a rational one, --weights \"[w0,w1,...]\".\n"
+    "\"[[x0,y0],[x1,y1],...]\" and, for a rational one, --weights \"[w0,w1,...]\";\n"
+    "an SVG path (--svg \"M 0 0 Q 1 2 3 1\") or a NURBS curve (--nurbs JSON), whose\n"
+    "segments are joined into one curve; any of them as - (stdin) or @FILE.\n"
     "\n"
     "Run 'uniparam COMMAND --help' for the options of a command.\n"
     "Exit codes: 0 ok, 2 invalid input or option, 3 curve not regular on [0,1],\n"
@@ -68,6 +71,8 @@ int dispatch(int argc, char** argv, uniparam::cli::StdoutCapture& out, std::stri
     return status;
   };
   try {
+    // batch runs other commands line by line, each under its own time limit.
+    if (cmd == "batch") return cli::run_batch(argc, argv);
     for (const auto& c : cli::commands())
       if (c.spec.name == cmd) return cli::run_command(c, argc, argv);
     std::cerr << "uniparam: unknown command '" << cmd << "' (run 'uniparam --help' for the list)\n";

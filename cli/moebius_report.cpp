@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "output.hpp"
 #include "report.hpp"
 
 namespace uniparam::cli {
@@ -11,99 +12,101 @@ Json moebius_json(const Curve& c, const MoebiusResult& r, long digits, const Moe
   const long pd = printed_digits(digits);
   const std::size_t N = r.pieces();
   const auto formulas = moebius_formulas(c, r, how.format, digits);
-  Json j = Json::object();
-  j.set("curve", Json::string(c.str()));
-  j.set("speed", Json::string(to_string(r.kind)));
-  j.set("digits", Json::number(digits));
-  j.set("continuity", Json::string(to_string(r.continuity)));
-  Json t = Json::array(), s = Json::array(), al = Json::array();
-  for (const auto& b : r.T) t.push(json_algebraic(b.t, digits));
-  for (std::size_t i = 0; i <= N; ++i) s.push(r.rational ? json_rational(r.S_exact[i], pd) : json_ball(r.S[i], pd));
-  for (std::size_t i = 0; i < N; ++i)
-    al.push(r.rational ? json_rational(r.alpha_exact[i], pd) : json_ball(r.alpha[i], pd));
-  j.set("t", t);
-  j.set("s", s);
-  j.set("alpha", al);
-  j.set("mu", json_ball(r.mu, pd));
-  j.set("u_before", json_ball(r.u_before, pd));
-  j.set("u_after", json_ball(r.u_after, pd));
-  j.set("speed_vanishes", Json::boolean(r.speed_vanishes));
-  j.set("rational", Json::boolean(r.rational));
-  if (r.optimiser.used) {
-    Json o = Json::object();
-    o.set("iterations", Json::number(r.optimiser.iterations));
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.3e", r.optimiser.stationarity);
-    o.set("stationarity", Json::number(std::string(buf)));
-    o.set("stationarity_certified", Json::boolean(false));
-    if (arb_is_finite(r.optimiser.phi.get()) && !r.rational) o.set("phi", json_ball(r.optimiser.phi, pd));
-    o.set("phi_equal_spacing", json_ball(r.optimiser.phi_equal, 12));
-    j.set("optimiser", o);
-  }
-  if (r.target.used) {
-    Json o = Json::object();
-    o.set("value", json_rational(r.target.value, pd));
-    o.set("reached", Json::boolean(r.target.reached));
-    o.set("refinement_rounds", Json::number(r.target.rounds));
-    j.set("target", o);
-  }
-  if (how.formulas) {
-    Json pieces = Json::array();
-    for (std::size_t i = 0; i < N; ++i) {
-      Json p = Json::object();
-      p.set("t_interval", Json::array().push(json_algebraic(r.T[i].t, digits)).push(json_algebraic(r.T[i + 1].t, digits)));
-      p.set("s_interval", Json::string(formulas[i].s_interval));
-      p.set("r", Json::string(formulas[i].r));
-      Json pr = Json::array();
-      for (const auto& x : formulas[i].p_r) pr.push(Json::string(x));
-      p.set("p_r", pr);
-      p.set("exact", Json::boolean(formulas[i].exact));
-      pieces.push(p);
+  {
+    Json j = Json::object();
+    j.set("curve", Json::string(c.str()));
+    j.set("speed", Json::string(to_string(r.kind)));
+    j.set("digits", Json::number(digits));
+    j.set("continuity", Json::string(to_string(r.continuity)));
+    Json t = Json::array(), s = Json::array(), al = Json::array();
+    for (const auto& b : r.T) t.push(json_algebraic(b.t, digits));
+    for (std::size_t i = 0; i <= N; ++i) s.push(r.rational ? json_rational(r.S_exact[i], pd) : json_ball(r.S[i], pd));
+    for (std::size_t i = 0; i < N; ++i)
+      al.push(r.rational ? json_rational(r.alpha_exact[i], pd) : json_ball(r.alpha[i], pd));
+    j.set("t", t);
+    j.set("s", s);
+    j.set("alpha", al);
+    j.set("mu", json_ball(r.mu, pd));
+    j.set("u_before", json_ball(r.u_before, pd));
+    j.set("u_after", json_ball(r.u_after, pd));
+    j.set("speed_vanishes", Json::boolean(r.speed_vanishes));
+    j.set("rational", Json::boolean(r.rational));
+    if (r.optimiser.used) {
+      Json o = Json::object();
+      o.set("iterations", Json::number(r.optimiser.iterations));
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%.3e", r.optimiser.stationarity);
+      o.set("stationarity", Json::number(std::string(buf)));
+      o.set("stationarity_certified", Json::boolean(false));
+      if (arb_is_finite(r.optimiser.phi.get()) && !r.rational) o.set("phi", json_ball(r.optimiser.phi, pd));
+      o.set("phi_equal_spacing", json_ball(r.optimiser.phi_equal, 12));
+      j.set("optimiser", o);
     }
-    j.set("pieces", pieces);
+    if (r.target.used) {
+      Json o = Json::object();
+      o.set("value", json_rational(r.target.value, pd));
+      o.set("reached", Json::boolean(r.target.reached));
+      o.set("refinement_rounds", Json::number(r.target.rounds));
+      j.set("target", o);
+    }
+    if (how.formulas) {
+      Json pieces = Json::array();
+      for (std::size_t i = 0; i < N; ++i) {
+        Json p = Json::object();
+        p.set("t_interval", Json::array().push(json_algebraic(r.T[i].t, digits)).push(json_algebraic(r.T[i + 1].t, digits)));
+        p.set("s_interval", Json::string(formulas[i].s_interval));
+        p.set("r", Json::string(formulas[i].r));
+        Json pr = Json::array();
+        for (const auto& x : formulas[i].p_r) pr.push(Json::string(x));
+        p.set("p_r", pr);
+        p.set("exact", Json::boolean(formulas[i].exact));
+        pieces.push(p);
+      }
+      j.set("pieces", pieces);
+    }
+    return j;
   }
-  return j;
 }
 
 void print_moebius(const Curve& c, const MoebiusResult& r, long digits, const MoebiusPrint& how) {
   if (how.json) {
-    std::cout << moebius_json(c, r, digits, how).dump(2) << "\n";
+    answer() << moebius_json(c, r, digits, how).dump(2) << "\n";
     return;
   }
   const long pd = printed_digits(digits);
   const std::size_t N = r.pieces();
   const auto formulas = moebius_formulas(c, r, how.format, digits);
-  std::cout << "curve      " << c.str() << "\nspeed      " << to_string(r.kind) << "\n"
+  answer() << "curve      " << c.str() << "\nspeed      " << to_string(r.kind) << "\n"
             << "continuity " << to_string(r.continuity) << (r.rational ? " (exact rational map)" : "") << "\n";
-  if (r.identically_zero) std::cout << "the angular speed is identically zero (a straight line): r = id, u = 1\n";
+  if (r.identically_zero) answer() << "the angular speed is identically zero (a straight line): r = id, u = 1\n";
   for (std::size_t i = 0; i < N; ++i) {
-    std::cout << "piece " << i << "    t in [" << text_algebraic(r.T[i].t, digits) << ", "
+    answer() << "piece " << i << "    t in [" << text_algebraic(r.T[i].t, digits) << ", "
               << text_algebraic(r.T[i + 1].t, digits) << "], s in [";
     if (r.rational)
-      std::cout << r.S_exact[i].str() << ", " << r.S_exact[i + 1].str() << "], alpha = " << r.alpha_exact[i].str();
+      answer() << r.S_exact[i].str() << ", " << r.S_exact[i + 1].str() << "], alpha = " << r.alpha_exact[i].str();
     else
-      std::cout << r.S[i].mid_decimal(pd) << ", " << r.S[i + 1].mid_decimal(pd)
+      answer() << r.S[i].mid_decimal(pd) << ", " << r.S[i + 1].mid_decimal(pd)
                 << "], alpha = " << format_ball(r.alpha[i], pd, Format::Text);
-    std::cout << "\n";
+    answer() << "\n";
   }
-  std::cout << "mu         " << format_ball(r.mu, pd, Format::Text) << "\n"
+  answer() << "mu         " << format_ball(r.mu, pd, Format::Text) << "\n"
             << "u before   " << format_ball(r.u_before, pd, Format::Text) << "\n"
             << "u after    " << format_ball(r.u_after, pd, Format::Text) << "\n";
   if (r.optimiser.used)
-    std::cout << "optimiser  " << r.optimiser.iterations << " iterations, stationarity " << r.optimiser.stationarity
+    answer() << "optimiser  " << r.optimiser.iterations << " iterations, stationarity " << r.optimiser.stationarity
               << " (relative gradient, floating point)\n";
   if (r.target.used)
-    std::cout << "target     u >= " << r.target.value.str() << (r.target.reached ? " reached" : " NOT reached")
+    answer() << "target     u >= " << r.target.value.str() << (r.target.reached ? " reached" : " NOT reached")
               << " with " << N << " pieces after " << r.target.rounds << " refinement rounds\n";
   if (r.speed_vanishes)
-    std::cout << "note: the speed vanishes in [0, 1]; rational maps cannot lift its zeros "
+    answer() << "note: the speed vanishes in [0, 1]; rational maps cannot lift its zeros "
                  "(see 'uniparam radical')\n";
   if (how.formulas) {
-    std::cout << "\nformulas (" << (r.rational ? "exact" : "coefficients rounded to the printed digits") << "):\n";
+    answer() << "\nformulas (" << (r.rational ? "exact" : "coefficients rounded to the printed digits") << "):\n";
     for (std::size_t i = 0; i < N; ++i) {
-      std::cout << "piece " << i << ", s in " << formulas[i].s_interval << ":\n  t = " << formulas[i].r << "\n";
+      answer() << "piece " << i << ", s in " << formulas[i].s_interval << ":\n  t = " << formulas[i].r << "\n";
       for (std::size_t k = 0; k < formulas[i].p_r.size(); ++k)
-        std::cout << "  p_" << k + 1 << "(r(s)) = " << formulas[i].p_r[k] << "\n";
+        answer() << "  p_" << k + 1 << "(r(s)) = " << formulas[i].p_r[k] << "\n";
     }
   }
 }

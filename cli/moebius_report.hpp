@@ -21,8 +21,7 @@ MoebiusPrint read_moebius_print(const Args& a);
 /// u_before, u_after, speed_vanishes, rational, pieces (with formulas), and
 /// optimiser / target when set.
 void print_moebius(const Curve& c, const MoebiusResult& r, long digits, const MoebiusPrint& how);
-/// The JSON document print_moebius prints for how.json (same keys), with the
-/// formulas in how.format. \throws as moebius_formulas.
+/// The JSON document print_moebius prints (how.json is not consulted).
 Json moebius_json(const Curve& c, const MoebiusResult& r, long digits, const MoebiusPrint& how);
 
 /// The largest --max-pieces the commands accept.

@@ -4,6 +4,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "output.hpp"
 #include "report.hpp"
 #include "svg.hpp"
 
@@ -168,7 +169,7 @@ void write_moebius_nurbs(const Curve& c, const MoebiusResult& r, const NurbsOutp
 
 void write_nurbs(const Nurbs& n, const NurbsOutput& o, long digits) {
   if (o.form == NurbsOutput::Form::Json) {
-    std::cout << nurbs_json(n, digits).dump(2) << "\n";
+    answer() << nurbs_json(n, digits).dump(2) << "\n";
   } else if (o.form == NurbsOutput::Form::Step) {
     std::string name = o.file.empty() ? std::string("uniparam.stp") : o.file;
     const std::size_t slash = name.find_last_of('/');
@@ -176,7 +177,7 @@ void write_nurbs(const Nurbs& n, const NurbsOutput& o, long digits) {
     std::string clean;
     for (char c : name) clean += (c == '\'' || c == '\\' || static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) ? '_' : c;
     const std::string text = nurbs_step(n, clean);
-    if (o.file.empty()) std::cout << text;
+    if (o.file.empty()) answer() << text;
     else svg::write_file(o.file, text);
   }
 }

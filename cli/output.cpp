@@ -91,7 +91,26 @@ std::string StdoutCapture::finish() {
 
 std::string StdoutCapture::stream_error() const { return direct_ ? direct_->error() : std::string(); }
 
+namespace {
+thread_local std::ostream* t_answer = nullptr;
+thread_local std::ostream* t_warn = nullptr;
+}  // namespace
+
+std::ostream& answer() { return t_answer ? *t_answer : std::cout; }
+std::ostream& warn() { return t_warn ? *t_warn : std::cerr; }
+
+ThreadOutput::ThreadOutput(std::ostream& a, std::ostream& w) : saved_answer_(t_answer), saved_warn_(t_warn) {
+  t_answer = &a;
+  t_warn = &w;
+}
+
+ThreadOutput::~ThreadOutput() {
+  t_answer = saved_answer_;
+  t_warn = saved_warn_;
+}
+
 void stream_stdout() {
+  if (t_answer) return;
   if (g_active) g_active->stream();
 }
 

@@ -16,6 +16,7 @@
 #pragma once
 
 #include <memory>
+#include <ostream>
 #include <sstream>
 #include <streambuf>
 #include <string>
@@ -59,6 +60,28 @@ class StdoutCapture {
   std::ostringstream buffer_;
   std::streambuf* saved_;
   std::unique_ptr<FdBuf> direct_;
+};
+
+/// The stream a command writes its answer to: std::cout, or the stream a
+/// ThreadOutput installed on this thread (`uniparam batch` runs commands on
+/// several threads, each answer into its own buffer).
+std::ostream& answer();
+/// The stream of a command's warnings (std::cerr, or the ThreadOutput's).
+std::ostream& warn();
+
+/// Sends this thread's answer() and warn() to the given streams for its
+/// lifetime (the previous ones are restored). While one is installed,
+/// stream_stdout() does nothing: the answer stays in its buffer.
+class ThreadOutput {
+ public:
+  ThreadOutput(std::ostream& answer, std::ostream& warn);
+  ~ThreadOutput();
+  ThreadOutput(const ThreadOutput&) = delete;
+  ThreadOutput& operator=(const ThreadOutput&) = delete;
+
+ private:
+  std::ostream* saved_answer_;
+  std::ostream* saved_warn_;
 };
 
 /// Calls stream() on the StdoutCapture in effect, if there is one (main

@@ -331,7 +331,9 @@ PYBIND11_MODULE(_uniparam, m) {
             Sampler ev(cv, s, Reparameterization(r), opt.digits + 1, opt.max_prec);
             atv = ev.at(*z);
           }
-          return dump(cli::radical_json(cv, kind, opt.digits, r, fmt, atv, z ? *z : Rational(0)));
+          Json j = cli::radical_json(cv, r, opt.digits, fmt);
+          if (atv) j.set("at", cli::radical_at_json(*z, *atv, opt.digits));
+          return dump(j);
         });
       },
       py::arg("common"), py::arg("format"), py::arg("at"));
@@ -463,9 +465,15 @@ PYBIND11_MODULE(_uniparam, m) {
             Ball mu;
             Json rows = Json::array();
             exact_samples_each(cv, sp, K, opt, mu, [&](long k, const LocatedPoint& p) {
-              rows.push(cli::sample_exact_row_json(Rational(k, K - 1), p, mu, opt.digits));
+              SamplePoint row;
+              row.s = Rational(k, K - 1);
+              row.t = p.t;
+              row.point = p.point;
+              row.speed = mu;
+              rows.push(cli::sample_row_json(row, opt.digits));
             });
-            Json j = cli::sample_exact_header_json(cv, kind, opt.digits, K, mu);
+            Json j = cli::sample_exact_header_json(cv, kind, opt.digits, K);
+            j.set("mu", json_ball(mu, pd));
             j.set("samples", rows);
             return std::make_pair(dump(j), std::string());
           }

@@ -12,6 +12,7 @@
 #include "uniparam/core/budget.hpp"
 #include "uniparam/core/decimal.hpp"
 #include "uniparam/core/error.hpp"
+#include "track.hpp"
 
 namespace uniparam {
 
@@ -27,21 +28,6 @@ struct Bracket {
   Rational lo, hi;
   Ball Glo;
 };
-
-// An uncertified estimate of sigma(x) (only used to choose the next probe):
-// the square root of the midpoint of sigma(x)^2 at 64 bits; 0 where that is
-// not a positive finite double.
-double sigma_estimate(const Speed& s, const Rational& x) {
-  acb_t z, out;
-  acb_init(z);
-  acb_init(out);
-  arb_set_fmpq(acb_realref(z), x.get(), 64);
-  s.eval_squared(out, z, 64);
-  const double v = arf_get_d(arb_midref(acb_realref(out)), ARF_RND_NEAR);
-  acb_clear(z);
-  acb_clear(out);
-  return std::isfinite(v) && v > 0 ? std::sqrt(v) : 0.0;
-}
 
 // The dyadic rational nearest to y's midpoint with `bits` significant bits.
 Rational dyadic_near(const arb_t y, long bits) {
@@ -78,7 +64,7 @@ struct Seed {
 
 class Narrower {
  public:
-  Narrower(const Speed& s, long bits, long max_prec) : s_(s), bits_(bits), max_prec_(max_prec) {}
+  Narrower(const Track& tr, long bits) : tr_(tr), bits_(bits) {}
 
   // Narrows b (G(lo) <= T <= G(hi), t unique) to hi - lo <= 2^-wbits.
   // \return false when G(x) - T could not be decided at some x at this
@@ -134,7 +120,7 @@ class Narrower {
       bool newton_round = newton && !undecided_round;
       for (const Rational& p : inside) {
         if (!(b.lo < p && p < b.hi)) continue;  // the first probe moved an end past it
-        Ball piece = integrate_speed(s_, RealAlgebraic(b.lo), RealAlgebraic(p), bits_, max_prec_);
+        Ball piece = tr_.integral(b.lo, p, bits_);
         Ball v;
         arb_add(v.get(), b.Glo.get(), piece.get(), prec);
         arb_sub(v.get(), v.get(), T.get(), prec);
@@ -152,7 +138,7 @@ class Narrower {
         seed.valid = true;
         seed.x = p;
         seed.v = v;
-        seed.sx = sigma_estimate(s_, p);
+        seed.sx = tr_.sigma_estimate(p);
       }
       // Newton again after a round that shrank the bracket fourfold; one
       // bisection otherwise (at least halving every two rounds).
@@ -163,8 +149,8 @@ class Narrower {
   }
 
  private:
-  const Speed& s_;
-  long bits_, max_prec_;
+  const Track& tr_;
+  long bits_;
 };
 
 Ball unit_ball_of(const Rational& lo, const Rational& hi, long prec) {
@@ -179,8 +165,8 @@ bool points_meet(const std::vector<Ball>& pt, long digits) {
   return true;
 }
 
-void check_not_zero_speed(const Speed& s) {
-  if (s.identically_zero())
+void check_not_zero_speed(bool identically_zero) {
+  if (identically_zero)
     throw DomainError(
         "the angular speed of a straight line is identically zero: its turning angle is 0 at every t, "
         "so it determines no parameter (use the parametric speed, arc length)");
@@ -206,18 +192,18 @@ std::string shown(const Rational& x) {
 
 long next_bits(long bits) { return bits + std::max(32L, bits / 2); }
 
-Seed seed_at(const Speed& s, const Bracket& b, const Ball& T, long prec) {
+Seed seed_at(const Track& tr, const Bracket& b, const Ball& T, long prec) {
   Seed sd;
   sd.valid = true;
   sd.x = b.lo;
   arb_sub(sd.v.get(), b.Glo.get(), T.get(), prec);
-  sd.sx = sigma_estimate(s, b.lo);
+  sd.sx = tr.sigma_estimate(b.lo);
   return sd;
 }
 
 // Narrows b to a t ball meeting digits with p(t) meeting digits too, at
 // integral accuracy `bits`. False when more bits are needed.
-bool finish_point(const Curve& c, const Speed& s, Bracket& b, const Ball& T, long bits, const Options& opt,
+bool finish_point(const Track& tr, Bracket& b, const Ball& T, long bits, const Options& opt,
                   LocatedPoint& out) {
   const long prec = 2 * bits + 64;
   // First to kLowGoalBits at kLowBits, where the quadrature takes its
@@ -229,38 +215,73 @@ bool finish_point(const Curve& c, const Speed& s, Bracket& b, const Ball& T, lon
   constexpr long kLowBits = 60, kLowGoalBits = 40;
   if (bits > kLowBits + 16 && digits_to_bits(opt.digits) > kLowGoalBits + 8) {
     Bracket low = b;
-    Narrower coarse(s, kLowBits, opt.max_prec);
-    coarse.narrow(low, T, kLowGoalBits, seed_at(s, low, T, 2 * kLowBits + 64));
+    Narrower coarse(tr, kLowBits);
+    coarse.narrow(low, T, kLowGoalBits, seed_at(tr, low, T, 2 * kLowBits + 64));
     if (b.lo != low.lo) {
-      const Ball piece = integrate_speed(s, RealAlgebraic(b.lo), RealAlgebraic(low.lo), bits, opt.max_prec);
+      const Ball piece = tr.integral(b.lo, low.lo, bits);
       arb_add(b.Glo.get(), b.Glo.get(), piece.get(), prec);
       b.lo = low.lo;
     }
     b.hi = low.hi;
   }
-  Narrower nr(s, bits, opt.max_prec);
+  Narrower nr(tr, bits);
   for (long wbits = digits_to_bits(opt.digits) + 1; wbits <= bits; wbits += 16) {
-    if (!nr.narrow(b, T, wbits, seed_at(s, b, T, prec))) return false;
+    if (!nr.narrow(b, T, wbits, seed_at(tr, b, T, prec))) return false;
     out.t = unit_ball_of(b.lo, b.hi, prec);
-    out.point = c.eval(out.t, prec);
+    out.point = tr.eval(out.t, prec);
     if (out.t.meets_digits(opt.digits + 1) && points_meet(out.point, opt.digits)) return true;
   }
   return false;
 }
 
-LocatedPoint exact_point(const Curve& c, long t) {
+LocatedPoint exact_point(const Track& tr, long t) {
   LocatedPoint p;
   p.t = Ball(t);
-  p.point = c.eval(p.t, 128);
+  p.point = tr.eval(p.t, 128);
   return p;
 }
 
+// int sigma and p of one curve.
+class CurveTrack final : public Track {
+ public:
+  CurveTrack(const Curve& c, const Speed& s, long max_prec) : c_(c), s_(s), max_prec_(max_prec) {}
+  bool identically_zero() const override { return s_.identically_zero(); }
+  SpeedKind kind() const override { return s_.kind(); }
+  Ball mu(long bits, const Options& opt) const override { return mean_speed(s_, bits, opt); }
+  Ball integral(const Rational& a, const Rational& b, long bits) const override {
+    return integrate_speed(s_, RealAlgebraic(a), RealAlgebraic(b), bits, max_prec_);
+  }
+  double sigma_estimate(const Rational& x) const override { return uniparam::sigma_estimate(s_, x); }
+  std::vector<Ball> eval(const Ball& t, long prec) const override { return c_.eval(t, prec); }
+
+ private:
+  const Curve& c_;
+  const Speed& s_;
+  long max_prec_;
+};
+
 }  // namespace
+
+double sigma_estimate(const Speed& s, const Rational& x) {
+  acb_t z, out;
+  acb_init(z);
+  acb_init(out);
+  arb_set_fmpq(acb_realref(z), x.get(), 64);
+  s.eval_squared(out, z, 64);
+  const double v = arf_get_d(arb_midref(acb_realref(out)), ARF_RND_NEAR);
+  acb_clear(z);
+  acb_clear(out);
+  return std::isfinite(v) && v > 0 ? std::sqrt(v) : 0.0;
+}
 
 LocateResult locate(const Curve& c, const Speed& s, const Rational& value, LocateTarget target,
                     const Options& opt) {
   validate(opt);
-  check_not_zero_speed(s);
+  return locate_on(CurveTrack(c, s, opt.max_prec), value, target, opt);
+}
+
+LocateResult locate_on(const Track& tr, const Rational& value, LocateTarget target, const Options& opt) {
+  check_not_zero_speed(tr.identically_zero());
   if (value.sign() < 0)
     throw InvalidArgument(std::string("the ") + (target == LocateTarget::Fraction ? "fraction" : "value") +
                           " must be >= 0, got " + shown(value));
@@ -273,17 +294,17 @@ LocateResult locate(const Curve& c, const Speed& s, const Rational& value, Locat
     if (bits > opt.max_prec) throw_budget("the located parameter", opt);
     check_time_budget();
     const long prec = 2 * bits + 64;
-    r.mu = mean_speed(s, bits, opt);
+    r.mu = tr.mu(bits, opt);
     if (!r.mu.meets_digits(opt.digits + 1)) continue;
     if (target == LocateTarget::Fraction) arb_mul_fmpz(r.target.get(), r.mu.get(), value.num().get(), prec),
                                           arb_div_fmpz(r.target.get(), r.target.get(), value.den().get(), prec);
     else r.target = Ball(value, prec);
     if (value.is_zero()) {
-      r.at = exact_point(c, 0);
+      r.at = exact_point(tr, 0);
       return r;
     }
     if (target == LocateTarget::Fraction && value == Rational(1)) {
-      r.at = exact_point(c, 1);
+      r.at = exact_point(tr, 1);
       return r;
     }
     if (target == LocateTarget::Integral) {
@@ -292,7 +313,7 @@ LocateResult locate(const Curve& c, const Speed& s, const Rational& value, Locat
       if (diff.certainly_positive())
         throw InvalidArgument("the value " + shown(value) + " exceeds mu = int_0^1 sigma = " +
                               r.mu.mid_decimal(opt.digits) + " (+/- " + r.mu.rad_decimal() +
-                              "), the " + (s.kind() == SpeedKind::Parametric ? "length" : "turning angle") +
+                              "), the " + (tr.kind() == SpeedKind::Parametric ? "length" : "turning angle") +
                               " of the whole curve");
       if (!diff.certainly_negative()) {
         if (next_bits(bits) > opt.max_prec)
@@ -303,18 +324,21 @@ LocateResult locate(const Curve& c, const Speed& s, const Rational& value, Locat
       }
     }
     // G(lo) again at this precision (the bracket itself holds at any).
-    b.Glo = b.lo.is_zero() ? Ball(0)
-                           : integrate_speed(s, RealAlgebraic(0), RealAlgebraic(b.lo), bits, opt.max_prec);
-    if (finish_point(c, s, b, r.target, bits, opt, r.at)) return r;
+    b.Glo = b.lo.is_zero() ? Ball(0) : tr.integral(Rational(0), b.lo, bits);
+    if (finish_point(tr, b, r.target, bits, opt, r.at)) return r;
   }
 }
 
 void exact_samples_each(const Curve& c, const Speed& s, long K, const Options& opt, Ball& mu,
                         const LocatedSink& sink) {
   validate(opt);
+  exact_samples_on(CurveTrack(c, s, opt.max_prec), K, opt, mu, sink);
+}
+
+void exact_samples_on(const Track& tr, long K, const Options& opt, Ball& mu, const LocatedSink& sink) {
   if (K < 2 || K > 1000000)
     throw InvalidArgument("the number of points must be between 2 and 1000000, got " + std::to_string(K));
-  check_not_zero_speed(s);
+  check_not_zero_speed(tr.identically_zero());
   check_digits_fit(opt);
   // The chain's precision: every G(lo) is a sum of disjoint integrals, so
   // its radius stays below about 2^-bits mu whatever K, as does the
@@ -326,12 +350,12 @@ void exact_samples_each(const Curve& c, const Speed& s, long K, const Options& o
   auto compute_mu = [&]() {
     for (;; bits = next_bits(bits)) {
       if (bits > opt.max_prec) throw_budget("the exact samples", opt);
-      mu = mean_speed(s, bits, opt);
+      mu = tr.mu(bits, opt);
       if (mu.meets_digits(opt.digits + 1)) return;
     }
   };
   compute_mu();
-  sink(0, exact_point(c, 0));
+  sink(0, exact_point(tr, 0));
   Bracket b{Rational(0), Rational(1), Ball(0)};
   for (long k = 1; k + 1 < K; ++k) {
     // t_k > t_{k-1} >= lo: the previous bracket's lower end and G there
@@ -344,17 +368,16 @@ void exact_samples_each(const Curve& c, const Speed& s, long K, const Options& o
       arb_mul_si(T.get(), mu.get(), k, prec);
       arb_div_si(T.get(), T.get(), K - 1, prec);
       b.hi = Rational(1);
-      if (finish_point(c, s, b, T, bits, opt, pt)) break;
+      if (finish_point(tr, b, T, bits, opt, pt)) break;
       // More bits: mu and G(lo) again at the higher precision (the bracket
       // holds at any).
       bits = next_bits(bits);
       compute_mu();
-      b.Glo = b.lo.is_zero() ? Ball(0)
-                             : integrate_speed(s, RealAlgebraic(0), RealAlgebraic(b.lo), bits, opt.max_prec);
+      b.Glo = b.lo.is_zero() ? Ball(0) : tr.integral(Rational(0), b.lo, bits);
     }
     sink(k, pt);
   }
-  sink(K - 1, exact_point(c, 1));
+  sink(K - 1, exact_point(tr, 1));
 }
 
 ExactSamples exact_samples(const Curve& c, const Speed& s, long K, const Options& opt) {
@@ -365,7 +388,7 @@ ExactSamples exact_samples(const Curve& c, const Speed& s, long K, const Options
 
 ArcFraction::ArcFraction(const Speed& s, long bits, const Options& opt)
     : s_(s), bits_(bits), max_prec_(opt.max_prec), last_(0), G_last_(0) {
-  check_not_zero_speed(s);
+  check_not_zero_speed(s.identically_zero());
   mu_ = mean_speed(s, bits, opt);
 }
 
@@ -420,7 +443,7 @@ Ball fraction_deviation(const Speed& s, const Reparameterization& r, long K, con
   validate(opt);
   if (K < 2 || K > 1000000)
     throw InvalidArgument("the number of points must be between 2 and 1000000, got " + std::to_string(K));
-  check_not_zero_speed(s);
+  check_not_zero_speed(s.identically_zero());
   const long bits = digits_to_bits(opt.digits) + 8;
   const long prec = 2 * bits + 64;
   ArcFraction frac(s, bits, opt);

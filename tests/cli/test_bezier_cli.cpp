@@ -95,7 +95,7 @@ TEST(CliBezier, HelpListsTheNewOptions) {
   for (const char* cmd : {"uniformity", "moebius", "radical"}) {
     auto h = run_uniparam({cmd, "--help"});
     EXPECT_EQ(h.exit_code, 0);
-    EXPECT_NE(h.out.find("(CURVE | --control POINTS)"), std::string::npos) << cmd;
+    EXPECT_NE(h.out.find("(CURVE | --control POINTS | --svg PATH | --nurbs JSON)"), std::string::npos) << cmd;
     EXPECT_NE(h.out.find("--weights"), std::string::npos) << cmd;
   }
   auto main = run_uniparam({"--help"});
@@ -121,7 +121,7 @@ TEST(CliBezier, BadControlPointsGiveClearErrors) {
       {{"bezier", "--control", "[[0,0],[1,1]]", "--speed", "angular"}, 2, "unknown option"},
       {{"bezier", "--control", "[[0,0],[1,1],[2,0]]", "--max-degree", "1"}, 2, "control points"},
       {{"uniformity", "(t, t^2)", "--control", "[[0,0],[1,1]]"}, 2, "not both"},
-      {{"uniformity"}, 2, "CURVE or --control"},
+      {{"uniformity"}, 2, "CURVE (or --control"},
       {{"uniformity", "(t, t^2)", "--weights", "[1,2]"}, 2, "--weights needs --control"},
       {{"radical", "--control", "[[0,0],[1,1]]", "--weights", "[0,1]"}, 2, "positive"},
   };

@@ -50,4 +50,40 @@ inline RunResult run_uniparam(const std::vector<std::string>& args) {
   return r;
 }
 
+/// run_uniparam with `input` on standard input (through a temporary file).
+inline RunResult run_uniparam_stdin(const std::vector<std::string>& args, const std::string& input) {
+  char inname[] = "/tmp/uniparam_test_in_XXXXXX";
+  int fd = mkstemp(inname);
+  if (fd < 0) return RunResult{};
+  close(fd);
+  {
+    std::ofstream f(inname, std::ios::binary);
+    f << input;
+  }
+  std::vector<std::string> with = args;
+  const char* bin = std::getenv("UNIPARAM_BIN");
+  std::string cmd = shell_quote(bin ? bin : "uniparam");
+  for (const auto& a : with) cmd += " " + shell_quote(a);
+  char errname[] = "/tmp/uniparam_test_err_XXXXXX";
+  int efd = mkstemp(errname);
+  if (efd >= 0) close(efd);
+  cmd += " <" + shell_quote(inname) + " 2>" + std::string(errname);
+  RunResult r;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (p) {
+    std::array<char, 4096> buf{};
+    std::size_t n;
+    while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
+    int status = pclose(p);
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+  std::ifstream f(errname);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  r.err = ss.str();
+  std::remove(errname);
+  std::remove(inname);
+  return r;
+}
+
 }  // namespace uniparam::test_support

@@ -1,0 +1,286 @@
+#include "composite.hpp"
+
+#include <iostream>
+
+#include "commands.hpp"
+#include "output.hpp"
+#include "input.hpp"
+#include "moebius_report.hpp"
+#include "report.hpp"
+
+namespace uniparam::cli {
+
+namespace {
+
+CompositeCurve to_composite(const PathInput& p, const Options& opt) {
+  std::vector<Curve> segs;
+  segs.reserve(p.segments.size());
+  for (std::size_t j = 0; j < p.segments.size(); ++j) {
+    const std::string& label = j < p.labels.size() ? p.labels[j] : "segment " + std::to_string(j);
+    if (p.segments[j].degree() > opt.max_degree)
+      throw BudgetExceeded(label + ": degree " + std::to_string(p.segments[j].degree()) + " is above --max-degree " +
+                           std::to_string(opt.max_degree));
+    try {
+      segs.push_back(p.segments[j].to_curve());
+    } catch (const DomainError& e) {
+      throw DomainError(label + ": " + e.what());
+    }
+  }
+  return CompositeCurve(std::move(segs), p.knots, p.labels);
+}
+
+// "segment 3" (1-based), with the segment's label where it says more.
+std::string segment_name(const CompositeCurve& c, std::size_t i) {
+  const std::string n = "segment " + std::to_string(i + 1);
+  const std::string& l = c.label(i);
+  if (l == n) return n;
+  if (l.rfind(n + ": ", 0) == 0) return n + " (" + l.substr(n.size() + 2) + ")";
+  return n + " (" + l + ")";
+}
+
+std::string line(const std::string& label) {
+  return label + std::string(label.size() < 11 ? 11 - label.size() : 1, ' ');
+}
+
+// What the text report says of a joint.
+std::string joint_text(const CompositeCurve& c, const Joint& j, long pd) {
+  std::string s = "t = " + c.knots()[j.index].str() + ": ";
+  if (!j.continuous) s += "a gap (the segments do not meet), ";
+  if (j.smooth) return s + "smooth";
+  return s + "corner, turning angle " + format_ball(j.angle, pd, Format::Text) + " rad";
+}
+
+}  // namespace
+
+std::optional<CompositeCurve> read_composite(const Args& a) {
+  const Options opt = read_options(a);
+  if (a.has("subpath") && !a.has("svg")) throw InvalidArgument("--subpath needs --svg");
+  if (a.has("svg")) {
+    const std::string text = read_argument_text("--svg", a.get("svg", ""), read_parse_limits(a).max_length);
+    std::vector<PathInput> paths = parse_svg_path(text);
+    if (paths.empty()) throw InvalidArgument("--svg: the path has no segment");
+    std::size_t k = 0;
+    if (a.has("subpath")) {
+      k = static_cast<std::size_t>(a.get_long("subpath", 0, 0, static_cast<long>(paths.size()) - 1));
+    } else if (paths.size() > 1) {
+      throw InvalidArgument("--svg: the path has " + std::to_string(paths.size()) +
+                            " subpaths; pick one with --subpath K (0 to " + std::to_string(paths.size() - 1) +
+                            "), or give each to 'uniparam batch' as its own line");
+    }
+    return to_composite(paths[k], opt);
+  }
+  if (a.has("nurbs")) {
+    const std::string text = read_argument_text("--nurbs", a.get("nurbs", ""), read_parse_limits(a).max_length);
+    NurbsLimits lim;
+    lim.max_degree = opt.max_degree;
+    return to_composite(parse_nurbs(text, lim), opt);
+  }
+  return std::nullopt;
+}
+
+std::string composite_description(const Args& a, const CompositeCurve& c) {
+  const std::string n = std::to_string(c.size()) + (c.size() == 1 ? " segment" : " segments");
+  if (a.has("svg")) return "SVG path of " + n;
+  if (a.has("nurbs")) return "NURBS curve of " + n;
+  return "composite curve of " + n;
+}
+
+Json json_joints(const CompositeCurve& c, const std::vector<Joint>& joints, long pd) {
+  Json arr = Json::array();
+  for (const Joint& j : joints) {
+    Json o = Json::object();
+    o.set("index", Json::number(static_cast<long>(j.index)));
+    o.set("t", json_rational(c.knots()[j.index], pd));
+    o.set("continuous", Json::boolean(j.continuous));
+    o.set("smooth", Json::boolean(j.smooth));
+    o.set("angle", json_ball(j.angle, pd));
+    arr.push(o);
+  }
+  return arr;
+}
+
+int run_uniformity_composite(const Args& a, const CompositeCurve& c, SpeedKind kind, const Options& opt) {
+  const CompositeUniformity r = uniformity(c, kind, opt);
+  const long pd = printed_digits(opt.digits);
+  if (wants_json(a)) {
+    Json j = Json::object();
+    j.set("curve", Json::string(composite_description(a, c)));
+    j.set("speed", Json::string(to_string(kind)));
+    j.set("digits", Json::number(opt.digits));
+    j.set("segments", Json::number(static_cast<long>(c.size())));
+    Json knots = Json::array();
+    for (const Rational& k : c.knots()) knots.push(json_rational(k, pd));
+    j.set("knots", knots);
+    j.set("identically_zero", Json::boolean(r.identically_zero));
+    j.set("mu", json_ball(r.mu, pd));
+    j.set("mean_square", json_ball(r.mean_square, pd));
+    j.set("u", json_ball(r.u, pd));
+    j.set("joints", json_joints(c, r.joints, pd));
+    if (kind == SpeedKind::Angular) j.set("corner_turning", json_ball(r.corner_turning, pd));
+    Json parts = Json::array();
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      const UniformityResult& s = r.segments[i];
+      Json p = Json::object();
+      p.set("label", Json::string(c.label(i)));
+      p.set("curve", Json::string(c.segment(i).str()));
+      p.set("t_interval", Json::array().push(json_rational(c.knots()[i], pd)).push(json_rational(c.knots()[i + 1], pd)));
+      Json zs = Json::array();
+      for (const auto& z : s.zeros) {
+        Json e = Json::object();
+        e.set("t", json_algebraic(z.t, opt.digits));
+        e.set("multiplicity", Json::number(z.multiplicity));
+        zs.push(e);
+      }
+      p.set("zeros", zs);
+      p.set("identically_zero", Json::boolean(s.identically_zero));
+      p.set("mu", json_ball(s.mu, pd));
+      p.set("mean_square", json_ball(s.mean_square, pd));
+      p.set("u", json_ball(s.u, pd));
+      parts.push(p);
+    }
+    j.set("parts", parts);
+    answer() << j.dump(2) << "\n";
+    return 0;
+  }
+  answer() << line("curve") << composite_description(a, c) << "\n" << line("speed") << to_string(kind) << "\n";
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    const UniformityResult& s = r.segments[i];
+    answer() << segment_name(c, i) << "\n" << line("") << "t in [" << c.knots()[i].str() << ", "
+             << c.knots()[i + 1].str() << "]: mu " << s.mu.mid_decimal(8) << ", u " << s.u.mid_decimal(8)
+             << (s.zeros.empty() ? "" : ", speed vanishes") << (s.identically_zero ? " (straight)" : "") << "\n";
+  }
+  for (const Joint& jt : r.joints)
+    answer() << line("joint " + std::to_string(jt.index)) << joint_text(c, jt, 8) << "\n";
+  answer() << line("mu") << format_ball(r.mu, pd, Format::Text) << "\n"
+            << line("int s^2") << format_ball(r.mean_square, pd, Format::Text) << "\n"
+            << line("u") << format_ball(r.u, pd, Format::Text) << "\n";
+  if (kind == SpeedKind::Angular)
+    answer() << line("corners") << format_ball(r.corner_turning, pd, Format::Text)
+              << " rad of turning at the joints (not in mu: no angular speed carries a corner)\n";
+  return 0;
+}
+
+CompositeMethod with_rational(const Args& a, CompositeMethod m) {
+  if (a.has("rational-digits") && !a.flag("rational")) throw InvalidArgument("--rational-digits needs --rational");
+  m.rational = a.flag("rational");
+  m.rational_digits = a.get_long("rational-digits", 8, 1, 100);
+  return m;
+}
+
+int run_map_composite(const Args& a, const CompositeCurve& c, SpeedKind kind, const Options& opt,
+                      const CompositeMethod& m, const std::string& command) {
+  if (a.has("output"))
+    throw InvalidArgument("--output " + a.get("output", "") +
+                          ": NURBS and STEP output of composite curves is not available; sample the map with "
+                          "'uniparam sample'");
+  const std::vector<Speed> sp = c.speeds(kind);
+  const CompositeMap r = composite_map(c, sp, m, opt);
+  const std::vector<Joint> joints = uniparam::joints(c, 128);
+  const long pd = printed_digits(opt.digits);
+  const Format fmt = read_format(a);
+  const bool missed = m.kind == CompositeMethod::Kind::Target && !r.target_reached();
+  if (missed)
+    warn() << "uniparam " << command << ": the target u >= " << m.target.str()
+              << " was not reached on every segment with at most " << m.max_pieces
+              << " pieces each; the best map is printed (raise --max-pieces, or lower --target)\n";
+  if (wants_json(a)) {
+    Json j = Json::object();
+    j.set("curve", Json::string(composite_description(a, c)));
+    j.set("speed", Json::string(to_string(kind)));
+    j.set("digits", Json::number(opt.digits));
+    j.set("method", Json::string(r.method()));
+    j.set("segments", Json::number(static_cast<long>(c.size())));
+    j.set("pieces", Json::number(static_cast<long>(r.pieces())));
+    Json knots = Json::array(), S = Json::array();
+    for (const Rational& k : c.knots()) knots.push(json_rational(k, pd));
+    for (const Rational& s : r.S()) S.push(json_rational(s, pd));
+    j.set("knots", knots);
+    j.set("S", S);
+    j.set("mu", json_ball(r.mu(), pd));
+    j.set("u_before", json_ball(r.u_before(), pd));
+    j.set("u_after", json_ball(r.u_after(), pd));
+    j.set("joints", json_joints(c, joints, pd));
+    if (m.kind == CompositeMethod::Kind::Target) {
+      Json t = Json::object();
+      t.set("value", json_rational(m.target, pd));
+      t.set("reached", Json::boolean(r.target_reached()));
+      j.set("target", t);
+    }
+    Json parts = Json::array();
+    MoebiusPrint how;
+    how.format = fmt;
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      const Reparameterization& part = r.parts()[i];
+      Json p = Json::object();
+      p.set("label", Json::string(c.label(i)));
+      p.set("t_interval", Json::array().push(json_rational(c.knots()[i], pd)).push(json_rational(c.knots()[i + 1], pd)));
+      p.set("s_interval", Json::array().push(json_rational(r.S()[i], pd)).push(json_rational(r.S()[i + 1], pd)));
+      if (const MoebiusResult* mr = part.moebius_result()) p.set("map", moebius_json(c.segment(i), *mr, opt.digits + 2, how));
+      else if (const RadicalResult* rr = part.radical_result()) p.set("map", radical_json(c.segment(i), *rr, opt.digits + 2, fmt));
+      parts.push(p);
+    }
+    j.set("parts", parts);
+    answer() << j.dump(2) << "\n";
+    return missed ? 4 : 0;
+  }
+  answer() << line("curve") << composite_description(a, c) << "\n"
+            << line("speed") << to_string(kind) << "\n"
+            << line("method") << r.method() << ", " << r.pieces() << (r.pieces() == 1 ? " piece" : " pieces")
+            << (m.rational ? " (exact rational maps)" : "") << "\n";
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    const Reparameterization& part = r.parts()[i];
+    answer() << segment_name(c, i) << "\n" << line("") << "t in [" << c.knots()[i].str() << ", "
+             << c.knots()[i + 1].str() << "] <- s in [" << decimal_string(r.S()[i], 10) << ", "
+             << decimal_string(r.S()[i + 1], 10) << "]: " << part.pieces()
+             << (part.pieces() == 1 ? " piece" : " pieces") << ", u " << part.u_before().mid_decimal(8) << " -> "
+             << part.u_after().mid_decimal(8) << "\n";
+  }
+  for (const Joint& jt : joints) answer() << line("joint " + std::to_string(jt.index)) << joint_text(c, jt, 8) << "\n";
+  answer() << line("mu") << format_ball(r.mu(), pd, Format::Text) << "\n"
+            << line("u before") << format_ball(r.u_before(), pd, Format::Text) << "\n"
+            << line("u after") << format_ball(r.u_after(), pd, Format::Text) << "\n"
+            << "(s in [S_j, S_j+1] runs segment j's own map at (s - S_j) / (S_j+1 - S_j); --json gives each "
+               "segment's map with its breakpoints, parameters and formulas)\n";
+  return missed ? 4 : 0;
+}
+
+int run_locate_composite(const Args& a, const CompositeCurve& c, SpeedKind kind, const Options& opt,
+                         const Rational& value, LocateTarget target, const std::string& option) {
+  const std::vector<Speed> sp = c.speeds(kind);
+  LocateResult r;
+  try {
+    r = locate(c, sp, value, target, opt);
+  } catch (const InvalidArgument& e) {
+    throw InvalidArgument("--" + option + ": " + e.what());
+  }
+  const long pd = printed_digits(opt.digits);
+  const char* measure = kind == SpeedKind::Parametric ? "length" : "angle";
+  if (wants_json(a)) {
+    Json j = Json::object();
+    j.set("curve", Json::string(composite_description(a, c)));
+    j.set("speed", Json::string(to_string(kind)));
+    j.set("digits", Json::number(opt.digits));
+    j.set("given", Json::string(option));
+    j.set("value", Json::string(value.str()));
+    j.set("mu", json_ball(r.mu, pd));
+    j.set(measure, json_ball(r.target, pd));
+    j.set("t", json_ball(r.at.t, pd));
+    Json pt = Json::array();
+    for (const Ball& x : r.at.point) pt.push(json_ball(x, pd));
+    j.set("point", pt);
+    answer() << j.dump(2) << "\n";
+    return 0;
+  }
+  answer() << line("curve") << composite_description(a, c) << "\n"
+            << line("speed") << to_string(kind) << "\n"
+            << line("mu") << format_ball(r.mu, pd, Format::Text) << "  (the whole curve's "
+            << (kind == SpeedKind::Parametric ? "arc length" : "turning angle, corners not included") << ")\n";
+  if (target == LocateTarget::Fraction) answer() << line("fraction") << value.str() << "\n";
+  answer() << line(measure) << format_ball(r.target, pd, Format::Text) << "\n"
+            << line("t") << format_ball(r.at.t, pd, Format::Text) << "\n";
+  for (std::size_t i = 0; i < r.at.point.size(); ++i)
+    answer() << line(coordinate_name(i, r.at.point.size())) << format_ball(r.at.point[i], pd, Format::Text) << "\n";
+  return 0;
+}
+
+}  // namespace uniparam::cli

@@ -1,0 +1,225 @@
+// Composite curves from the command line (--svg, --nurbs) and `batch`:
+// exact oracles (a polyline's length and uniformity, a curve split by de
+// Casteljau at 1/2 is the same parameterized curve), every command on a
+// path, and every refusal with a clear message.
+#include <gtest/gtest.h>
+
+#include <arb.h>
+
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "support/json.hpp"
+#include "support/run.hpp"
+#include "uniparam/uniparam.hpp"
+
+using namespace uniparam;
+using uniparam::test_support::json_ball;
+using uniparam::test_support::run_uniparam;
+using uniparam::test_support::run_uniparam_stdin;
+
+namespace {
+
+// The quadratic (0,0), (2,4), (4,0) split by de Casteljau at 1/2:
+// (0,0), (1,2), (2,2) and (2,2), (3,2), (4,0). With knots 0, 1/2, 1 the
+// path is the same parameterized curve as the single quadratic.
+const char* kSplit = "M 0 0 Q 1 2 2 2 Q 3 2 4 0";
+const char* kWhole = "[[0,0],[2,4],[4,0]]";
+// A 3-4-5 triangle: length 12, three line segments.
+const char* kTriangle = "M 0 0 L 3 0 L 3 4 Z";
+
+bool overlaps(const std::string& a_json, const std::string& a_key, const std::string& b_json,
+              const std::string& b_key) {
+  Ball a, b;
+  if (!json_ball(a_json, a_key, a) || !json_ball(b_json, b_key, b)) return false;
+  return arb_overlaps(a.get(), b.get());
+}
+
+TEST(CompositeCli, SplitQuadraticIsTheWholeQuadratic) {
+  for (const char* speed : {"parametric", "angular"}) {
+    const auto whole = run_uniparam({"uniformity", "--control", kWhole, "--speed", speed, "--json"});
+    const auto split = run_uniparam({"uniformity", "--svg", kSplit, "--speed", speed, "--json"});
+    ASSERT_EQ(whole.exit_code, 0) << whole.err;
+    ASSERT_EQ(split.exit_code, 0) << split.err;
+    EXPECT_TRUE(overlaps(whole.out, "mu", split.out, "mu")) << speed;
+    EXPECT_TRUE(overlaps(whole.out, "u", split.out, "u")) << speed;
+    // The joint is smooth: angle exactly 0.
+    EXPECT_NE(split.out.find("\"smooth\": true"), std::string::npos);
+  }
+}
+
+TEST(CompositeCli, TriangleLengthAndUniformityAreExact) {
+  const auto r = run_uniparam({"uniformity", "--svg", kTriangle, "--speed", "parametric", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  Ball mu, u;
+  ASSERT_TRUE(json_ball(r.out, "mu", mu));
+  ASSERT_TRUE(json_ball(r.out, "u", u));
+  EXPECT_TRUE(mu.contains(Rational(12)));
+  // Speeds 3, 4, 5 on thirds of [0, 1]: u = 12^2 / (3 (9 + 16 + 25)) = 24/25.
+  EXPECT_TRUE(u.contains(Rational(24, 25)));
+  EXPECT_TRUE(mu.meets_digits(15));
+  // Two corners inside the path: pi/2 at (3,0) and pi - atan(4/3)... the
+  // exterior angle at (3,4) between (0,1) and (-3,-4)/5: acos(-4/5).
+  EXPECT_NE(r.out.find("\"smooth\": false"), std::string::npos);
+  const auto text = run_uniparam({"uniformity", "--svg", kTriangle, "--speed", "parametric"});
+  EXPECT_NE(text.out.find("corner, turning angle 1.5707963"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("corner, turning angle 2.4980915"), std::string::npos) << text.out;
+}
+
+TEST(CompositeCli, OneSegmentPathIsTheBezierCurve) {
+  // A path of one segment goes through the one-curve commands: the same
+  // answer as --control, bit for bit.
+  for (const char* cmd : {"uniformity", "radical", "moebius"}) {
+    const auto a = run_uniparam({cmd, "--svg", "M 0 0 Q 2 4 4 0", "--speed", "parametric", "--json"});
+    const auto b = run_uniparam({cmd, "--control", kWhole, "--speed", "parametric", "--json"});
+    ASSERT_EQ(a.exit_code, 0) << a.err;
+    EXPECT_EQ(a.out, b.out) << cmd;
+  }
+}
+
+TEST(CompositeCli, EveryMethodRunsOnAPath) {
+  const std::string path = "M 0 0 C 1 2 3 2 4 0 S 7 -2 8 0 Q 9 1 10 0";
+  const auto rad = run_uniparam({"radical", "--svg", path, "--speed", "parametric", "--json"});
+  ASSERT_EQ(rad.exit_code, 0) << rad.err;
+  const auto moe = run_uniparam({"moebius", "--svg", path, "--speed", "parametric", "--json"});
+  ASSERT_EQ(moe.exit_code, 0) << moe.err;
+  Ball before, after;
+  ASSERT_TRUE(json_ball(moe.out, "u_before", before));
+  ASSERT_TRUE(json_ball(moe.out, "u_after", after));
+  Ball d;
+  arb_sub(d.get(), after.get(), before.get(), 128);
+  EXPECT_FALSE(d.certainly_negative());
+  const auto c0 = run_uniparam({"reparam", "--svg", path, "--pieces", "6", "--speed", "parametric", "--json"});
+  ASSERT_EQ(c0.exit_code, 0) << c0.err;
+  EXPECT_NE(c0.out.find("\"pieces\": 6"), std::string::npos);
+  const auto few = run_uniparam({"reparam", "--svg", path, "--pieces", "2", "--speed", "parametric"});
+  EXPECT_EQ(few.exit_code, 2);
+  EXPECT_NE(few.err.find("number of segments (3"), std::string::npos) << few.err;
+  const auto c1 = run_uniparam({"reparam", "--svg", path, "--target", "0.99", "--speed", "parametric", "--json"});
+  ASSERT_EQ(c1.exit_code, 0) << c1.err;
+  Ball u1;
+  ASSERT_TRUE(json_ball(c1.out, "u_after", u1));
+  arb_sub(d.get(), u1.get(), Ball(Rational(99, 100), 128).get(), 128);
+  EXPECT_TRUE(d.certainly_positive());
+  const auto rat = run_uniparam({"moebius", "--svg", path, "--speed", "parametric", "--rational"});
+  EXPECT_EQ(rat.exit_code, 0) << rat.err;
+  EXPECT_NE(rat.out.find("exact rational maps"), std::string::npos);
+}
+
+TEST(CompositeCli, SamplesStartAndEndOnThePathAndMeetTheJoints) {
+  const std::string path = "M 0 0 Q 1 2 2 2 L 5 2";
+  for (const char* method : {"none", "radical", "c0", "c1", "exact"}) {
+    const auto r = run_uniparam({"sample", "--svg", path, "--speed", "parametric", "--method", method, "--points",
+                                 "11", "--format", "csv"});
+    ASSERT_EQ(r.exit_code, 0) << method << ": " << r.err;
+    std::istringstream in(r.out);
+    std::string line;
+    std::vector<std::string> rows;
+    while (std::getline(in, line)) rows.push_back(line);
+    ASSERT_EQ(rows.size(), 12u) << method;
+    EXPECT_EQ(rows[0], "s,t,x,y,speed");
+    EXPECT_EQ(rows[1].substr(0, 8), "0,0,0,0,") << method;
+    EXPECT_EQ(rows[11].substr(0, 8), "1,1,5,2,") << method << " " << rows[11];
+  }
+  // Equal arc length steps: the path has length L = int + 3; with 11 points
+  // the located parameters increase.
+  const auto ex = run_uniparam({"sample", "--svg", path, "--speed", "arclength", "--method", "exact", "--points",
+                                "5", "--json"});
+  ASSERT_EQ(ex.exit_code, 0) << ex.err;
+}
+
+TEST(CompositeCli, LocateOnASymmetricPathFindsTheJoint) {
+  // Two mirror-image arcs: half the length is exactly at the joint t = 1/2.
+  const auto r = run_uniparam({"locate", "--svg", "M 0 0 Q 1 2 2 2 Q 3 2 4 0", "--fraction", "1/2", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  Ball t;
+  ASSERT_TRUE(json_ball(r.out, "t", t));
+  EXPECT_TRUE(t.contains(Rational(1, 2)));
+  EXPECT_TRUE(t.meets_digits(15));
+  Ball x;
+  const auto len = run_uniparam({"locate", "--svg", kTriangle, "--length", "5", "--json"});
+  ASSERT_EQ(len.exit_code, 0) << len.err;
+  // Length 5 along the triangle: 3 along the base, then 2 up: (3, 2) at t = 1/3 + 1/6.
+  ASSERT_TRUE(json_ball(len.out, "t", t));
+  EXPECT_TRUE(t.contains(Rational(1, 2)));
+}
+
+TEST(CompositeCli, RefusalsAreClear) {
+  struct Case {
+    std::vector<std::string> args;
+    int exit;
+    const char* message;
+  } cases[] = {
+      {{"uniformity", "--svg", "M 0 0 L 1 1 M 2 2 L 3 3"}, 2, "--subpath"},
+      {{"uniformity", "--svg", "M 0 0 L 1 1 M 2 2 L 3 3", "--subpath", "2"}, 2, "--subpath"},
+      {{"uniformity", "(t, t^2)", "--svg", "M 0 0 L 1 1"}, 2, "not both"},
+      {{"uniformity", "--control", kWhole, "--svg", "M 0 0 L 1 1"}, 2, "were both given"},
+      {{"uniformity", "--subpath", "0", "(t, t^2)"}, 2, "--subpath needs --svg"},
+      {{"bezier", "--svg", kSplit}, 2, "takes one Bezier curve"},
+      {{"radical", "--svg", "M 0 0 Q 1 2 2 2 L 5 2"}, 3, "straight"},
+      {{"moebius", "--svg", kSplit, "--speed", "parametric", "--output", "nurbs"}, 2, "composite"},
+      {{"uniformity", "--svg", "M 0 0 Q 1 2"}, 2, ""},
+      {{"uniformity", "--nurbs", "{\"degree\": 2}"}, 2, ""},
+  };
+  for (const auto& c : cases) {
+    const auto r = run_uniparam(c.args);
+    EXPECT_EQ(r.exit_code, c.exit) << c.args[1] << " " << c.args[2] << ": " << r.err;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty());
+  }
+}
+
+// batch: one result per line in order, errors in place, results equal to
+// the command's own --json answer.
+TEST(Batch, ResultsAreInOrderAndEqualToTheCommand) {
+  std::string input;
+  std::vector<std::string> curves = {"(t, t^2)", "(t^2, t^3)", "(t, 1/(1+t))"};
+  for (int rep = 0; rep < 30; ++rep)
+    for (std::size_t i = 0; i < curves.size(); ++i)
+      input += "{\"id\": " + std::to_string(rep * 10 + i) + ", \"curve\": \"" + curves[i] + "\"}\n";
+  input += "{\"curve\": \"(t, \"}\n";                      // a parse error in the curve
+  input += "not json\n";                                   // not JSON
+  input += "\n";                                           // blank: skipped
+  input += "{\"svg\": \"" + std::string(kTriangle) + "\", \"options\": {\"digits\": 20}}\n";
+  input += "{\"control\": [[0, 0], [\"1/2\", 1], [1, 0]], \"weights\": [1, 2, 1]}\n";
+  const auto r = run_uniparam_stdin({"batch", "uniformity", "--speed", "parametric", "--jobs", "2"}, input);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  std::istringstream in(r.out);
+  std::string line;
+  std::vector<JsonValue> rows;
+  while (std::getline(in, line)) rows.push_back(parse_json(line));
+  ASSERT_EQ(rows.size(), 94u) << r.out.substr(0, 500);
+  for (std::size_t i = 0; i < 90; ++i) {
+    ASSERT_EQ(rows[i].find("line")->text, std::to_string(i + 1));
+    EXPECT_EQ(rows[i].find("id")->text, std::to_string((i / 3) * 10 + i % 3));
+    EXPECT_EQ(rows[i].find("status")->text, "0");
+  }
+  // Bit for bit the command's own answer.
+  const auto one = run_uniparam({"uniformity", "(t^2, t^3)", "--speed", "parametric", "--json"});
+  const JsonValue own = parse_json(one.out);
+  EXPECT_EQ(rows[1].find("result")->dump(), own.dump());
+  EXPECT_EQ(rows[90].find("status")->text, "2");
+  EXPECT_EQ(rows[90].find("error")->find("type")->text, "ParseError");
+  EXPECT_EQ(rows[91].find("line")->text, "92");
+  EXPECT_EQ(rows[91].find("error")->find("type")->text, "ParseError");
+  EXPECT_EQ(rows[92].find("line")->text, "94");  // the blank line 93 is skipped
+  EXPECT_EQ(rows[92].find("status")->text, "0");
+  EXPECT_EQ(rows[92].find("result")->find("digits")->text, "20");
+  EXPECT_EQ(rows[93].find("status")->text, "0");
+  EXPECT_NE(r.err.find("94 lines"), std::string::npos) << r.err;
+}
+
+TEST(Batch, BadCommandLinesAreRefusedOnce) {
+  EXPECT_EQ(run_uniparam_stdin({"batch", "plot"}, "").exit_code, 2);
+  EXPECT_EQ(run_uniparam_stdin({"batch", "nonsense"}, "").exit_code, 2);
+  const auto r = run_uniparam_stdin({"batch", "uniformity", "--no-such-option"}, "{\"curve\": \"(t, t^2)\"}\n");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--no-such-option"), std::string::npos);
+  EXPECT_TRUE(r.out.empty());
+  const auto key = run_uniparam_stdin({"batch", "uniformity"}, "{\"curv\": \"(t, t^2)\"}\n");
+  EXPECT_EQ(key.exit_code, 2);
+  EXPECT_NE(key.out.find("unknown key"), std::string::npos);
+}
+
+}  // namespace
