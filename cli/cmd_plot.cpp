@@ -4,12 +4,15 @@
 // and the two speed functions, with axes, the breakpoints and the certified
 // uniformities in the captions.
 #include <algorithm>
+#include <functional>
+#include <optional>
 #include <cmath>
 #include <cstring>
 #include <iostream>
 #include <stdexcept>
 
 #include "commands.hpp"
+#include "composite.hpp"
 #include "output.hpp"
 #include "json_reports.hpp"
 #include "svg.hpp"
@@ -171,6 +174,20 @@ void equal_aspect(Range& x, Range& y, double w, double h) {
   }
 }
 
+// What the plot draws: a curve p and a map r, seen through evaluations (one
+// curve, or a composite curve with its per-segment maps).
+struct PlotView {
+  std::string text;  // "p(t) = ..." or what the composite curve is
+  std::function<std::vector<Ball>(const Ball& t, long prec)> point;  // p(t)
+  std::function<Ball(const Ball& s, long prec)> r;                   // r(s)
+  std::function<Ball(const Ball& t, long prec)> speed_before;        // sigma_p(t)
+  std::function<Ball(const Ball& s, long prec)> speed_after;         // sigma_{p o r}(s)
+  std::vector<std::pair<Ball, Ball>> joints;                         // (s_i, t_i), 0 and 1 included
+  std::string method, title;
+  Ball mu, u_before, u_after;
+  Samples samples;
+};
+
 // ---- The trace: the curve itself, sampled in its own geometry ----------
 //
 // Equal steps of t can miss most of a curve (a circle with weights [1, 8e40,
@@ -208,10 +225,10 @@ Ball exact_middle(const Ball& a, const Ball& b) {
 // p(t) projected, for an exact t, with balls below `tol` (data units; for
 // tol <= 0 below 2^-40 of the point's size). False when no finite point
 // came out within max_prec.
-bool trace_point(const Curve& c, const Projection& proj, const Ball& t, double tol, long max_prec, Point& out) {
+bool trace_point(const PlotView& pv, const Projection& proj, const Ball& t, double tol, long max_prec, Point& out) {
   const long bits = static_cast<long>(arf_bits(arb_midref(t.get())));
   for (long prec = bits + 64;; prec *= 2) {
-    const std::vector<Ball> v = c.eval(t, prec);
+    const std::vector<Ball> v = pv.point(t, prec);
     std::vector<double> m;
     double rad = 0, size = 0;
     bool finite = true;
@@ -242,7 +259,7 @@ double segment_distance(Point p, Point a, Point b) {
 /// p(1) whose segments are at most kChordPx pixels long and within about
 /// kFlatPx pixels of the curve at the scale of the panels (see above).
 /// \pre r was computed for c. Checks the time budget (BudgetExceeded).
-std::vector<Point> trace_curve(const Curve& c, const Reparameterization& r, const Projection& proj, long max_prec) {
+std::vector<Point> trace_curve(const PlotView& c, const Projection& proj, long max_prec) {
   // Seeds: equal steps of t and of s (through r), sorted, without repeats.
   std::vector<Ball> seeds;
   const int n = 64;
@@ -250,7 +267,7 @@ std::vector<Point> trace_curve(const Curve& c, const Reparameterization& r, cons
   for (int j = 1; j < n; ++j) {
     check_time_budget();
     try {
-      const Ball t = r.eval_r(Ball(Rational(j, n), 128), 128);
+      const Ball t = c.r(Ball(Rational(j, n), 128), 128);
       if (arf_is_finite(arb_midref(t.get()))) seeds.push_back(exact_unit(t));
     } catch (const BudgetExceeded&) {
       throw;
@@ -335,32 +352,30 @@ struct PlotData {
   std::vector<double> joints_s;             // interior s_i
 };
 
-PlotData collect(const Curve& c, const Speed& sp, const Reparameterization& r, const Samples& smp,
-                 const Projection& proj, long max_prec) {
+PlotData collect(const PlotView& v, const Projection& proj, long max_prec) {
   const long prec = 64;
   PlotData d;
-  d.trace = trace_curve(c, r, proj, max_prec);
-  const Reparameterization id = Reparameterization::identity(r.mu(), r.u_before());
+  d.trace = trace_curve(v, proj, max_prec);
   const int dense = 800;
   for (int j = 0; j <= dense; ++j) {
     const Ball t(Rational(j, dense), prec);
-    d.speed_before.push_back({static_cast<double>(j) / dense, mid_double(id.eval_speed(sp, t, prec))});
+    d.speed_before.push_back({static_cast<double>(j) / dense, mid_double(v.speed_before(t, prec))});
   }
-  for (const auto& p : smp.before) d.before.push_back(proj(mids(p.point)));
-  for (const auto& p : smp.after) d.after.push_back(proj(mids(p.point)));
-  const std::size_t N = r.pieces();
+  for (const auto& p : v.samples.before) d.before.push_back(proj(mids(p.point)));
+  for (const auto& p : v.samples.after) d.after.push_back(proj(mids(p.point)));
+  const std::size_t N = v.joints.size() - 1;
   for (std::size_t i = 1; i < N; ++i) {
-    const Ball t = r.joints_t()[i].to_ball(prec);
-    d.breakpoints.push_back(proj(mids(id.eval_point(c, t, prec))));
-    d.breakpoint_speeds.push_back({mid_double(t), mid_double(id.eval_speed(sp, t, prec))});
-    d.joints_s.push_back(mid_double(r.joints_s()[i]));
+    const Ball& t = v.joints[i].second;
+    d.breakpoints.push_back(proj(mids(v.point(t, prec))));
+    d.breakpoint_speeds.push_back({mid_double(t), mid_double(v.speed_before(t, prec))});
+    d.joints_s.push_back(mid_double(v.joints[i].first));
   }
   // p o r's speed piece by piece, so that jumps at C0 joints show; interior
   // piece ends are moved inside by 1e-9 of the piece so that only one piece
   // is evaluated there.
   const int per_piece = std::max(24, 800 / static_cast<int>(N));
   for (std::size_t i = 0; i < N; ++i) {
-    const double a = mid_double(r.joints_s()[i]), b = mid_double(r.joints_s()[i + 1]);
+    const double a = mid_double(v.joints[i].first), b = mid_double(v.joints[i + 1].first);
     const double ia = i == 0 ? 0 : 1e-9 * (b - a), ib = i + 1 == N ? 0 : 1e-9 * (b - a);
     std::vector<Point> piece;
     for (int j = 0; j <= per_piece; ++j) {
@@ -368,7 +383,7 @@ PlotData collect(const Curve& c, const Speed& sp, const Reparameterization& r, c
       s = std::min(1.0, std::max(0.0, s));
       Ball sb;
       arb_set_d(sb.get(), s);  // s is the exact double; only a drawing position
-      piece.push_back({s, mid_double(r.eval_speed(sp, sb, prec))});
+      piece.push_back({s, mid_double(v.speed_after(sb, prec))});
     }
     d.speed_after.push_back(std::move(piece));
   }
@@ -386,16 +401,15 @@ std::string method_title(const Reparameterization& r, const std::string& target)
   return "Optimal C0 piecewise M\u00f6bius reparameterization (" + pieces + ")";
 }
 
-std::string render(const Curve& c, SpeedKind kind, const Reparameterization& r, const PlotData& d,
-                   const Projection& proj, long K, const std::string& target) {
+std::string render(const PlotView& r, SpeedKind kind, const PlotData& d, const Projection& proj, long K) {
   const double col = 430, plot = 330, left0 = 78;
   const double W = 3 * col + 20;
   // Title, subtitle (the curve) and projection, wrapped to the page: the
   // curve panels start below them.
   const double text_w = W - 40;
   const auto title = svg::wrap_text(
-      method_title(r, target) + ", " + (kind == SpeedKind::Angular ? "angular" : "parametric") + " speed", 18, text_w, true, 2);
-  const auto subtitle = svg::wrap_text("p(t) = " + pretty(c.str()), 13, text_w, false, 4);
+      r.title + ", " + (kind == SpeedKind::Angular ? "angular" : "parametric") + " speed", 18, text_w, true, 2);
+  const auto subtitle = svg::wrap_text(r.text, 13, text_w, false, 4);
   const auto projection =
       proj.caption.empty() ? std::vector<std::string>{} : svg::wrap_text("drawn in the " + proj.caption, 12, text_w, false, 2);
   double y = 30;
@@ -408,9 +422,9 @@ std::string render(const Curve& c, SpeedKind kind, const Reparameterization& r, 
   const double top = y + (projection.empty() ? 30 : 28);
   const double H = top + plot + 168;
   svg::Document doc(W, H);
-  doc.comment("uniparam plot: p(t) = " + c.str() + "; speed " + to_string(kind) + "; method " + r.method() + "; " +
-              std::to_string(r.pieces()) + " pieces; u before " + r.u_before().mid_decimal(10) + ", u after " +
-              r.u_after().mid_decimal(10));
+  doc.comment("uniparam plot: " + r.text + "; speed " + to_string(kind) + "; method " + r.method + "; " +
+              std::to_string(r.joints.size() - 1) + " pieces; u before " + r.u_before.mid_decimal(10) +
+              ", u after " + r.u_after.mid_decimal(10));
   doc.begin_group("title");
   for (const auto& [yy, line] : title_at) doc.text({W / 2, yy}, line, 18, Anchor::Middle, "#111", true);
   for (const auto& [yy, line] : subtitle_at) doc.text({W / 2, yy}, line, 13, Anchor::Middle, "#333");
@@ -476,11 +490,11 @@ std::string render(const Curve& c, SpeedKind kind, const Reparameterization& r, 
     if (k == 0) {
       items.push_back({0, Ks + " points p(t) at equal steps of t"});
       if (has_bp) items.push_back({1, "breakpoints p(t_{i})"});
-      caption(left - 50, top + plot + 62, "original p:  u(p) = " + u_text(r.u_before()), items, color);
+      caption(left - 50, top + plot + 62, "original p:  u(p) = " + u_text(r.u_before), items, color);
     } else {
       items.push_back({0, Ks + " points p(r(s)) at equal steps of s"});
       if (has_bp) items.push_back({1, "breakpoints p(t_{i}) = p(r(s_{i}))"});
-      caption(left - 50, top + plot + 62, "reparameterized p\u2218r:  u(p\u2218r) = " + u_text(r.u_after()), items,
+      caption(left - 50, top + plot + 62, "reparameterized p\u2218r:  u(p\u2218r) = " + u_text(r.u_after), items,
               color);
     }
     doc.end_group();
@@ -505,7 +519,7 @@ std::string render(const Curve& c, SpeedKind kind, const Reparameterization& r, 
     for (double s : d.joints_s)
       doc.line(P.map(s, 0), P.map(s, ytop), Style{kRed, "none", 1.2, "3 3", 0.8});
     doc.end_group();
-    const double mu = mid_double(r.mu());
+    const double mu = mid_double(r.mu);
     doc.line(P.map(0, mu), P.map(1, mu), Style{"#666", "none", 1.4, "6 4", 1});
     std::vector<Point> sb;
     for (const auto& p : d.speed_before) sb.push_back(P.map(p));
@@ -526,10 +540,10 @@ std::string render(const Curve& c, SpeedKind kind, const Reparameterization& r, 
     std::vector<std::pair<int, std::string>> items = {
         {2, speed_before + ", the original speed"},
         {2, speed_after + ", the new speed"},
-        {3, "\u03bc = " + r.mu().mid_decimal(4) + ", the speed of a uniform p\u2218r"},
+        {3, "\u03bc = " + r.mu.mid_decimal(4) + ", the speed of a uniform p\u2218r"},
     };
-    caption(left - 50, top + plot + 62, "speeds:  u(p) = " + u_text(r.u_before()) + " \u2192 u(p\u2218r) = " +
-                                            u_text(r.u_after()),
+    caption(left - 50, top + plot + 62, "speeds:  u(p) = " + u_text(r.u_before) + " \u2192 u(p\u2218r) = " +
+                                            u_text(r.u_after),
             {}, kRed);
     // two colours in one legend: draw the items one by one
     double yy = top + plot + 82;
@@ -559,14 +573,41 @@ std::string render(const Curve& c, SpeedKind kind, const Reparameterization& r, 
 
 }  // namespace
 
+namespace {
+
+/// The view of one curve c (speed sp) reparameterized by r, with K samples;
+/// `target` is the text of --target named in the title of a C1 map. The
+/// view's evaluations refer to c, sp and r, which must outlive it.
+PlotView single_view(const Curve& c, const Speed& sp, const Reparameterization& r, long K, const std::string& target,
+                     const Options& opt) {
+  PlotView v;
+  v.text = "p(t) = " + pretty(c.str());
+  v.title = method_title(r, target);
+  v.method = r.method();
+  v.mu = r.mu();
+  v.u_before = r.u_before();
+  v.u_after = r.u_after();
+  const Reparameterization id = Reparameterization::identity(r.mu(), r.u_before());
+  v.point = [&c](const Ball& t, long prec) { return c.eval(t, prec); };
+  v.r = [&r](const Ball& s, long prec) { return r.eval_r(s, prec); };
+  v.speed_after = [&r, &sp](const Ball& s, long prec) { return r.eval_speed(sp, s, prec); };
+  v.speed_before = [&sp, id](const Ball& t, long prec) { return id.eval_speed(sp, t, prec); };
+  for (std::size_t i = 0; i < r.joints_s().size(); ++i)
+    v.joints.emplace_back(r.joints_s()[i], r.joints_t()[i].to_ball(64));
+  // The dots need only drawing accuracy; they are certified to 6 digits anyway.
+  v.samples = sample(c, sp, r, K, std::min<long>(6, opt.digits), opt.max_prec);
+  return v;
+}
+
+}  // namespace
+
 std::string plot_svg(const Curve& c, SpeedKind kind, const Reparameterization& r, long K,
                      const std::string& projection, const std::string& target, const Options& opt) {
-  const Projection proj = read_projection(projection, c.dimension());
   const Speed sp(c, kind);
-  // The dots need only drawing accuracy; they are certified to 6 digits anyway.
-  const Samples smp = sample(c, sp, r, K, std::min<long>(6, opt.digits), opt.max_prec);
-  const PlotData d = collect(c, sp, r, smp, proj, opt.max_prec);
-  return render(c, kind, r, d, proj, K, target);
+  const PlotView v = single_view(c, sp, r, K, target, opt);
+  const Projection proj = read_projection(projection, c.dimension());
+  const PlotData d = collect(v, proj, opt.max_prec);
+  return render(v, kind, d, proj, K);
 }
 
 int run_plot(int argc, char** argv) {
@@ -608,14 +649,65 @@ int run_plot(int argc, char** argv) {
   const Options opt = read_options(a);
   const SpeedKind kind = parse_speed_kind(a.get("speed", "angular"));
   const long K = a.get_long("points", 40, 2, 100000);
-  const Curve c = read_curve(a);
-  const std::string projection = a.get("projection", "");
-  read_projection(projection, c.dimension());  // checked before computing
-  const Reparameterization r = read_method(a, c, kind, opt, false);
-  const std::string text = plot_svg(c, kind, r, K, projection, a.get("target", "0.99"), opt);
+  PlotView v;
+  int status = 0;
+  // One curve, or a composite one (its own maps per segment); both are held
+  // here for the lifetime of the view's evaluations.
+  std::optional<Curve> c;
+  std::optional<Speed> sp;
+  std::optional<Reparameterization> r;
+  std::optional<CompositeCurve> cc = read_composite(a);
+  std::vector<Speed> csp;
+  std::optional<CompositeMap> cr;
+  std::size_t dimension = 0;
+  if (cc && cc->size() > 1) {
+    dimension = cc->dimension();
+    csp = cc->speeds(kind);
+    CompositeMethod m = read_composite_method(a, *cc, false);
+    cr = composite_map(*cc, csp, m, opt);
+    CompositeMethod none;
+    const CompositeMap id = composite_map(*cc, csp, none, opt);
+    const std::size_t N = cr->pieces();
+    v.text = composite_description(a, *cc);
+    v.title = (m.kind == CompositeMethod::Kind::Radical ? "Piecewise radical reparameterization per segment ("
+               : m.kind == CompositeMethod::Kind::Target ? "C1 piecewise M\u00f6bius reparameterization per segment ("
+                                                         : "Optimal C0 piecewise M\u00f6bius reparameterization (") +
+              std::to_string(N) + (N == 1 ? " piece" : " pieces") + ")";
+    v.method = cr->method();
+    v.mu = cr->mu();
+    v.u_before = cr->u_before();
+    v.u_after = cr->u_after();
+    v.point = [&](const Ball& t, long prec) { return cc->eval(t, prec); };
+    v.r = [&](const Ball& s, long prec) { return cr->eval_r(*cc, s, prec); };
+    v.speed_after = [&](const Ball& s, long prec) { return cr->eval_speed(*cc, csp, s, prec); };
+    v.speed_before = [&, id](const Ball& t, long prec) { return id.eval_speed(*cc, csp, t, prec); };
+    v.joints = cr->joints(*cc, 128);
+    const long digits = std::min<long>(6, opt.digits);
+    CompositeSampler before(*cc, csp, id, digits, opt.max_prec), after(*cc, csp, *cr, digits, opt.max_prec);
+    for (long k = 0; k < K; ++k) {
+      check_time_budget();
+      v.samples.before.push_back(before.at(Rational(k, K - 1)));
+      v.samples.after.push_back(after.at(Rational(k, K - 1)));
+    }
+    if (m.kind == CompositeMethod::Kind::Target && !cr->target_reached()) {
+      warn() << "uniparam plot: the target u >= " << m.target.str()
+             << " was not reached on every segment; the best map is drawn\n";
+      status = 4;
+    }
+  } else {
+    c = read_curve(a);
+    dimension = c->dimension();
+    r = read_method(a, *c, kind, opt, false);
+    sp.emplace(*c, kind);
+    v = single_view(*c, *sp, *r, K, a.get("target", "0.99"), opt);
+    status = target_status(*r, "plot");
+  }
+  const Projection proj = read_projection(a.get("projection", ""), dimension);
+  const PlotData d = collect(v, proj, opt.max_prec);
+  const std::string text = render(v, kind, d, proj, K);
   if (out == "-") {
     answer() << text;
-    return target_status(r, "plot");
+    return status;
   }
   try {
     if (png) {
@@ -628,7 +720,7 @@ int run_plot(int argc, char** argv) {
     warn() << "uniparam plot: " << e.what() << "\n";
     return 1;
   }
-  return target_status(r, "plot");
+  return status;
 }
 
 }  // namespace uniparam::cli

@@ -355,11 +355,9 @@ int run_sample_composite(const Args& a, const CompositeCurve& c, SpeedKind kind,
                          const std::string& format) {
   if (a.flag("deviation")) throw InvalidArgument("--deviation is not available for composite curves");
   const std::string m = a.get("method", "radical");
-  if (m != "radical" && m != "c0" && m != "c1" && m != "none" && m != "exact")
-    throw InvalidArgument("unknown method '" + m + "' (expected radical, c0, c1, none or exact)");
-  if (a.has("pieces") && m != "c0") throw InvalidArgument("--pieces applies to --method c0 only");
-  if (a.has("target") && m != "c1") throw InvalidArgument("--target applies to --method c1 only");
-  if (a.has("max-pieces") && m != "c1") throw InvalidArgument("--max-pieces applies to --method c1 only");
+  if (m == "exact")
+    for (const char* o : {"pieces", "target", "max-pieces"})
+      if (a.has(o)) throw InvalidArgument(std::string("--") + o + " does not apply to --method exact");
   const std::vector<Speed> sp = c.speeds(kind);
   const std::size_t n = c.dimension();
   const long pd = printed_digits(opt.digits);
@@ -383,19 +381,9 @@ int run_sample_composite(const Args& a, const CompositeCurve& c, SpeedKind kind,
       });
     }, {}, nullptr, &mu);
   }
-  CompositeMethod cm;
+  const CompositeMethod cm = read_composite_method(a, c, true);
   Options ropt = opt;
   ropt.digits = opt.digits + 3;
-  if (m == "radical") cm.kind = CompositeMethod::Kind::Radical;
-  if (m == "c0") {
-    cm.kind = CompositeMethod::Kind::Pieces;
-    cm.pieces = a.get_long("pieces", std::max<long>(3, static_cast<long>(c.size())), 1, 1000);
-  }
-  if (m == "c1") {
-    cm.kind = CompositeMethod::Kind::Target;
-    cm.target = read_rational("target", a.get("target", "0.99"));
-    cm.max_pieces = a.get_long("max-pieces", 64, 1, 1000);
-  }
   const CompositeMap r = composite_map(c, sp, cm, ropt);
   head.set("method", Json::string(m == "none" ? "none" : r.method()));
   head.set("digits", Json::number(opt.digits));

@@ -1,5 +1,6 @@
 #include "composite.hpp"
 
+#include <algorithm>
 #include <iostream>
 
 #include "commands.hpp"
@@ -158,6 +159,30 @@ int run_uniformity_composite(const Args& a, const CompositeCurve& c, SpeedKind k
     answer() << line("corners") << format_ball(r.corner_turning, pd, Format::Text)
               << " rad of turning at the joints (not in mu: no angular speed carries a corner)\n";
   return 0;
+}
+
+CompositeMethod read_composite_method(const Args& a, const CompositeCurve& c, bool with_none) {
+  const std::string m = a.get("method", "radical");
+  if (m != "radical" && m != "c0" && m != "c1" && !(with_none && m == "none"))
+    throw InvalidArgument("unknown method '" + m + "' (expected radical, c0, c1" +
+                          std::string(with_none ? " or none)" : ")"));
+  if (a.has("pieces") && m != "c0") throw InvalidArgument("--pieces applies to --method c0 only");
+  if (a.has("target") && m != "c1") throw InvalidArgument("--target applies to --method c1 only");
+  if (a.has("max-pieces") && m != "c1") throw InvalidArgument("--max-pieces applies to --method c1 only");
+  CompositeMethod cm;
+  if (m == "radical") cm.kind = CompositeMethod::Kind::Radical;
+  if (m == "c0") {
+    cm.kind = CompositeMethod::Kind::Pieces;
+    cm.pieces = a.get_long("pieces", std::max<long>(3, static_cast<long>(c.size())), 1, 1000);
+  }
+  if (m == "c1") {
+    cm.kind = CompositeMethod::Kind::Target;
+    cm.target = read_rational("target", a.get("target", "0.99"));
+    if (cm.target <= Rational(0) || cm.target >= Rational(1))
+      throw InvalidArgument("--target must lie strictly between 0 and 1, got " + cm.target.str());
+    cm.max_pieces = a.get_long("max-pieces", 64, 1, 1000);
+  }
+  return cm;
 }
 
 CompositeMethod with_rational(const Args& a, CompositeMethod m) {

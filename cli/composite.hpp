@@ -29,6 +29,13 @@ int run_uniformity_composite(const Args& a, const CompositeCurve& c, SpeedKind k
 int run_map_composite(const Args& a, const CompositeCurve& c, SpeedKind kind, const Options& opt,
                       const CompositeMethod& m, const std::string& command);
 
+/// The map of --method radical | c0 | c1 (| none with `with_none`) for a
+/// composite curve: --pieces (c0; default max(3, segments)), --target (c1;
+/// default 0.99) and --max-pieces (c1, per segment).
+/// \throws InvalidArgument for an unknown method, an option of another
+///         method, a target outside (0, 1).
+CompositeMethod read_composite_method(const Args& a, const CompositeCurve& c, bool with_none);
+
 /// The method of --rational / --rational-digits added to `m` (Moebius kinds).
 CompositeMethod with_rational(const Args& a, CompositeMethod m);
 

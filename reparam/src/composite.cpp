@@ -140,6 +140,39 @@ long CompositeCurve::degree() const {
   return d;
 }
 
+std::size_t CompositeCurve::segment_of(const Rational& x) const {
+  std::size_t j = 0;
+  while (j + 2 < knots_.size() && !(x < knots_[j + 1])) ++j;
+  return j;
+}
+
+std::vector<Ball> CompositeCurve::eval(const Ball& t, long prec) const {
+  const auto& k = knots_;
+  if (t.is_exact()) {
+    const Rational x = mid_rational(t);
+    const std::size_t j = segment_of(x);
+    return segments_[j].eval(Ball((x - k[j]) / (k[j + 1] - k[j]), prec), prec);
+  }
+  std::vector<Ball> out;
+  for (std::size_t j = 0; j < size(); ++j) {
+    // The part of t inside [k_j, k_{j+1}], in the segment's parameter.
+    Ball lo(k[j], prec), hi(k[j + 1], prec);
+    if (arb_lt(t.get(), lo.get()) || arb_gt(t.get(), hi.get())) continue;
+    Ball local;
+    arb_sub(local.get(), t.get(), lo.get(), prec);
+    local = div_rational(local, k[j + 1] - k[j], prec);
+    clamp_unit(local.get(), prec);
+    const std::vector<Ball> p = segments_[j].eval(local, prec);
+    if (out.empty()) {
+      out = p;
+    } else {
+      for (std::size_t i = 0; i < p.size(); ++i) arb_union(out[i].get(), out[i].get(), p[i].get(), prec);
+    }
+  }
+  if (out.empty()) throw InvalidArgument("the parameter's enclosure lies outside [0, 1]");
+  return out;
+}
+
 std::vector<Speed> CompositeCurve::speeds(SpeedKind kind) const {
   std::vector<Speed> out;
   out.reserve(size());
@@ -229,6 +262,77 @@ bool CompositeMap::target_reached() const {
     if (!m || !m->target.used || !m->target.reached) return false;
   }
   return true;
+}
+
+namespace {
+
+// Calls f(j, local) for every segment j whose [S_j, S_{j+1}] meets the ball
+// s, with local = (s - S_j) / (S_{j+1} - S_j) clipped to [0, 1].
+template <class F>
+void for_segments_at(const std::vector<Rational>& S, const Ball& s, long prec, F&& f) {
+  if (arb_is_exact(s.get())) {
+    const Rational x = mid_rational(s);
+    std::size_t j = 0;
+    while (j + 2 < S.size() && !(x < S[j + 1])) ++j;
+    f(j, Ball((x - S[j]) / (S[j + 1] - S[j]), prec));
+    return;
+  }
+  bool any = false;
+  for (std::size_t j = 0; j + 1 < S.size(); ++j) {
+    Ball lo(S[j], prec), hi(S[j + 1], prec);
+    if (arb_lt(s.get(), lo.get()) || arb_gt(s.get(), hi.get())) continue;
+    Ball local;
+    arb_sub(local.get(), s.get(), lo.get(), prec);
+    local = div_rational(local, S[j + 1] - S[j], prec);
+    clamp_unit(local.get(), prec);
+    f(j, local);
+    any = true;
+  }
+  if (!any) throw InvalidArgument("the parameter s must lie in [0, 1]");
+}
+
+void unite(Ball& acc, bool& first, const Ball& x, long prec) {
+  if (first) acc = x;
+  else arb_union(acc.get(), acc.get(), x.get(), prec);
+  first = false;
+}
+
+}  // namespace
+
+Ball CompositeMap::eval_r(const CompositeCurve& c, const Ball& s, long prec) const {
+  Ball out;
+  bool first = true;
+  for_segments_at(S_, s, prec, [&](std::size_t j, const Ball& local) {
+    Ball t = mul_rational(parts_[j].eval_r(local, prec), c.knots()[j + 1] - c.knots()[j], prec);
+    arb_add(t.get(), t.get(), Ball(c.knots()[j], prec).get(), prec);
+    unite(out, first, t, prec);
+  });
+  return out;
+}
+
+Ball CompositeMap::eval_speed(const CompositeCurve& c, const std::vector<Speed>& sp, const Ball& s, long prec) const {
+  (void)c;
+  Ball out;
+  bool first = true;
+  for_segments_at(S_, s, prec, [&](std::size_t j, const Ball& local) {
+    unite(out, first, div_rational(parts_[j].eval_speed(sp[j], local, prec), S_[j + 1] - S_[j], prec), prec);
+  });
+  return out;
+}
+
+std::vector<std::pair<Ball, Ball>> CompositeMap::joints(const CompositeCurve& c, long prec) const {
+  std::vector<std::pair<Ball, Ball>> out;
+  for (std::size_t j = 0; j < parts_.size(); ++j) {
+    const Reparameterization& p = parts_[j];
+    for (std::size_t i = j ? 1 : 0; i < p.joints_s().size(); ++i) {
+      Ball s = mul_rational(p.joints_s()[i], S_[j + 1] - S_[j], prec);
+      arb_add(s.get(), s.get(), Ball(S_[j], prec).get(), prec);
+      Ball t = mul_rational(p.joints_t()[i].to_ball(prec), c.knots()[j + 1] - c.knots()[j], prec);
+      arb_add(t.get(), t.get(), Ball(c.knots()[j], prec).get(), prec);
+      out.emplace_back(s, t);
+    }
+  }
+  return out;
 }
 
 namespace {
@@ -510,40 +614,13 @@ class CompositeTrack final : public Track {
   }
   double sigma_estimate(const Rational& x) const override {
     const auto& k = c_.knots();
-    std::size_t j = 0;
-    while (j + 2 < k.size() && !(x < k[j + 1])) ++j;
+    const std::size_t j = c_.segment_of(x);
     if (s_[j].identically_zero()) return 0;
     const Rational d = k[j + 1] - k[j];
     const double dd = mid_double_of(Ball(d, 64));
     return uniparam::sigma_estimate(s_[j], (x - k[j]) / d) / dd;
   }
-  std::vector<Ball> eval(const Ball& t, long prec) const override {
-    const auto& k = c_.knots();
-    if (t.is_exact()) {
-      const Rational x = mid_rational(t);
-      std::size_t j = 0;
-      while (j + 2 < k.size() && !(x < k[j + 1])) ++j;
-      return c_.segment(j).eval(Ball((x - k[j]) / (k[j + 1] - k[j]), prec), prec);
-    }
-    std::vector<Ball> out;
-    for (std::size_t j = 0; j < c_.size(); ++j) {
-      // The part of t inside [k_j, k_{j+1}], in the segment's parameter.
-      Ball lo(k[j], prec), hi(k[j + 1], prec);
-      if (arb_lt(t.get(), lo.get()) || arb_gt(t.get(), hi.get())) continue;
-      Ball local;
-      arb_sub(local.get(), t.get(), lo.get(), prec);
-      local = div_rational(local, k[j + 1] - k[j], prec);
-      clamp_unit(local.get(), prec);
-      const std::vector<Ball> p = c_.segment(j).eval(local, prec);
-      if (out.empty()) {
-        out = p;
-      } else {
-        for (std::size_t i = 0; i < p.size(); ++i) arb_union(out[i].get(), out[i].get(), p[i].get(), prec);
-      }
-    }
-    if (out.empty()) throw InvalidArgument("the parameter's enclosure lies outside [0, 1]");
-    return out;
-  }
+  std::vector<Ball> eval(const Ball& t, long prec) const override { return c_.eval(t, prec); }
 
  private:
   const CompositeCurve& c_;

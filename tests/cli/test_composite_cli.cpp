@@ -129,6 +129,20 @@ TEST(CompositeCli, SamplesStartAndEndOnThePathAndMeetTheJoints) {
   ASSERT_EQ(ex.exit_code, 0) << ex.err;
 }
 
+TEST(CompositeCli, PlotDrawsAPathAndItsMap) {
+  const std::string path = "M 0 0 C 1 2 3 2 4 0 S 7 -2 8 0 Q 9 1 10 0";
+  for (const char* method : {"radical", "c0", "c1"}) {
+    const auto r = run_uniparam({"plot", "--svg", path, "--speed", "parametric", "--method", method, "-o", "-"});
+    ASSERT_EQ(r.exit_code, 0) << method << ": " << r.err;
+    EXPECT_NE(r.out.find("SVG path of 3 segments"), std::string::npos);
+    EXPECT_NE(r.out.find("</svg>"), std::string::npos);
+    // The original points and the map's points: 40 of each by default.
+    std::size_t dots = 0;
+    for (std::size_t at = r.out.find("<circle"); at != std::string::npos; at = r.out.find("<circle", at + 1)) ++dots;
+    EXPECT_GE(dots, 80u) << method;
+  }
+}
+
 TEST(CompositeCli, LocateOnASymmetricPathFindsTheJoint) {
   // Two mirror-image arcs: half the length is exactly at the joint t = 1/2.
   const auto r = run_uniparam({"locate", "--svg", "M 0 0 Q 1 2 2 2 Q 3 2 4 0", "--fraction", "1/2", "--json"});

@@ -52,6 +52,14 @@ class CompositeCurve {
   std::size_t dimension() const { return segments_.front().dimension(); }
   /// Largest degree among the segments.
   long degree() const;
+  /// Enclosures of p's components at the ball t in [0, 1]: the segment's
+  /// value at an exact t (the later segment at a knot), else the union over
+  /// the segments t meets (t clipped to each).
+  /// \throws InvalidArgument when t does not meet [0, 1].
+  std::vector<Ball> eval(const Ball& t, long prec) const;
+  /// The segment holding the exact parameter x in [0, 1] (the later one at
+  /// an interior knot).
+  std::size_t segment_of(const Rational& x) const;
   /// Every segment's speed of kind `kind` (Speed's constructor per segment;
   /// throws as it does, the message prefixed with the segment's label).
   std::vector<Speed> speeds(SpeedKind kind) const;
@@ -128,6 +136,18 @@ class CompositeMap {
   /// The C1 target was used and is reached (certified) by every segment, so
   /// by the whole map (u >= target on every segment implies it overall).
   bool target_reached() const;
+
+  /// Enclosure of r(s) in the global t for a ball s in [0, 1]: where s meets
+  /// several segments' intervals [S_j, S_{j+1}], the union of their values.
+  /// \pre c is the curve of this map. \throws InvalidArgument for s
+  ///      outside [0, 1].
+  Ball eval_r(const CompositeCurve& c, const Ball& s, long prec) const;
+  /// Enclosure of the speed of p o r at s (the union over the segments s
+  /// meets, as eval_r). \pre c and sp are the curve and speeds of this map.
+  Ball eval_speed(const CompositeCurve& c, const std::vector<Speed>& sp, const Ball& s, long prec) const;
+  /// Every piece's joints over the whole curve, in order, 0 and 1 included:
+  /// (s_i, t_i) in the global parameters, as balls at `prec`.
+  std::vector<std::pair<Ball, Ball>> joints(const CompositeCurve& c, long prec) const;
 
  private:
   friend CompositeMap composite_map(const CompositeCurve&, const std::vector<Speed>&, const CompositeMethod&,
