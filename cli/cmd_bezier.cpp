@@ -6,6 +6,7 @@
 #include "commands.hpp"
 #include "output.hpp"
 #include "nurbs_out.hpp"
+#include "json_reports.hpp"
 #include "report.hpp"
 #include "uniparam/reparam/bezier.hpp"
 
@@ -46,11 +47,11 @@ std::string weights_formula(long n, Format f) {
   }
 }
 
-/// Whether the exact weights are printed expanded: --exact-weights, where
-/// 'auto' bounds the size of the largest, w_0 = alpha^n, by n times the size
-/// of alpha's own text (without forming it).
-bool expand_weights(const Args& a, const BezierResult& r, long n) {
-  const std::string form = a.get("exact-weights", "auto");
+}  // namespace
+
+// 'auto' bounds the size of the largest, w_0 = alpha^n, by n times the size
+// of alpha's own text (without forming it).
+bool expand_weights(const std::string& form, const BezierResult& r, long n) {
   if (form == "expanded") return true;
   if (form == "formula") return false;
   if (form != "auto")
@@ -59,7 +60,65 @@ bool expand_weights(const Args& a, const BezierResult& r, long n) {
   return static_cast<double>(r.alpha_exact->str(Format::Text).size()) * static_cast<double>(n) <= 4096.0;
 }
 
-}  // namespace
+
+Json bezier_json(const BezierCurve& bz, const BezierResult& r, long digits, bool expanded) {
+  const long pd = printed_digits(digits);
+  const Curve c = bz.to_curve();
+  const std::size_t n1 = r.weights.size();
+  Json j = Json::object();
+  j.set("control", Json::string(bz.str()));
+  if (bz.is_rational()) {
+    Json w = Json::array();
+    for (const auto& v : bz.weights()) w.push(Json::string(v.str()));
+    j.set("input_weights", w);
+  }
+  j.set("degree", Json::number(bz.degree()));
+  j.set("dimension", Json::number(static_cast<long>(bz.dimension())));
+  j.set("curve", Json::string(c.str()));
+  j.set("speed", Json::string("parametric"));
+  j.set("digits", Json::number(digits));
+  j.set("exact", Json::boolean(r.exact));
+  if (r.exact) {
+    j.set("P", json_rational(*r.P_exact, pd));
+    j.set("Q", json_rational(*r.Q_exact, pd));
+    Json al = json_surd(*r.alpha_exact, r.alpha, pd);
+    if (!r.alpha_exact->is_rational()) {
+      // the surd's text, plus its defining polynomial and isolating interval
+      Json e = Json::object();
+      e.set("text", Json::string(r.alpha_exact->str(Format::Text)));
+      e.set("latex", Json::string(r.alpha_exact->str(Format::Latex)));
+      e.set("maple", Json::string(r.alpha_exact->str(Format::Maple)));
+      e.set("poly", Json::string(r.alpha_algebraic->poly().str()));
+      auto [lo, hi] = short_interval(*r.alpha_algebraic);
+      e.set("interval", Json::array().push(Json::string(lo.str())).push(Json::string(hi.str())));
+      al.set("exact", e);
+    }
+    j.set("alpha", al);
+    Json w = Json::array();
+    for (std::size_t i = 0; i < n1; ++i)
+      w.push(expanded ? json_surd(r.weights_exact[i], r.weights[i], pd) : json_ball(r.weights[i], pd));
+    j.set("weights", w);
+    if (!expanded) {
+      Json e = Json::object();
+      e.set("text", Json::string(weights_formula(bz.degree(), Format::Text)));
+      e.set("latex", Json::string(weights_formula(bz.degree(), Format::Latex)));
+      e.set("maple", Json::string(weights_formula(bz.degree(), Format::Maple)));
+      j.set("weights_formula", e);
+    }
+    j.set("mean_square", json_rational(*r.mean_square_exact, pd));
+  } else {
+    j.set("P", json_ball(r.P, pd));
+    j.set("Q", json_ball(r.Q, pd));
+    j.set("alpha", json_ball(r.alpha, pd));
+    Json w = Json::array();
+    for (const auto& b : r.weights) w.push(json_ball(b, pd));
+    j.set("weights", w);
+  }
+  j.set("mu", json_ball(r.mu, pd));
+  j.set("u_before", json_ball(r.u_before, pd));
+  j.set("u_after", json_ball(r.u_after, pd));
+  return j;
+}
 
 int run_bezier(int argc, char** argv) {
   const CommandSpec spec = bezier_spec();
@@ -73,7 +132,7 @@ int run_bezier(int argc, char** argv) {
   const BezierResult r = bezier_optimal(bz, opt);
   const long pd = printed_digits(opt.digits);
   const std::size_t n1 = r.weights.size();
-  const bool expanded = expand_weights(a, r, bz.degree());
+  const bool expanded = expand_weights(a.get("exact-weights", "auto"), r, bz.degree());
   if (no.form != NurbsOutput::Form::None) {
     Nurbs n = bezier_nurbs(bz, r, nurbs_prec(opt));
     if (!expanded && n.kind == Nurbs::Kind::Surd) {
@@ -86,59 +145,7 @@ int run_bezier(int argc, char** argv) {
   }
 
   if (wants_json(a)) {
-    Json j = Json::object();
-    j.set("control", Json::string(bz.str()));
-    if (bz.is_rational()) {
-      Json w = Json::array();
-      for (const auto& v : bz.weights()) w.push(Json::string(v.str()));
-      j.set("input_weights", w);
-    }
-    j.set("degree", Json::number(bz.degree()));
-    j.set("dimension", Json::number(static_cast<long>(bz.dimension())));
-    j.set("curve", Json::string(c.str()));
-    j.set("speed", Json::string("parametric"));
-    j.set("digits", Json::number(opt.digits));
-    j.set("exact", Json::boolean(r.exact));
-    if (r.exact) {
-      j.set("P", json_rational(*r.P_exact, pd));
-      j.set("Q", json_rational(*r.Q_exact, pd));
-      Json al = json_surd(*r.alpha_exact, r.alpha, pd);
-      if (!r.alpha_exact->is_rational()) {
-        // the surd's text, plus its defining polynomial and isolating interval
-        Json e = Json::object();
-        e.set("text", Json::string(r.alpha_exact->str(Format::Text)));
-        e.set("latex", Json::string(r.alpha_exact->str(Format::Latex)));
-        e.set("maple", Json::string(r.alpha_exact->str(Format::Maple)));
-        e.set("poly", Json::string(r.alpha_algebraic->poly().str()));
-        auto [lo, hi] = short_interval(*r.alpha_algebraic);
-        e.set("interval", Json::array().push(Json::string(lo.str())).push(Json::string(hi.str())));
-        al.set("exact", e);
-      }
-      j.set("alpha", al);
-      Json w = Json::array();
-      for (std::size_t i = 0; i < n1; ++i)
-        w.push(expanded ? json_surd(r.weights_exact[i], r.weights[i], pd) : json_ball(r.weights[i], pd));
-      j.set("weights", w);
-      if (!expanded) {
-        Json e = Json::object();
-        e.set("text", Json::string(weights_formula(bz.degree(), Format::Text)));
-        e.set("latex", Json::string(weights_formula(bz.degree(), Format::Latex)));
-        e.set("maple", Json::string(weights_formula(bz.degree(), Format::Maple)));
-        j.set("weights_formula", e);
-      }
-      j.set("mean_square", json_rational(*r.mean_square_exact, pd));
-    } else {
-      j.set("P", json_ball(r.P, pd));
-      j.set("Q", json_ball(r.Q, pd));
-      j.set("alpha", json_ball(r.alpha, pd));
-      Json w = Json::array();
-      for (const auto& b : r.weights) w.push(json_ball(b, pd));
-      j.set("weights", w);
-    }
-    j.set("mu", json_ball(r.mu, pd));
-    j.set("u_before", json_ball(r.u_before, pd));
-    j.set("u_after", json_ball(r.u_after, pd));
-    answer() << j.dump(2) << "\n";
+    answer() << bezier_json(bz, r, opt.digits, expanded).dump(2) << "\n";
     return 0;
   }
 

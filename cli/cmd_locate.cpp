@@ -6,6 +6,7 @@
 #include "commands.hpp"
 #include "output.hpp"
 #include "composite.hpp"
+#include "json_reports.hpp"
 #include "report.hpp"
 #include "uniparam/reparam/locate.hpp"
 
@@ -41,6 +42,25 @@ CommandSpec locate_spec() {
           "  uniparam locate \"(t, t^3)\" --angle 0.25         # tangent turned by 0.25 rad",
           {"CURVE"},
           opts};
+}
+
+Json locate_json(const Curve& c, SpeedKind kind, long digits, const std::string& option, const Rational& value,
+                 const LocateResult& r) {
+  const long pd = printed_digits(digits);
+  const char* measure = kind == SpeedKind::Parametric ? "length" : "angle";
+  Json j = Json::object();
+  j.set("curve", Json::string(c.str()));
+  j.set("speed", Json::string(to_string(kind)));
+  j.set("digits", Json::number(digits));
+  j.set("given", Json::string(option));
+  j.set("value", Json::string(value.str()));
+  j.set("mu", json_ball(r.mu, pd));
+  j.set(measure, json_ball(r.target, pd));
+  j.set("t", json_ball(r.at.t, pd));
+  Json pt = Json::array();
+  for (const Ball& x : r.at.point) pt.push(json_ball(x, pd));
+  j.set("point", pt);
+  return j;
 }
 
 int run_locate(int argc, char** argv) {
@@ -79,19 +99,7 @@ int run_locate(int argc, char** argv) {
   const char* measure = kind == SpeedKind::Parametric ? "length" : "angle";
 
   if (wants_json(a)) {
-    Json j = Json::object();
-    j.set("curve", Json::string(c.str()));
-    j.set("speed", Json::string(to_string(kind)));
-    j.set("digits", Json::number(opt.digits));
-    j.set("given", Json::string(option));
-    j.set("value", Json::string(value.str()));
-    j.set("mu", json_ball(r.mu, pd));
-    j.set(measure, json_ball(r.target, pd));
-    j.set("t", json_ball(r.at.t, pd));
-    Json pt = Json::array();
-    for (const Ball& x : r.at.point) pt.push(json_ball(x, pd));
-    j.set("point", pt);
-    answer() << j.dump(2) << "\n";
+    answer() << locate_json(c, kind, opt.digits, option, value, r).dump(2) << "\n";
     return 0;
   }
   auto line = [](const std::string& label) { return label + std::string(label.size() < 11 ? 11 - label.size() : 1, ' '); };

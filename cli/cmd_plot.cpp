@@ -14,6 +14,7 @@
 #include "commands.hpp"
 #include "composite.hpp"
 #include "output.hpp"
+#include "json_reports.hpp"
 #include "svg.hpp"
 #include "uniparam/reparam/sample.hpp"
 
@@ -100,10 +101,11 @@ struct Projection {
   }
 };
 
-Projection read_projection(const Args& a, std::size_t n) {
+/// The projection named by `given` ("iso" or "I,J"; empty: the default,
+/// iso for 3 or more components) for a curve of n components.
+Projection read_projection(const std::string& given, std::size_t n) {
   Projection p;
-  const std::string dflt = n >= 3 ? "iso" : "1,2";
-  const std::string v = a.get("projection", dflt);
+  const std::string v = given.empty() ? (n >= 3 ? "iso" : "1,2") : given;
   if (v == "iso") {
     if (n < 3) throw InvalidArgument("--projection iso needs a curve with at least 3 components");
     p.iso = true;
@@ -388,13 +390,13 @@ PlotData collect(const PlotView& v, const Projection& proj, long max_prec) {
   return d;
 }
 
-std::string method_title(const Reparameterization& r, const Args& a) {
+std::string method_title(const Reparameterization& r, const std::string& target) {
   const std::size_t N = r.pieces();
   const std::string pieces = std::to_string(N) + (N == 1 ? " piece" : " pieces");
   if (r.radical_result()) return "Optimal piecewise radical reparameterization r = \u03c6\u2218m (" + pieces + ")";
   const auto* m = r.moebius_result();
   if (m && m->continuity == Continuity::C1)
-    return "C1 piecewise M\u00f6bius reparameterization (" + pieces + ", target \u016b = " + a.get("target", "0.99") +
+    return "C1 piecewise M\u00f6bius reparameterization (" + pieces + ", target \u016b = " + target +
            (m->target.reached ? " reached" : " NOT reached") + ")";
   return "Optimal C0 piecewise M\u00f6bius reparameterization (" + pieces + ")";
 }
@@ -571,6 +573,43 @@ std::string render(const PlotView& r, SpeedKind kind, const PlotData& d, const P
 
 }  // namespace
 
+namespace {
+
+/// The view of one curve c (speed sp) reparameterized by r, with K samples;
+/// `target` is the text of --target named in the title of a C1 map. The
+/// view's evaluations refer to c, sp and r, which must outlive it.
+PlotView single_view(const Curve& c, const Speed& sp, const Reparameterization& r, long K, const std::string& target,
+                     const Options& opt) {
+  PlotView v;
+  v.text = "p(t) = " + pretty(c.str());
+  v.title = method_title(r, target);
+  v.method = r.method();
+  v.mu = r.mu();
+  v.u_before = r.u_before();
+  v.u_after = r.u_after();
+  const Reparameterization id = Reparameterization::identity(r.mu(), r.u_before());
+  v.point = [&c](const Ball& t, long prec) { return c.eval(t, prec); };
+  v.r = [&r](const Ball& s, long prec) { return r.eval_r(s, prec); };
+  v.speed_after = [&r, &sp](const Ball& s, long prec) { return r.eval_speed(sp, s, prec); };
+  v.speed_before = [&sp, id](const Ball& t, long prec) { return id.eval_speed(sp, t, prec); };
+  for (std::size_t i = 0; i < r.joints_s().size(); ++i)
+    v.joints.emplace_back(r.joints_s()[i], r.joints_t()[i].to_ball(64));
+  // The dots need only drawing accuracy; they are certified to 6 digits anyway.
+  v.samples = sample(c, sp, r, K, std::min<long>(6, opt.digits), opt.max_prec);
+  return v;
+}
+
+}  // namespace
+
+std::string plot_svg(const Curve& c, SpeedKind kind, const Reparameterization& r, long K,
+                     const std::string& projection, const std::string& target, const Options& opt) {
+  const Speed sp(c, kind);
+  const PlotView v = single_view(c, sp, r, K, target, opt);
+  const Projection proj = read_projection(projection, c.dimension());
+  const PlotData d = collect(v, proj, opt.max_prec);
+  return render(v, kind, d, proj, K);
+}
+
 int run_plot(int argc, char** argv) {
   const CommandSpec spec = plot_spec();
   Args a = parse_args(spec, argc, argv, 2);  // "-o FILE" is read as "--output FILE"
@@ -660,24 +699,10 @@ int run_plot(int argc, char** argv) {
     dimension = c->dimension();
     r = read_method(a, *c, kind, opt, false);
     sp.emplace(*c, kind);
-    v.text = "p(t) = " + pretty(c->str());
-    v.title = method_title(*r, a);
-    v.method = r->method();
-    v.mu = r->mu();
-    v.u_before = r->u_before();
-    v.u_after = r->u_after();
-    const Reparameterization id = Reparameterization::identity(r->mu(), r->u_before());
-    v.point = [&](const Ball& t, long prec) { return c->eval(t, prec); };
-    v.r = [&](const Ball& s, long prec) { return r->eval_r(s, prec); };
-    v.speed_after = [&](const Ball& s, long prec) { return r->eval_speed(*sp, s, prec); };
-    v.speed_before = [&, id](const Ball& t, long prec) { return id.eval_speed(*sp, t, prec); };
-    for (std::size_t i = 0; i < r->joints_s().size(); ++i)
-      v.joints.emplace_back(r->joints_s()[i], r->joints_t()[i].to_ball(64));
-    // The dots need only drawing accuracy; they are certified to 6 digits anyway.
-    v.samples = sample(*c, *sp, *r, K, std::min<long>(6, opt.digits), opt.max_prec);
+    v = single_view(*c, *sp, *r, K, a.get("target", "0.99"), opt);
     status = target_status(*r, "plot");
   }
-  const Projection proj = read_projection(a, dimension);
+  const Projection proj = read_projection(a.get("projection", ""), dimension);
   const PlotData d = collect(v, proj, opt.max_prec);
   const std::string text = render(v, kind, d, proj, K);
   if (out == "-") {

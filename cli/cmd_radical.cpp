@@ -5,6 +5,7 @@
 #include "commands.hpp"
 #include "output.hpp"
 #include "composite.hpp"
+#include "json_reports.hpp"
 #include "report.hpp"
 #include "uniparam/reparam/formula.hpp"
 #include "uniparam/reparam/radical.hpp"
@@ -41,6 +42,19 @@ Format parse_format(const std::string& s) {
   if (s == "latex") return Format::Latex;
   if (s == "maple") return Format::Maple;
   throw InvalidArgument("unknown format '" + s + "' (expected text, latex, maple or json)");
+}
+
+Json radical_at_json(const Rational& z, const SamplePoint& v, long digits) {
+  const long pd = printed_digits(digits);
+  Json e = Json::object();
+  e.set("z", json_rational(z, pd));
+  e.set("r", json_ball(v.t, pd));
+  Json pt = Json::array();
+  for (const auto& b : v.point) pt.push(json_ball(b, pd));
+  e.set("p_r", pt);
+  e.set("speed", json_ball(v.speed, pd));
+  e.set("at_joint", Json::boolean(v.at_joint));
+  return e;
 }
 
 Json radical_json(const Curve& c, const RadicalResult& r, long digits, Format fmt) {
@@ -137,17 +151,7 @@ int run_radical(int argc, char** argv) {
   const long pd = printed_digits(opt.digits);
   if (wants_json(a)) {
     Json j = radical_json(c, r, opt.digits, fmt);
-    if (atv) {
-      Json e = Json::object();
-      e.set("z", json_rational(*at, pd));
-      e.set("r", json_ball(atv->t, pd));
-      Json pt = Json::array();
-      for (const auto& b : atv->point) pt.push(json_ball(b, pd));
-      e.set("p_r", pt);
-      e.set("speed", json_ball(atv->speed, pd));
-      e.set("at_joint", Json::boolean(atv->at_joint));
-      j.set("at", e);
-    }
+    if (atv) j.set("at", radical_at_json(*at, *atv, opt.digits));
     answer() << j.dump(2) << "\n";
     return 0;
   }

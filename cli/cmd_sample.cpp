@@ -9,6 +9,7 @@
 #include "commands.hpp"
 #include "composite.hpp"
 #include "output.hpp"
+#include "json_reports.hpp"
 #include "report.hpp"
 #include "uniparam/reparam/locate.hpp"
 #include "uniparam/reparam/sample.hpp"
@@ -100,6 +101,50 @@ CommandSpec sample_spec() {
           opts};
 }
 
+Json sample_header_json(const Curve& c, SpeedKind kind, const Reparameterization& r, long digits, long K) {
+  const long pd = printed_digits(digits);
+  Json head = Json::object();
+  head.set("curve", Json::string(c.str()));
+  head.set("speed", Json::string(to_string(kind)));
+  head.set("method", Json::string(r.method()));
+  head.set("digits", Json::number(digits));
+  head.set("points", Json::number(K));
+  head.set("mu", json_ball(r.mu(), pd));
+  head.set("u_before", json_ball(r.u_before(), pd));
+  head.set("u_after", json_ball(r.u_after(), pd));
+  Json js = Json::array(), jt = Json::array();
+  for (const auto& b : r.joints_s()) js.push(json_ball(b, pd));
+  for (const auto& t : r.joints_t()) jt.push(json_algebraic(t, digits));
+  Json joints = Json::object();
+  joints.set("s", js);
+  joints.set("t", jt);
+  head.set("joints", joints);
+  return head;
+}
+
+Json sample_row_json(const SamplePoint& p, long digits) {
+  const long pd = printed_digits(digits);
+  Json row = Json::object();
+  row.set("s", json_rational(p.s, pd));
+  row.set("t", json_ball(p.t, pd));
+  Json pt = Json::array();
+  for (const auto& b : p.point) pt.push(json_ball(b, pd));
+  row.set("point", pt);
+  row.set("speed", json_ball(p.speed, pd));
+  row.set("at_joint", Json::boolean(p.at_joint));
+  return row;
+}
+
+Json sample_exact_header_json(const Curve& c, SpeedKind kind, long digits, long K) {
+  Json head = Json::object();
+  head.set("curve", Json::string(c.str()));
+  head.set("speed", Json::string(to_string(kind)));
+  head.set("method", Json::string("exact"));
+  head.set("digits", Json::number(digits));
+  head.set("points", Json::number(K));
+  return head;
+}
+
 namespace {
 
 /// The bookkeeping of rows streamed to answer() (after stream_stdout()): a
@@ -188,14 +233,7 @@ int stream_samples(Json head, std::size_t n, long K, const std::string& format, 
     each([&](long k, const SamplePoint& p) {
       if (!started) start();
       if (format == "json") {
-        Json row = Json::object();
-        row.set("s", json_rational(p.s, pd));
-        row.set("t", json_ball(p.t, pd));
-        Json pt = Json::array();
-        for (const auto& b : p.point) pt.push(json_ball(b, pd));
-        row.set("point", pt);
-        row.set("speed", json_ball(p.speed, pd));
-        row.set("at_joint", Json::boolean(p.at_joint));
+        Json row = sample_row_json(p, opt.digits);
         if (deviation) row.set("deviation", json_ball(deviation(p), pd));
         rows.json_row(k, row);
       } else {
@@ -245,12 +283,7 @@ int run_sample_exact(const Args& a, const Curve& c, SpeedKind kind, const Option
                           "--method exact itself");
   check_degree(c, opt);
   const Speed sp(c, kind);
-  Json head = Json::object();
-  head.set("curve", Json::string(c.str()));
-  head.set("speed", Json::string(to_string(kind)));
-  head.set("method", Json::string("exact"));
-  head.set("digits", Json::number(opt.digits));
-  head.set("points", Json::number(K));
+  Json head = sample_exact_header_json(c, kind, opt.digits, K);
   Ball mu;
   return stream_samples(head, c.dimension(), K, format, opt, [&](const SampleSink& sink) {
     exact_samples_each(c, sp, K, opt, mu, [&](long k, const LocatedPoint& p) {
@@ -294,7 +327,6 @@ int run_sample(int argc, char** argv) {
   const Reparameterization r = read_method(a, c, kind, ropt, true);
   const Speed sp(c, kind);
   const std::size_t n = c.dimension();
-  const long pd = printed_digits(opt.digits);
   // --deviation: G(r(s)) / mu for the rows in increasing s, one short
   // integral per row; mu (and the straight line's refusal) before any row.
   const bool deviation = a.flag("deviation");
@@ -309,22 +341,7 @@ int run_sample(int argc, char** argv) {
     arb_max(worst.get(), worst.get(), d.get(), prec);
     return d;
   };
-  Json head = Json::object();
-  head.set("curve", Json::string(c.str()));
-  head.set("speed", Json::string(to_string(kind)));
-  head.set("method", Json::string(r.method()));
-  head.set("digits", Json::number(opt.digits));
-  head.set("points", Json::number(K));
-  head.set("mu", json_ball(r.mu(), pd));
-  head.set("u_before", json_ball(r.u_before(), pd));
-  head.set("u_after", json_ball(r.u_after(), pd));
-  Json js = Json::array(), jt = Json::array();
-  for (const auto& b : r.joints_s()) js.push(json_ball(b, pd));
-  for (const auto& t : r.joints_t()) jt.push(json_algebraic(t, opt.digits));
-  Json joints = Json::object();
-  joints.set("s", js);
-  joints.set("t", jt);
-  head.set("joints", joints);
+  const Json head = sample_header_json(c, kind, r, opt.digits, K);
   const int rc = stream_samples(head, n, K, format, opt, [&](const SampleSink& sink) {
     sample_each(c, sp, r, K, opt.digits, opt.max_prec, sink);
   }, deviation ? std::function<Ball(const SamplePoint&)>(deviation_of) : std::function<Ball(const SamplePoint&)>(),

@@ -4,6 +4,7 @@
 #include "commands.hpp"
 #include "output.hpp"
 #include "composite.hpp"
+#include "json_reports.hpp"
 #include "report.hpp"
 
 namespace uniparam::cli {
@@ -19,6 +20,28 @@ CommandSpec uniformity_spec() {
           common_options()};
 }
 
+Json uniformity_json(const Curve& c, SpeedKind kind, long digits, const UniformityResult& r) {
+  const long pd = printed_digits(digits);
+  Json j = Json::object();
+  j.set("curve", Json::string(c.str()));
+  j.set("speed", Json::string(to_string(kind)));
+  j.set("digits", Json::number(digits));
+  j.set("speed_squared", json_ratfunc(r.speed_squared));
+  Json zs = Json::array();
+  for (const auto& z : r.zeros) {
+    Json e = Json::object();
+    e.set("t", json_algebraic(z.t, digits));
+    e.set("multiplicity", Json::number(z.multiplicity));
+    zs.push(e);
+  }
+  j.set("zeros", zs);
+  j.set("identically_zero", Json::boolean(r.identically_zero));
+  j.set("mu", json_ball(r.mu, pd));
+  j.set("mean_square", json_ball(r.mean_square, pd));
+  j.set("u", json_ball(r.u, pd));
+  return j;
+}
+
 int run_uniformity(int argc, char** argv) {
   const CommandSpec spec = uniformity_spec();
   Args a = parse_args(spec, argc, argv, 2);
@@ -32,24 +55,7 @@ int run_uniformity(int argc, char** argv) {
   const char* sq = kind == SpeedKind::Angular ? "omega^2" : "|p'|^2";
 
   if (a.flag("json")) {
-    Json j = Json::object();
-    j.set("curve", Json::string(c.str()));
-    j.set("speed", Json::string(to_string(kind)));
-    j.set("digits", Json::number(opt.digits));
-    j.set("speed_squared", json_ratfunc(r.speed_squared));
-    Json zs = Json::array();
-    for (const auto& z : r.zeros) {
-      Json e = Json::object();
-      e.set("t", json_algebraic(z.t, opt.digits));
-      e.set("multiplicity", Json::number(z.multiplicity));
-      zs.push(e);
-    }
-    j.set("zeros", zs);
-    j.set("identically_zero", Json::boolean(r.identically_zero));
-    j.set("mu", json_ball(r.mu, pd));
-    j.set("mean_square", json_ball(r.mean_square, pd));
-    j.set("u", json_ball(r.u, pd));
-    answer() << j.dump(2) << "\n";
+    answer() << uniformity_json(c, kind, opt.digits, r).dump(2) << "\n";
     return 0;
   }
   answer() << "curve      " << c.str() << "\n"

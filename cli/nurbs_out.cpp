@@ -18,9 +18,15 @@ OptionSpec nurbs_output_option() {
 }
 
 NurbsOutput read_nurbs_output(const Args& a) {
+  if (!a.has("output")) return NurbsOutput{};
+  const NurbsOutput o = parse_nurbs_output(a.get("output", ""));
+  if (o.form == NurbsOutput::Form::Json && a.flag("json"))
+    throw InvalidArgument("--output nurbs prints JSON already; drop --json");
+  return o;
+}
+
+NurbsOutput parse_nurbs_output(const std::string& v) {
   NurbsOutput o;
-  if (!a.has("output")) return o;
-  const std::string v = a.get("output", "");
   auto ends = [&](const std::string& suf) {
     return v.size() > suf.size() && v.compare(v.size() - suf.size(), suf.size(), suf) == 0;
   };
@@ -39,8 +45,6 @@ NurbsOutput read_nurbs_output(const Args& a) {
   } else {
     throw InvalidArgument("--output expects nurbs, step, or a file name ending in .stp or .step, got '" + v + "'");
   }
-  if (o.form == NurbsOutput::Form::Json && a.flag("json"))
-    throw InvalidArgument("--output nurbs prints JSON already; drop --json");
   return o;
 }
 

@@ -28,6 +28,9 @@ OptionSpec nurbs_output_option();
 /// before any computing). \throws InvalidArgument for anything else or a
 /// file that cannot be written.
 NurbsOutput read_nurbs_output(const Args& a);
+/// The form named by the value `v` of --output, as read_nurbs_output (a
+/// file is checked writable). \throws InvalidArgument as read_nurbs_output.
+NurbsOutput parse_nurbs_output(const std::string& v);
 
 /// The NURBS as JSON: degree, dimension, kind ("rational", "surd" or "balls"),
 /// knots, control_points, weights (every number exact {"mid", "rad", "exact"}

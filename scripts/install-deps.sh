@@ -4,7 +4,10 @@
 # GoogleTest and Google Benchmark; rsvg-convert (librsvg2-bin), which
 # 'uniparam plot -o FILE.png' runs to turn its SVG into PNG; and OpenCASCADE's
 # STEP reader (libocct-data-exchange-dev), which only the tests use, to read
-# back the STEP files uniparam writes (the library never depends on it).
+# back the STEP files uniparam writes (the library never depends on it); and,
+# for the Python package (python/, docs/python.md) and its tests, Debian's
+# python3 with pybind11, numpy, pytest, mpmath and Dask distributed, plus
+# pip, setuptools, wheel and venv for installing it offline.
 #
 #   scripts/install-deps.sh        # quiet; prints nothing when all is present
 #   scripts/install-deps.sh -v     # (or UNIPARAM_VERBOSE=1) show apt's output
@@ -23,6 +26,8 @@ PACKAGES=(
   libbenchmark-dev
   librsvg2-bin
   libocct-data-exchange-dev
+  python3-dev python3-pybind11 python3-numpy python3-pytest python3-mpmath python3-distributed
+  python3-pip python3-setuptools python3-wheel python3-venv
 )
 
 verbose="${UNIPARAM_VERBOSE:-0}"
@@ -30,7 +35,7 @@ for arg in "$@"; do
   case "$arg" in
     -v|--verbose) verbose=1 ;;
     --fuzz) PACKAGES+=(clang libclang-rt-14-dev) ;;
-    -h|--help) sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "install-deps.sh: unknown argument '$arg' (try --help)" >&2; exit 2 ;;
   esac
 done

@@ -26,7 +26,8 @@ bash scripts/install-deps.sh
 start=$(date +%s)
 echo "== configure ($build, ASan + UBSan)"
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DUNIPARAM_SANITIZE=ON -DUNIPARAM_BUILD_TESTS=ON -DUNIPARAM_BUILD_BENCH=OFF -DUNIPARAM_OCCT_TESTS=OFF >/dev/null
+  -DUNIPARAM_SANITIZE=ON -DUNIPARAM_BUILD_TESTS=ON -DUNIPARAM_BUILD_BENCH=OFF -DUNIPARAM_OCCT_TESTS=OFF \
+  -DUNIPARAM_PYTHON=OFF >/dev/null
 echo "== build (-j$jobs)"
 cmake --build "$build" --parallel "$jobs"
 echo "== test (-j$jobs)"

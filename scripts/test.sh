@@ -2,7 +2,8 @@
 # The test command: installs the dependencies (Debian 12), configures and
 # builds everything (libraries, CLI, tests, benchmarks) in Release, then runs
 # the whole CTest suite -- which includes installing uniparam into a scratch
-# prefix and building and running examples/ against it. Exits non-zero when
+# prefix and building and running examples/ against it, and the Python
+# package's pytest suite (UNIPARAM_PYTHON, python/tests). Exits non-zero when
 # anything fails.
 #
 #   scripts/test.sh               # everything
@@ -21,9 +22,9 @@ timeout="${UNIPARAM_TEST_TIMEOUT:-900}"
 
 bash scripts/install-deps.sh
 
-echo "== configure ($build, Release, tests + benchmarks)"
+echo "== configure ($build, Release, tests + benchmarks + Python)"
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release \
-  -DUNIPARAM_BUILD_TESTS=ON -DUNIPARAM_BUILD_BENCH=ON -DUNIPARAM_OCCT_TESTS=ON
+  -DUNIPARAM_BUILD_TESTS=ON -DUNIPARAM_BUILD_BENCH=ON -DUNIPARAM_OCCT_TESTS=ON -DUNIPARAM_PYTHON=ON
 echo "== build (-j$jobs)"
 cmake --build "$build" --parallel "$jobs"
 echo "== test (-j$jobs)"

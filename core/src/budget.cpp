@@ -45,6 +45,8 @@ TimeBudget::~TimeBudget() {
 }
 
 void check_time_budget() {
+  if (g_deadline.cancel && g_deadline.cancel->load(std::memory_order_relaxed))
+    throw Interrupted("interrupted: the computation was cancelled");
   if (g_deadline.active && Clock::now() >= g_deadline.at)
     throw TimeLimitExceeded("time limit exceeded: the computation did not finish within " +
                          seconds_text(g_deadline.seconds) + " s (raise it with --timeout SECONDS)");
@@ -57,5 +59,11 @@ Deadline current_deadline() { return g_deadline; }
 ScopedDeadline::ScopedDeadline(const Deadline& d) : prev_(g_deadline) { g_deadline = d; }
 
 ScopedDeadline::~ScopedDeadline() { g_deadline = prev_; }
+
+ScopedCancellation::ScopedCancellation(const std::atomic<bool>& flag) : prev_(g_deadline.cancel) {
+  g_deadline.cancel = &flag;
+}
+
+ScopedCancellation::~ScopedCancellation() { g_deadline.cancel = prev_; }
 
 }  // namespace uniparam

@@ -12,16 +12,31 @@
 #include <cstdint>
 #include <cstdlib>
 #include <exception>
+#include <string>
 #include <memory>
 #include <mutex>
 #include <thread>
 #include <vector>
 
 #include "uniparam/core/budget.hpp"
+#include "uniparam/core/error.hpp"
 
 namespace uniparam {
 
+namespace {
+/// The ScopedWorkerCount in force in this thread (0: none).
+thread_local std::size_t g_worker_override = 0;
+}  // namespace
+
+ScopedWorkerCount::ScopedWorkerCount(std::size_t n) : prev_(g_worker_override) {
+  if (n > 64) throw InvalidArgument("the number of threads must be from 1 to 64, got " + std::to_string(n));
+  if (n > 0) g_worker_override = n;
+}
+
+ScopedWorkerCount::~ScopedWorkerCount() { g_worker_override = prev_; }
+
 std::size_t worker_count() {
+  if (g_worker_override > 0) return g_worker_override;
   if (const char* e = std::getenv("UNIPARAM_THREADS")) {
     char* end = nullptr;
     const long v = std::strtol(e, &end, 10);
@@ -56,11 +71,13 @@ std::int64_t wall_ns() {
 struct Job {
   Job(std::size_t n_, std::size_t workers_, const std::function<void(std::size_t, std::size_t)>& task_,
       const std::function<void(std::size_t)>& prepare_)
-      : n(n_), workers(workers_), task(task_), prepare(prepare_), deadline(current_deadline()) {}
+      : n(n_), workers(workers_), task(task_), prepare(prepare_), deadline(current_deadline()),
+        worker_override(g_worker_override) {}
   const std::size_t n, workers;
   const std::function<void(std::size_t, std::size_t)>& task;
   const std::function<void(std::size_t)>& prepare;  // may be empty
   const Deadline deadline;
+  const std::size_t worker_override;  // the caller's ScopedWorkerCount (0: none)
   std::atomic<std::size_t> next{0};
   std::atomic<bool> failed{false};
   std::exception_ptr error;
@@ -217,6 +234,7 @@ class Pool {
       if (!job) continue;
       {
         const ScopedDeadline inherit(job->deadline);
+        const ScopedWorkerCount inherit_workers(job->worker_override);
         job->work(k);
       }
       bool last;

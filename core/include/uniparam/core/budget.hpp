@@ -15,6 +15,7 @@
 // library callers install their own, or have none (no deadline at all).
 #pragma once
 
+#include <atomic>
 #include <chrono>
 
 namespace uniparam {
@@ -39,7 +40,8 @@ class TimeBudget {
 
 /// Throws TimeLimitExceeded (a BudgetExceeded) naming the time limit and
 /// --timeout when the calling thread has a TimeBudget whose deadline has
-/// passed; otherwise does nothing.
+/// passed, and Interrupted (a TimeLimitExceeded) when a ScopedCancellation's
+/// flag in force in the calling thread is set; otherwise does nothing.
 void check_time_budget();
 
 /// True when a TimeBudget is in force in the calling thread.
@@ -51,6 +53,9 @@ struct Deadline {
   bool active = false;
   std::chrono::steady_clock::time_point at{};
   double seconds = 0.0;  ///< length of the budget that set it (for messages)
+  /// A ScopedCancellation's flag (null when none is in force): once it is
+  /// set, check_time_budget() throws Interrupted.
+  const std::atomic<bool>* cancel = nullptr;
 };
 Deadline current_deadline();
 
@@ -66,6 +71,25 @@ class ScopedDeadline {
 
  private:
   Deadline prev_;
+};
+
+/// Makes `flag` the calling thread's cancellation flag for the scope's
+/// lifetime (the previous one restored at destruction): from the moment
+/// another thread sets it, every check_time_budget() of this thread, and of
+/// the worker threads its parallel loops start (they inherit the Deadline),
+/// throws Interrupted, so a computation ends at its next check (the same
+/// places a TimeBudget is noticed) with nothing uncertified returned.
+/// Used by callers that cancel from outside, e.g. the Python module on
+/// Ctrl-C. \pre `flag` outlives the scope.
+class ScopedCancellation {
+ public:
+  explicit ScopedCancellation(const std::atomic<bool>& flag);
+  ~ScopedCancellation();
+  ScopedCancellation(const ScopedCancellation&) = delete;
+  ScopedCancellation& operator=(const ScopedCancellation&) = delete;
+
+ private:
+  const std::atomic<bool>* prev_;
 };
 
 }  // namespace uniparam

@@ -65,4 +65,12 @@ class TimeLimitExceeded : public BudgetExceeded {
   using BudgetExceeded::BudgetExceeded;
 };
 
+/// The computation was cancelled from outside (ScopedCancellation,
+/// core/budget.hpp; the Python module's Ctrl-C). A TimeLimitExceeded, so
+/// every place that lets a timeout through lets a cancellation through too.
+class Interrupted : public TimeLimitExceeded {
+ public:
+  using TimeLimitExceeded::TimeLimitExceeded;
+};
+
 }  // namespace uniparam

@@ -8,11 +8,29 @@
 
 namespace uniparam {
 
-/// Number of worker threads parallel_for uses: the environment variable
-/// UNIPARAM_THREADS when set to a positive integer (1 = everything on the
-/// calling thread), otherwise std::thread::hardware_concurrency() capped
-/// at 8 (1 when unknown), read once per process.
+/// Number of worker threads parallel_for uses: the count of a
+/// ScopedWorkerCount in force in the calling thread, else the environment
+/// variable UNIPARAM_THREADS when set to a positive integer (1 = everything
+/// on the calling thread), otherwise std::thread::hardware_concurrency()
+/// capped at 8 (1 when unknown), read once per process.
 std::size_t worker_count();
+
+/// Sets worker_count() for the calling thread, and for the worker threads
+/// of the parallel loops it starts (they inherit it, as they inherit the
+/// time budget), for the scope's lifetime; the previous setting is restored
+/// at destruction. A library caller's per-call thread count (the Python
+/// module's threads=), without touching the process environment.
+/// \pre 1 <= n <= 64 (InvalidArgument otherwise); n = 0 leaves the default.
+class ScopedWorkerCount {
+ public:
+  explicit ScopedWorkerCount(std::size_t n);
+  ~ScopedWorkerCount();
+  ScopedWorkerCount(const ScopedWorkerCount&) = delete;
+  ScopedWorkerCount& operator=(const ScopedWorkerCount&) = delete;
+
+ private:
+  std::size_t prev_;
+};
 
 /// Runs task(worker, i) for every i in [0, n), on at most min(workers, n)
 /// threads (workers >= 1; typically worker_count()); worker 0 is the calling
