@@ -2,6 +2,8 @@
 // recursion depth is bounded by JsonLimits::max_depth.
 #include "uniparam/core/json.hpp"
 
+#include "uniparam/core/printer.hpp"
+
 #include <cstdint>
 
 #include "uniparam/core/error.hpp"
@@ -391,30 +393,6 @@ std::string JsonValue::dump() const {
 
 JsonValue parse_json(const std::string& text, const JsonLimits& limits) { return Parser(text, limits).parse_document(); }
 
-std::string json_quote(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    const auto u = static_cast<unsigned char>(c);
-    switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\b': out += "\\b"; break;
-      case '\f': out += "\\f"; break;
-      case '\n': out += "\\n"; break;
-      case '\r': out += "\\r"; break;
-      case '\t': out += "\\t"; break;
-      default:
-        if (u < 0x20) {
-          static const char* hex = "0123456789abcdef";
-          out += "\\u00";
-          out += hex[u >> 4];
-          out += hex[u & 15];
-        } else {
-          out += c;
-        }
-    }
-  }
-  return out + "\"";
-}
+std::string json_quote(const std::string& s) { return Json::string(s).dump(-1); }
 
 }  // namespace uniparam

@@ -82,8 +82,10 @@ struct JsonValue {
 ///         limits.max_depth, or text longer than limits.max_length.
 JsonValue parse_json(const std::string& text, const JsonLimits& limits = {});
 
-/// `s` as a JSON string literal with quotes: ", \ and control characters
-/// escaped (\n, \t, ... or \u00XX); other bytes copied as they are.
+/// `s` as a JSON string literal with quotes, as printer.hpp's Json writes it:
+/// ", \ and control characters escaped (\n, \t, ... or \u00XX), valid UTF-8
+/// copied, each byte of invalid UTF-8 as \ufffd (so the literal is always
+/// valid JSON).
 std::string json_quote(const std::string& s);
 
 }  // namespace uniparam
