@@ -53,4 +53,5 @@ echo "== run examples/toolbox"
 out="$("$ebuild/toolbox")" || { rc=$?; echo "$out"; echo "FAIL: toolbox exited $rc" >&2; exit 1; }
 echo "$out"
 grep -q '^C1, rational: u = ' <<<"$out" || { echo "FAIL: no 'C1, rational' line in the output" >&2; exit 1; }
+grep -q '^path: length ' <<<"$out" || { echo "FAIL: no 'path: length' line in the output" >&2; exit 1; }
 echo "PASS: installed package found, examples built and ran"
