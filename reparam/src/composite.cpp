@@ -630,6 +630,11 @@ class CompositeTrack final : public Track {
 
 }  // namespace
 
+std::shared_ptr<const Track> composite_track(const CompositeCurve& c, const std::vector<Speed>& speeds,
+                                             long max_prec) {
+  return std::make_shared<CompositeTrack>(c, speeds, max_prec);
+}
+
 LocateResult locate(const CompositeCurve& c, const std::vector<Speed>& speeds, const Rational& value,
                     LocateTarget target, const Options& opt) {
   validate(opt);

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -241,10 +243,10 @@ LocatedPoint exact_point(const Track& tr, long t) {
   return p;
 }
 
-// int sigma and p of one curve.
-class CurveTrack final : public Track {
+// int sigma of one speed (no curve: eval is not available).
+class SpeedTrack : public Track {
  public:
-  CurveTrack(const Curve& c, const Speed& s, long max_prec) : c_(c), s_(s), max_prec_(max_prec) {}
+  SpeedTrack(const Speed& s, long max_prec) : s_(s), max_prec_(max_prec) {}
   bool identically_zero() const override { return s_.identically_zero(); }
   SpeedKind kind() const override { return s_.kind(); }
   Ball mu(long bits, const Options& opt) const override { return mean_speed(s_, bits, opt); }
@@ -252,12 +254,23 @@ class CurveTrack final : public Track {
     return integrate_speed(s_, RealAlgebraic(a), RealAlgebraic(b), bits, max_prec_);
   }
   double sigma_estimate(const Rational& x) const override { return uniparam::sigma_estimate(s_, x); }
+  std::vector<Ball> eval(const Ball&, long) const override {
+    throw std::logic_error("SpeedTrack::eval: no curve");
+  }
+
+ private:
+  const Speed& s_;
+  long max_prec_;
+};
+
+// int sigma and p of one curve.
+class CurveTrack final : public SpeedTrack {
+ public:
+  CurveTrack(const Curve& c, const Speed& s, long max_prec) : SpeedTrack(s, max_prec), c_(c) {}
   std::vector<Ball> eval(const Ball& t, long prec) const override { return c_.eval(t, prec); }
 
  private:
   const Curve& c_;
-  const Speed& s_;
-  long max_prec_;
 };
 
 }  // namespace
@@ -387,9 +400,16 @@ ExactSamples exact_samples(const Curve& c, const Speed& s, long K, const Options
 }
 
 ArcFraction::ArcFraction(const Speed& s, long bits, const Options& opt)
-    : s_(s), bits_(bits), max_prec_(opt.max_prec), last_(0), G_last_(0) {
+    : track_(std::make_shared<SpeedTrack>(s, opt.max_prec)), bits_(bits), max_prec_(opt.max_prec), last_(0),
+      G_last_(0) {
   check_not_zero_speed(s.identically_zero());
   mu_ = mean_speed(s, bits, opt);
+}
+
+ArcFraction::ArcFraction(const CompositeCurve& c, const std::vector<Speed>& speeds, long bits, const Options& opt)
+    : track_(composite_track(c, speeds, opt.max_prec)), bits_(bits), max_prec_(opt.max_prec), last_(0), G_last_(0) {
+  check_not_zero_speed(track_->identically_zero());
+  mu_ = track_->mu(bits, opt);
 }
 
 Ball ArcFraction::G(const Rational& x) {
@@ -397,10 +417,10 @@ Ball ArcFraction::G(const Rational& x) {
   if (x == last_) return G_last_;
   Ball g;
   if (last_ < x) {
-    const Ball piece = integrate_speed(s_, RealAlgebraic(last_), RealAlgebraic(x), bits_, max_prec_);
+    const Ball piece = track_->integral(last_, x, bits_);
     arb_add(g.get(), G_last_.get(), piece.get(), prec);
   } else {
-    const Ball piece = integrate_speed(s_, RealAlgebraic(x), RealAlgebraic(last_), bits_, max_prec_);
+    const Ball piece = track_->integral(x, last_, bits_);
     arb_sub(g.get(), G_last_.get(), piece.get(), prec);
   }
   last_ = x;

@@ -2,6 +2,7 @@
 // a curve, so that one curve and a composite curve share it.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "uniparam/core/ball.hpp"
@@ -35,6 +36,9 @@ class Track {
 /// An uncertified estimate of sigma(x): the square root of sigma(x)^2's
 /// midpoint at 64 bits; 0 where that is not a positive finite double.
 double sigma_estimate(const Speed& s, const Rational& x);
+
+/// The track of a composite curve (composite.cpp). \pre c and speeds outlive it.
+std::shared_ptr<const Track> composite_track(const CompositeCurve& c, const std::vector<Speed>& speeds, long max_prec);
 
 /// locate() and exact_samples_each() on a track (same contracts).
 /// \pre opt validated.

@@ -261,6 +261,22 @@ TEST(Composite, NurbsOfARationalMapIsExactlyTheMapsCurve) {
   EXPECT_THROW(composite_nurbs(gap, composite_map(gap, gsp, m), 128), InvalidArgument);
 }
 
+TEST(Composite, ArcFractionAgreesWithTheSingleCurveProperty) {
+  std::mt19937 rng(5);
+  for (const std::string& text : curves()) {
+    const Curve c = Curve::parse(text);
+    const CompositeCurve cc = cut(c, random_cuts(rng));
+    const Speed s(c, SpeedKind::Parametric);
+    const std::vector<Speed> sp = cc.speeds(SpeedKind::Parametric);
+    ArcFraction one(s, 80, Options{}), many(cc, sp, 80, Options{});
+    EXPECT_TRUE(overlap(one.mu(), many.mu())) << text;
+    for (long k = 0; k <= 16; ++k) {
+      const Ball t(Rational(k, 16), 128);
+      EXPECT_TRUE(overlap(one.at(t), many.at(t))) << text << " " << k;
+    }
+  }
+}
+
 TEST(Composite, BadKnotsAreRefused) {
   const Curve a = Curve::parse("(t, t^2)");
   EXPECT_THROW(CompositeCurve({a, a}, {Rational(0), Rational(1)}), InvalidArgument);

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "uniparam/core/ball.hpp"
@@ -15,6 +16,9 @@
 #include "uniparam/reparam/uniformity.hpp"
 
 namespace uniparam {
+
+class CompositeCurve;  // composite.hpp
+class Track;           // internal: int sigma on a curve or a composite curve
 
 /// What the value given to locate() measures: G(t) = int_0^t sigma itself
 /// (an arc length for the parametric speed, a turning angle in radians for
@@ -96,6 +100,9 @@ class ArcFraction {
   /// \throws DomainError for an identically zero speed (mu = 0);
   ///         BudgetExceeded as mean_speed.
   ArcFraction(const Speed& s, long bits, const Options& opt);
+  /// The same for a composite curve (G over the global parameter).
+  /// \pre speeds are c's; c and speeds outlive this object.
+  ArcFraction(const CompositeCurve& c, const std::vector<Speed>& speeds, long bits, const Options& opt);
   const Ball& mu() const { return mu_; }
   /// A ball containing G(x) / mu for every x in t (the integrals at
   /// relative accuracy 2^-bits). \pre t finite (DomainError otherwise).
@@ -103,7 +110,7 @@ class ArcFraction {
 
  private:
   Ball G(const Rational& x);  // G(x), from the last point visited
-  const Speed& s_;
+  std::shared_ptr<const Track> track_;
   long bits_, max_prec_;
   Ball mu_;
   Rational last_;
