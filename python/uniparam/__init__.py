@@ -144,7 +144,7 @@ class Curve:
 
     @property
     def labels(self):
-        """What each segment is ("C at column 17", "knot span [1, 2]")."""
+        """What each segment is ("segment 2: L at column 17", "span [0, 1] (knots 1 and 2)")."""
         return list(self._parts()[2])
 
     def _parts(self):
