@@ -15,6 +15,7 @@
 
 #include <flint/flint.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>

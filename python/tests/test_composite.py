@@ -291,6 +291,18 @@ def test_several_subpaths_need_subpath(cli):
         up.Curve.svg(path, subpath="1")
 
 
+def test_length_limits(cli):
+    # the path's limit as the CLI's --max-length on the same text
+    with pytest.raises(up.InvalidArgument) as info:
+        up.Curve.svg(PATH, max_length=10)
+    code, _, err = cli.run("uniformity", "--svg", PATH, "--max-length", 10, check=False)
+    assert code == 2 and err.strip() == "uniparam uniformity: " + str(info.value)
+    # a NURBS text above max_length: a budget, as the CLI's --nurbs @FILE
+    with pytest.raises(up.BudgetExceeded, match="raise it with max_length"):
+        up.Curve.nurbs(SPLINE_TEXT, max_length=20)
+    assert str(up.Curve.nurbs(SPLINE_TEXT, max_length=len(SPLINE_TEXT))) == "NURBS curve of 3 segments"
+
+
 def test_invalid_uses():
     c = up.Curve.svg(PATH)
     with pytest.raises(up.InvalidArgument, match="at on a composite curve"):
