@@ -610,6 +610,42 @@ std::string plot_svg(const Curve& c, SpeedKind kind, const Reparameterization& r
   return render(v, kind, d, proj, K);
 }
 
+std::string composite_plot_svg(const std::string& description, const CompositeCurve& cc, SpeedKind kind,
+                               const CompositeMethod& m, long K, const std::string& projection, const Options& opt,
+                               const std::function<void()>& missed) {
+  PlotView v;
+  const std::vector<Speed> csp = cc.speeds(kind);
+  const CompositeMap cr = composite_map(cc, csp, m, opt);
+  CompositeMethod none;
+  const CompositeMap id = composite_map(cc, csp, none, opt);
+  const std::size_t N = cr.pieces();
+  v.text = description;
+  v.title = (m.kind == CompositeMethod::Kind::Radical ? "Piecewise radical reparameterization per segment ("
+             : m.kind == CompositeMethod::Kind::Target ? "C1 piecewise M\u00f6bius reparameterization per segment ("
+                                                       : "Optimal C0 piecewise M\u00f6bius reparameterization (") +
+            std::to_string(N) + (N == 1 ? " piece" : " pieces") + ")";
+  v.method = cr.method();
+  v.mu = cr.mu();
+  v.u_before = cr.u_before();
+  v.u_after = cr.u_after();
+  v.point = [&](const Ball& t, long prec) { return cc.eval(t, prec); };
+  v.r = [&](const Ball& s, long prec) { return cr.eval_r(cc, s, prec); };
+  v.speed_after = [&](const Ball& s, long prec) { return cr.eval_speed(cc, csp, s, prec); };
+  v.speed_before = [&](const Ball& t, long prec) { return id.eval_speed(cc, csp, t, prec); };
+  v.joints = cr.joints(cc, 128);
+  const long digits = std::min<long>(6, opt.digits);
+  CompositeSampler before(cc, csp, id, digits, opt.max_prec), after(cc, csp, cr, digits, opt.max_prec);
+  for (long k = 0; k < K; ++k) {
+    check_time_budget();
+    v.samples.before.push_back(before.at(Rational(k, K - 1)));
+    v.samples.after.push_back(after.at(Rational(k, K - 1)));
+  }
+  if (m.kind == CompositeMethod::Kind::Target && !cr.target_reached() && missed) missed();
+  const Projection proj = read_projection(projection, cc.dimension());
+  const PlotData d = collect(v, proj, opt.max_prec);
+  return render(v, kind, d, proj, K);
+}
+
 int run_plot(int argc, char** argv) {
   const CommandSpec spec = plot_spec();
   Args a = parse_args(spec, argc, argv, 2);  // "-o FILE" is read as "--output FILE"
@@ -649,62 +685,27 @@ int run_plot(int argc, char** argv) {
   const Options opt = read_options(a);
   const SpeedKind kind = parse_speed_kind(a.get("speed", "angular"));
   const long K = a.get_long("points", 40, 2, 100000);
-  PlotView v;
   int status = 0;
-  // One curve, or a composite one (its own maps per segment); both are held
-  // here for the lifetime of the view's evaluations.
-  std::optional<Curve> c;
-  std::optional<Speed> sp;
-  std::optional<Reparameterization> r;
-  std::optional<CompositeCurve> cc = read_composite(a);
-  std::vector<Speed> csp;
-  std::optional<CompositeMap> cr;
-  std::size_t dimension = 0;
+  // One curve, or a composite one (its own maps per segment).
+  const std::optional<CompositeCurve> cc = read_composite(a);
+  std::string text;
   if (cc && cc->size() > 1) {
-    dimension = cc->dimension();
-    csp = cc->speeds(kind);
-    CompositeMethod m = read_composite_method(a, *cc, false);
-    cr = composite_map(*cc, csp, m, opt);
-    CompositeMethod none;
-    const CompositeMap id = composite_map(*cc, csp, none, opt);
-    const std::size_t N = cr->pieces();
-    v.text = composite_description(a, *cc);
-    v.title = (m.kind == CompositeMethod::Kind::Radical ? "Piecewise radical reparameterization per segment ("
-               : m.kind == CompositeMethod::Kind::Target ? "C1 piecewise M\u00f6bius reparameterization per segment ("
-                                                         : "Optimal C0 piecewise M\u00f6bius reparameterization (") +
-              std::to_string(N) + (N == 1 ? " piece" : " pieces") + ")";
-    v.method = cr->method();
-    v.mu = cr->mu();
-    v.u_before = cr->u_before();
-    v.u_after = cr->u_after();
-    v.point = [&](const Ball& t, long prec) { return cc->eval(t, prec); };
-    v.r = [&](const Ball& s, long prec) { return cr->eval_r(*cc, s, prec); };
-    v.speed_after = [&](const Ball& s, long prec) { return cr->eval_speed(*cc, csp, s, prec); };
-    v.speed_before = [&, id](const Ball& t, long prec) { return id.eval_speed(*cc, csp, t, prec); };
-    v.joints = cr->joints(*cc, 128);
-    const long digits = std::min<long>(6, opt.digits);
-    CompositeSampler before(*cc, csp, id, digits, opt.max_prec), after(*cc, csp, *cr, digits, opt.max_prec);
-    for (long k = 0; k < K; ++k) {
-      check_time_budget();
-      v.samples.before.push_back(before.at(Rational(k, K - 1)));
-      v.samples.after.push_back(after.at(Rational(k, K - 1)));
-    }
-    if (m.kind == CompositeMethod::Kind::Target && !cr->target_reached()) {
+    const CompositeMethod m = read_composite_method(a, *cc, false);
+    text = composite_plot_svg(composite_description(a, *cc), *cc, kind, m, K, a.get("projection", ""), opt, [&] {
       warn() << "uniparam plot: the target u >= " << m.target.str()
              << " was not reached on every segment; the best map is drawn\n";
       status = 4;
-    }
+    });
   } else {
-    c = read_curve(a);
-    dimension = c->dimension();
-    r = read_method(a, *c, kind, opt, false);
-    sp.emplace(*c, kind);
-    v = single_view(*c, *sp, *r, K, a.get("target", "0.99"), opt);
-    status = target_status(*r, "plot");
+    const Curve c = read_curve(a);
+    const Reparameterization r = read_method(a, c, kind, opt, false);
+    const Speed sp(c, kind);
+    const PlotView v = single_view(c, sp, r, K, a.get("target", "0.99"), opt);
+    status = target_status(r, "plot");
+    const Projection proj = read_projection(a.get("projection", ""), c.dimension());
+    const PlotData d = collect(v, proj, opt.max_prec);
+    text = render(v, kind, d, proj, K);
   }
-  const Projection proj = read_projection(a.get("projection", ""), dimension);
-  const PlotData d = collect(v, proj, opt.max_prec);
-  const std::string text = render(v, kind, d, proj, K);
   if (out == "-") {
     answer() << text;
     return status;

@@ -360,14 +360,9 @@ int run_sample_composite(const Args& a, const CompositeCurve& c, SpeedKind kind,
       if (a.has(o)) throw InvalidArgument(std::string("--") + o + " does not apply to --method exact");
   const std::vector<Speed> sp = c.speeds(kind);
   const std::size_t n = c.dimension();
-  const long pd = printed_digits(opt.digits);
-  Json head = Json::object();
-  head.set("curve", Json::string(composite_description(a, c)));
-  head.set("speed", Json::string(to_string(kind)));
+  const std::string description = composite_description(a, c);
   if (m == "exact") {
-    head.set("method", Json::string("exact"));
-    head.set("digits", Json::number(opt.digits));
-    head.set("points", Json::number(K));
+    const Json head = composite_sample_header_json(description, c, kind, "exact", nullptr, opt.digits, K);
     // mu comes with the first point (exact_samples_each certifies it first).
     Ball mu;
     return stream_samples(head, n, K, format, opt, [&](const SampleSink& sink) {
@@ -385,19 +380,8 @@ int run_sample_composite(const Args& a, const CompositeCurve& c, SpeedKind kind,
   Options ropt = opt;
   ropt.digits = opt.digits + 3;
   const CompositeMap r = composite_map(c, sp, cm, ropt);
-  head.set("method", Json::string(m == "none" ? "none" : r.method()));
-  head.set("digits", Json::number(opt.digits));
-  head.set("points", Json::number(K));
-  head.set("mu", json_ball(r.mu(), pd));
-  head.set("u_before", json_ball(r.u_before(), pd));
-  head.set("u_after", json_ball(r.u_after(), pd));
-  Json S = Json::array(), knots = Json::array();
-  for (const Rational& x : r.S()) S.push(json_rational(x, pd));
-  for (const Rational& x : c.knots()) knots.push(json_rational(x, pd));
-  Json joints = Json::object();
-  joints.set("s", S);
-  joints.set("t", knots);
-  head.set("segment_joints", joints);
+  const Json head =
+      composite_sample_header_json(description, c, kind, m == "none" ? "none" : r.method(), &r, opt.digits, K);
   CompositeSampler smp(c, sp, r, opt.digits, opt.max_prec);
   const int rc = stream_samples(head, n, K, format, opt, [&](const SampleSink& sink) {
     for (long k = 0; k < K; ++k) {

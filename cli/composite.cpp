@@ -14,14 +14,14 @@ namespace uniparam::cli {
 
 namespace {
 
-CompositeCurve to_composite(const PathInput& p, const Options& opt) {
+CompositeCurve to_composite(const PathInput& p, const Options& opt, const CompositeNames& names) {
   std::vector<Curve> segs;
   segs.reserve(p.segments.size());
   for (std::size_t j = 0; j < p.segments.size(); ++j) {
     const std::string& label = j < p.labels.size() ? p.labels[j] : "segment " + std::to_string(j);
     if (p.segments[j].degree() > opt.max_degree)
-      throw BudgetExceeded(label + ": degree " + std::to_string(p.segments[j].degree()) + " is above --max-degree " +
-                           std::to_string(opt.max_degree));
+      throw BudgetExceeded(label + ": degree " + std::to_string(p.segments[j].degree()) + " is above " +
+                           names.max_degree + " " + std::to_string(opt.max_degree));
     try {
       segs.push_back(p.segments[j].to_curve());
     } catch (const DomainError& e) {
@@ -54,41 +54,65 @@ std::string joint_text(const CompositeCurve& c, const Joint& j, long pd) {
 
 }  // namespace
 
+std::vector<PathInput> read_svg_subpaths(const std::string& text, std::size_t max_length,
+                                         const CompositeNames& names) {
+  SvgLimits lim;
+  lim.max_length = max_length;
+  std::vector<PathInput> paths = parse_svg_path(text, lim);
+  if (paths.empty()) throw InvalidArgument(names.svg + ": the path has no segment");
+  return paths;
+}
+
+CompositeCurve svg_composite(const std::vector<PathInput>& paths, std::optional<std::size_t> subpath,
+                             const Options& opt, const CompositeNames& names) {
+  if (!subpath && paths.size() > 1)
+    throw InvalidArgument(names.svg + ": the path has " + std::to_string(paths.size()) + " subpaths; pick one with " +
+                          names.subpath + " (0 to " + std::to_string(paths.size() - 1) + ")" + names.subpaths_hint);
+  const std::size_t k = subpath.value_or(0);
+  if (k >= paths.size())
+    throw InvalidArgument(names.svg + ": no subpath " + std::to_string(k) + " (the path has " +
+                          std::to_string(paths.size()) + ")");
+  return to_composite(paths[k], opt, names);
+}
+
+CompositeCurve read_nurbs_composite(const std::string& text, const Options& opt, const CompositeNames& names) {
+  NurbsLimits lim;
+  lim.max_degree = opt.max_degree;
+  return to_composite(parse_nurbs(text, lim), opt, names);
+}
+
 std::optional<CompositeCurve> read_composite(const Args& a) {
   const Options opt = read_options(a);
   if (a.has("subpath") && !a.has("svg")) throw InvalidArgument("--subpath needs --svg");
   if (a.has("svg")) {
     const std::size_t max_length = read_parse_limits(a).max_length;
     const std::string text = read_argument_text("--svg", a.get("svg", ""), max_length, "--max-length");
-    SvgLimits lim;
-    lim.max_length = max_length;
-    std::vector<PathInput> paths = parse_svg_path(text, lim);
-    if (paths.empty()) throw InvalidArgument("--svg: the path has no segment");
-    std::size_t k = 0;
-    if (a.has("subpath")) {
+    const std::vector<PathInput> paths = read_svg_subpaths(text, max_length);
+    std::optional<std::size_t> k;
+    if (a.has("subpath"))
       k = static_cast<std::size_t>(a.get_long("subpath", 0, 0, static_cast<long>(paths.size()) - 1));
-    } else if (paths.size() > 1) {
-      throw InvalidArgument("--svg: the path has " + std::to_string(paths.size()) +
-                            " subpaths; pick one with --subpath K (0 to " + std::to_string(paths.size() - 1) +
-                            "), or give each to 'uniparam batch' as its own line");
-    }
-    return to_composite(paths[k], opt);
+    return svg_composite(paths, k, opt);
   }
   if (a.has("nurbs")) {
     const std::string text =
         read_argument_text("--nurbs", a.get("nurbs", ""), read_parse_limits(a).max_length, "--max-length");
-    NurbsLimits lim;
-    lim.max_degree = opt.max_degree;
-    return to_composite(parse_nurbs(text, lim), opt);
+    return read_nurbs_composite(text, opt);
   }
   return std::nullopt;
 }
 
-std::string composite_description(const Args& a, const CompositeCurve& c) {
+std::string composite_description(CompositeSource source, const CompositeCurve& c) {
   const std::string n = std::to_string(c.size()) + (c.size() == 1 ? " segment" : " segments");
-  if (a.has("svg")) return "SVG path of " + n;
-  if (a.has("nurbs")) return "NURBS curve of " + n;
+  if (source == CompositeSource::Svg) return "SVG path of " + n;
+  if (source == CompositeSource::Nurbs) return "NURBS curve of " + n;
   return "composite curve of " + n;
+}
+
+std::string composite_description(const Args& a, const CompositeCurve& c) {
+  return composite_description(a.has("svg")     ? CompositeSource::Svg
+                               : a.has("nurbs") ? CompositeSource::Nurbs
+                                                : CompositeSource::Other,
+                               c);
 }
 
 Json json_joints(const CompositeCurve& c, const std::vector<Joint>& joints, long pd) {
@@ -105,47 +129,53 @@ Json json_joints(const CompositeCurve& c, const std::vector<Joint>& joints, long
   return arr;
 }
 
+Json composite_uniformity_json(const std::string& description, const CompositeCurve& c, SpeedKind kind, long digits,
+                               const CompositeUniformity& r) {
+  const long pd = printed_digits(digits);
+  Json j = Json::object();
+  j.set("curve", Json::string(description));
+  j.set("speed", Json::string(to_string(kind)));
+  j.set("digits", Json::number(digits));
+  j.set("segments", Json::number(static_cast<long>(c.size())));
+  Json knots = Json::array();
+  for (const Rational& k : c.knots()) knots.push(json_rational(k, pd));
+  j.set("knots", knots);
+  j.set("identically_zero", Json::boolean(r.identically_zero));
+  j.set("mu", json_ball(r.mu, pd));
+  j.set("mean_square", json_ball(r.mean_square, pd));
+  j.set("u", json_ball(r.u, pd));
+  j.set("joints", json_joints(c, r.joints, pd));
+  if (kind == SpeedKind::Angular) j.set("corner_turning", json_ball(r.corner_turning, pd));
+  Json parts = Json::array();
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    const UniformityResult& s = r.segments[i];
+    Json p = Json::object();
+    p.set("label", Json::string(c.label(i)));
+    p.set("curve", Json::string(c.segment(i).str()));
+    p.set("t_interval", Json::array().push(json_rational(c.knots()[i], pd)).push(json_rational(c.knots()[i + 1], pd)));
+    Json zs = Json::array();
+    for (const auto& z : s.zeros) {
+      Json e = Json::object();
+      e.set("t", json_algebraic(z.t, digits));
+      e.set("multiplicity", Json::number(z.multiplicity));
+      zs.push(e);
+    }
+    p.set("zeros", zs);
+    p.set("identically_zero", Json::boolean(s.identically_zero));
+    p.set("mu", json_ball(s.mu, pd));
+    p.set("mean_square", json_ball(s.mean_square, pd));
+    p.set("u", json_ball(s.u, pd));
+    parts.push(p);
+  }
+  j.set("parts", parts);
+  return j;
+}
+
 int run_uniformity_composite(const Args& a, const CompositeCurve& c, SpeedKind kind, const Options& opt) {
   const CompositeUniformity r = uniformity(c, kind, opt);
   const long pd = printed_digits(opt.digits);
   if (wants_json(a)) {
-    Json j = Json::object();
-    j.set("curve", Json::string(composite_description(a, c)));
-    j.set("speed", Json::string(to_string(kind)));
-    j.set("digits", Json::number(opt.digits));
-    j.set("segments", Json::number(static_cast<long>(c.size())));
-    Json knots = Json::array();
-    for (const Rational& k : c.knots()) knots.push(json_rational(k, pd));
-    j.set("knots", knots);
-    j.set("identically_zero", Json::boolean(r.identically_zero));
-    j.set("mu", json_ball(r.mu, pd));
-    j.set("mean_square", json_ball(r.mean_square, pd));
-    j.set("u", json_ball(r.u, pd));
-    j.set("joints", json_joints(c, r.joints, pd));
-    if (kind == SpeedKind::Angular) j.set("corner_turning", json_ball(r.corner_turning, pd));
-    Json parts = Json::array();
-    for (std::size_t i = 0; i < c.size(); ++i) {
-      const UniformityResult& s = r.segments[i];
-      Json p = Json::object();
-      p.set("label", Json::string(c.label(i)));
-      p.set("curve", Json::string(c.segment(i).str()));
-      p.set("t_interval", Json::array().push(json_rational(c.knots()[i], pd)).push(json_rational(c.knots()[i + 1], pd)));
-      Json zs = Json::array();
-      for (const auto& z : s.zeros) {
-        Json e = Json::object();
-        e.set("t", json_algebraic(z.t, opt.digits));
-        e.set("multiplicity", Json::number(z.multiplicity));
-        zs.push(e);
-      }
-      p.set("zeros", zs);
-      p.set("identically_zero", Json::boolean(s.identically_zero));
-      p.set("mu", json_ball(s.mu, pd));
-      p.set("mean_square", json_ball(s.mean_square, pd));
-      p.set("u", json_ball(s.u, pd));
-      parts.push(p);
-    }
-    j.set("parts", parts);
-    answer() << j.dump(2) << "\n";
+    answer() << composite_uniformity_json(composite_description(a, c), c, kind, opt.digits, r).dump(2) << "\n";
     return 0;
   }
   answer() << line("curve") << composite_description(a, c) << "\n" << line("speed") << to_string(kind) << "\n";
@@ -197,6 +227,53 @@ CompositeMethod with_rational(const Args& a, CompositeMethod m) {
   return m;
 }
 
+std::string composite_target_missed_message(const CompositeMethod& m) {
+  return "the target u >= " + m.target.str() + " was not reached on every segment with at most " +
+         std::to_string(m.max_pieces) + " pieces each; the best map is printed (raise --max-pieces, or lower --target)";
+}
+
+Json composite_map_json(const std::string& description, const CompositeCurve& c, SpeedKind kind, long digits,
+                        const CompositeMethod& m, const CompositeMap& r, const std::vector<Joint>& joints, Format fmt) {
+  const long pd = printed_digits(digits);
+  Json j = Json::object();
+  j.set("curve", Json::string(description));
+  j.set("speed", Json::string(to_string(kind)));
+  j.set("digits", Json::number(digits));
+  j.set("method", Json::string(r.method()));
+  j.set("segments", Json::number(static_cast<long>(c.size())));
+  j.set("pieces", Json::number(static_cast<long>(r.pieces())));
+  Json knots = Json::array(), S = Json::array();
+  for (const Rational& k : c.knots()) knots.push(json_rational(k, pd));
+  for (const Rational& s : r.S()) S.push(json_rational(s, pd));
+  j.set("knots", knots);
+  j.set("S", S);
+  j.set("mu", json_ball(r.mu(), pd));
+  j.set("u_before", json_ball(r.u_before(), pd));
+  j.set("u_after", json_ball(r.u_after(), pd));
+  j.set("joints", json_joints(c, joints, pd));
+  if (m.kind == CompositeMethod::Kind::Target) {
+    Json t = Json::object();
+    t.set("value", json_rational(m.target, pd));
+    t.set("reached", Json::boolean(r.target_reached()));
+    j.set("target", t);
+  }
+  Json parts = Json::array();
+  MoebiusPrint how;
+  how.format = fmt;
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    const Reparameterization& part = r.parts()[i];
+    Json p = Json::object();
+    p.set("label", Json::string(c.label(i)));
+    p.set("t_interval", Json::array().push(json_rational(c.knots()[i], pd)).push(json_rational(c.knots()[i + 1], pd)));
+    p.set("s_interval", Json::array().push(json_rational(r.S()[i], pd)).push(json_rational(r.S()[i + 1], pd)));
+    if (const MoebiusResult* mr = part.moebius_result()) p.set("map", moebius_json(c.segment(i), *mr, digits + 2, how));
+    else if (const RadicalResult* rr = part.radical_result()) p.set("map", radical_json(c.segment(i), *rr, digits + 2, fmt));
+    parts.push(p);
+  }
+  j.set("parts", parts);
+  return j;
+}
+
 int run_map_composite(const Args& a, const CompositeCurve& c, SpeedKind kind, const Options& opt,
                       const CompositeMethod& m, const std::string& command) {
   const NurbsOutput no = read_nurbs_output(a);
@@ -208,48 +285,10 @@ int run_map_composite(const Args& a, const CompositeCurve& c, SpeedKind kind, co
   const long pd = printed_digits(opt.digits);
   const Format fmt = read_format(a);
   const bool missed = m.kind == CompositeMethod::Kind::Target && !r.target_reached();
-  if (missed)
-    warn() << "uniparam " << command << ": the target u >= " << m.target.str()
-              << " was not reached on every segment with at most " << m.max_pieces
-              << " pieces each; the best map is printed (raise --max-pieces, or lower --target)\n";
+  if (missed) warn() << "uniparam " << command << ": " << composite_target_missed_message(m) << "\n";
   if (wants_json(a)) {
-    Json j = Json::object();
-    j.set("curve", Json::string(composite_description(a, c)));
-    j.set("speed", Json::string(to_string(kind)));
-    j.set("digits", Json::number(opt.digits));
-    j.set("method", Json::string(r.method()));
-    j.set("segments", Json::number(static_cast<long>(c.size())));
-    j.set("pieces", Json::number(static_cast<long>(r.pieces())));
-    Json knots = Json::array(), S = Json::array();
-    for (const Rational& k : c.knots()) knots.push(json_rational(k, pd));
-    for (const Rational& s : r.S()) S.push(json_rational(s, pd));
-    j.set("knots", knots);
-    j.set("S", S);
-    j.set("mu", json_ball(r.mu(), pd));
-    j.set("u_before", json_ball(r.u_before(), pd));
-    j.set("u_after", json_ball(r.u_after(), pd));
-    j.set("joints", json_joints(c, joints, pd));
-    if (m.kind == CompositeMethod::Kind::Target) {
-      Json t = Json::object();
-      t.set("value", json_rational(m.target, pd));
-      t.set("reached", Json::boolean(r.target_reached()));
-      j.set("target", t);
-    }
-    Json parts = Json::array();
-    MoebiusPrint how;
-    how.format = fmt;
-    for (std::size_t i = 0; i < c.size(); ++i) {
-      const Reparameterization& part = r.parts()[i];
-      Json p = Json::object();
-      p.set("label", Json::string(c.label(i)));
-      p.set("t_interval", Json::array().push(json_rational(c.knots()[i], pd)).push(json_rational(c.knots()[i + 1], pd)));
-      p.set("s_interval", Json::array().push(json_rational(r.S()[i], pd)).push(json_rational(r.S()[i + 1], pd)));
-      if (const MoebiusResult* mr = part.moebius_result()) p.set("map", moebius_json(c.segment(i), *mr, opt.digits + 2, how));
-      else if (const RadicalResult* rr = part.radical_result()) p.set("map", radical_json(c.segment(i), *rr, opt.digits + 2, fmt));
-      parts.push(p);
-    }
-    j.set("parts", parts);
-    answer() << j.dump(2) << "\n";
+    answer() << composite_map_json(composite_description(a, c), c, kind, opt.digits, m, r, joints, fmt).dump(2)
+             << "\n";
     return missed ? 4 : 0;
   }
   answer() << line("curve") << composite_description(a, c) << "\n"
@@ -273,6 +312,48 @@ int run_map_composite(const Args& a, const CompositeCurve& c, SpeedKind kind, co
   return missed ? 4 : 0;
 }
 
+Json composite_locate_json(const std::string& description, SpeedKind kind, long digits, const std::string& option,
+                           const Rational& value, const LocateResult& r) {
+  const long pd = printed_digits(digits);
+  const char* measure = kind == SpeedKind::Parametric ? "length" : "angle";
+  Json j = Json::object();
+  j.set("curve", Json::string(description));
+  j.set("speed", Json::string(to_string(kind)));
+  j.set("digits", Json::number(digits));
+  j.set("given", Json::string(option));
+  j.set("value", Json::string(value.str()));
+  j.set("mu", json_ball(r.mu, pd));
+  j.set(measure, json_ball(r.target, pd));
+  j.set("t", json_ball(r.at.t, pd));
+  Json pt = Json::array();
+  for (const Ball& x : r.at.point) pt.push(json_ball(x, pd));
+  j.set("point", pt);
+  return j;
+}
+
+Json composite_sample_header_json(const std::string& description, const CompositeCurve& c, SpeedKind kind,
+                                  const std::string& method, const CompositeMap* r, long digits, long K) {
+  const long pd = printed_digits(digits);
+  Json head = Json::object();
+  head.set("curve", Json::string(description));
+  head.set("speed", Json::string(to_string(kind)));
+  head.set("method", Json::string(method));
+  head.set("digits", Json::number(digits));
+  head.set("points", Json::number(K));
+  if (!r) return head;
+  head.set("mu", json_ball(r->mu(), pd));
+  head.set("u_before", json_ball(r->u_before(), pd));
+  head.set("u_after", json_ball(r->u_after(), pd));
+  Json S = Json::array(), knots = Json::array();
+  for (const Rational& x : r->S()) S.push(json_rational(x, pd));
+  for (const Rational& x : c.knots()) knots.push(json_rational(x, pd));
+  Json joints = Json::object();
+  joints.set("s", S);
+  joints.set("t", knots);
+  head.set("segment_joints", joints);
+  return head;
+}
+
 int run_locate_composite(const Args& a, const CompositeCurve& c, SpeedKind kind, const Options& opt,
                          const Rational& value, LocateTarget target, const std::string& option) {
   const std::vector<Speed> sp = c.speeds(kind);
@@ -285,19 +366,8 @@ int run_locate_composite(const Args& a, const CompositeCurve& c, SpeedKind kind,
   const long pd = printed_digits(opt.digits);
   const char* measure = kind == SpeedKind::Parametric ? "length" : "angle";
   if (wants_json(a)) {
-    Json j = Json::object();
-    j.set("curve", Json::string(composite_description(a, c)));
-    j.set("speed", Json::string(to_string(kind)));
-    j.set("digits", Json::number(opt.digits));
-    j.set("given", Json::string(option));
-    j.set("value", Json::string(value.str()));
-    j.set("mu", json_ball(r.mu, pd));
-    j.set(measure, json_ball(r.target, pd));
-    j.set("t", json_ball(r.at.t, pd));
-    Json pt = Json::array();
-    for (const Ball& x : r.at.point) pt.push(json_ball(x, pd));
-    j.set("point", pt);
-    answer() << j.dump(2) << "\n";
+    answer() << composite_locate_json(composite_description(a, c), kind, opt.digits, option, value, r).dump(2)
+             << "\n";
     return 0;
   }
   answer() << line("curve") << composite_description(a, c) << "\n"

@@ -3,9 +3,9 @@
 //
 // Every function takes the curve and the options as plain values, runs the
 // library (reparam/, the same calls as the CLI's commands) and returns the
-// command's JSON document as text (cli/json_reports.hpp: the very code the
-// CLI prints with --json), which uniparam/__init__.py turns into Python
-// objects. Computations run on a thread of their own with the GIL released;
+// command's JSON document as text (cli/json_reports.hpp and, for composite
+// curves, cli/composite.hpp: the very code the CLI prints with --json), which
+// uniparam/__init__.py turns into Python objects. Computations run on a thread of their own with the GIL released;
 // the calling thread waits, looking for signals every 50 ms, and on Ctrl-C
 // (KeyboardInterrupt) cancels the computation through the library's
 // ScopedCancellation (core/budget.hpp), which stops it at its next budget
@@ -15,6 +15,7 @@
 
 #include <flint/flint.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -29,6 +30,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "composite.hpp"
 #include "json_reports.hpp"
 #include "moebius_report.hpp"
 #include "nurbs_out.hpp"
@@ -48,6 +50,9 @@ struct Common {
   std::string curve;    ///< the curve's text (when control is empty)
   std::string control;  ///< Bezier control points "[[x0,y0],...]" (else "")
   std::string weights;  ///< their weights "[w0,...]" (else "")
+  std::optional<std::string> svg;    ///< SVG path data (a composite curve)
+  std::optional<long> subpath;       ///< with svg: the subpath to use, 0-based
+  std::optional<std::string> nurbs;  ///< NURBS/B-spline JSON (a composite curve)
   std::string speed = "angular";
   long digits = 15;
   long max_prec = 0;  ///< 0: default_max_prec(digits)
@@ -92,6 +97,62 @@ Curve curve_of(const Common& c) {
   lim.max_length = static_cast<std::size_t>(in_range("max_length", c.max_length, 1, 1L << 30));
   lim.max_depth = static_cast<int>(in_range("max_depth", c.max_depth, 1, 1L << 30));
   return Curve::parse(c.curve, lim);
+}
+
+/// How the composite readers' messages name the Python parameters.
+cli::CompositeNames python_names() {
+  cli::CompositeNames n;
+  n.svg = "svg";
+  n.subpath = "subpath=K";
+  n.max_degree = "max_degree";
+  n.subpaths_hint = "";
+  return n;
+}
+
+/// The composite curve of c's svg or nurbs, or nullopt for a curve given as
+/// text or control points (the CLI's read_composite, with the text given
+/// directly; a NURBS text longer than max_length is refused as the CLI
+/// refuses such a file).
+std::optional<CompositeCurve> composite_of(const Common& c) {
+  if (c.subpath && !c.svg) throw InvalidArgument("subpath needs an SVG path (Curve.svg)");
+  if (!c.svg && !c.nurbs) return std::nullopt;
+  const Options o = options_of(c);
+  const std::size_t max_length = static_cast<std::size_t>(in_range("max_length", c.max_length, 1, 1L << 30));
+  if (c.svg) {
+    const std::vector<PathInput> paths = cli::read_svg_subpaths(*c.svg, max_length, python_names());
+    std::optional<std::size_t> k;
+    if (c.subpath) k = static_cast<std::size_t>(in_range("subpath", *c.subpath, 0, static_cast<long>(paths.size()) - 1));
+    return cli::svg_composite(paths, k, o, python_names());
+  }
+  if (c.nurbs->size() > max_length)
+    throw BudgetExceeded("nurbs: the text holds more than " + std::to_string(max_length) +
+                         " characters (the limit for nurbs; raise it with max_length)");
+  return cli::read_nurbs_composite(*c.nurbs, o, python_names());
+}
+
+/// The input of a command: a composite curve of several segments (with its
+/// description, as the CLI's), or one curve (a path or spline of one segment
+/// is that segment, as in the CLI).
+struct Input {
+  std::optional<CompositeCurve> composite;
+  std::optional<Curve> curve;
+  std::string description;
+};
+
+Input input_of(const Common& c) {
+  Input in;
+  if (std::optional<CompositeCurve> cc = composite_of(c)) {
+    if (cc->size() == 1) {
+      in.curve = cc->segment(0);
+      return in;
+    }
+    in.description =
+        cli::composite_description(c.svg ? cli::CompositeSource::Svg : cli::CompositeSource::Nurbs, *cc);
+    in.composite = std::move(cc);
+    return in;
+  }
+  in.curve = curve_of(c);
+  return in;
 }
 
 /// An exact rational given as text to parameter `name` (as the CLI's
@@ -244,6 +305,103 @@ std::string missed(const MoebiusResult& r, long max_pieces, long digits) {
   return cli::target_missed_message(r, max_pieces, digits);
 }
 
+/// The map of `method` (radical, c0, c1, none) for a composite curve, as
+/// the CLI's read_composite_method: pieces (c0; default max(3, segments)),
+/// target (c1; default 0.99), max_pieces (c1, per segment).
+CompositeMethod composite_method_of(const std::string& m, const CompositeCurve& cc, std::optional<long> pieces,
+                                    const std::optional<std::string>& target, std::optional<long> max_pieces,
+                                    bool with_none) {
+  if (m != "radical" && m != "c0" && m != "c1" && !(with_none && m == "none"))
+    throw InvalidArgument("unknown method '" + m + "' (expected radical, c0, c1" +
+                          std::string(with_none ? " or none)" : ")"));
+  if (pieces && m != "c0") throw InvalidArgument("pieces applies to method c0 only");
+  if (target && m != "c1") throw InvalidArgument("target applies to method c1 only");
+  if (max_pieces && m != "c1") throw InvalidArgument("max_pieces applies to method c1 only");
+  CompositeMethod cm;
+  if (m == "radical") cm.kind = CompositeMethod::Kind::Radical;
+  if (m == "c0") {
+    cm.kind = CompositeMethod::Kind::Pieces;
+    cm.pieces = in_range("pieces", pieces.value_or(std::max<long>(3, static_cast<long>(cc.size()))), 1, 1000);
+  }
+  if (m == "c1") {
+    cm.kind = CompositeMethod::Kind::Target;
+    cm.target = rational_arg("target", target.value_or("0.99"));
+    if (cm.target <= Rational(0) || cm.target >= Rational(1))
+      throw InvalidArgument("target must lie strictly between 0 and 1, got " + cm.target.str());
+    cm.max_pieces = in_range("max_pieces", max_pieces.value_or(64), 1, 1000);
+  }
+  return cm;
+}
+
+/// `m` with rational (and rational_digits) as the CLI's with_rational.
+CompositeMethod with_rational(CompositeMethod m, bool rational, std::optional<long> rational_digits) {
+  if (rational_digits && !rational) throw InvalidArgument("rational_digits needs rational=True");
+  m.rational = rational;
+  m.rational_digits = in_range("rational_digits", rational_digits.value_or(8), 1, 100);
+  return m;
+}
+
+/// radical, moebius and reparam on a composite curve (the CLI's
+/// run_map_composite): the report, or the NURBS of p o r as `no` asks.
+Answer composite_answer(const Input& in, SpeedKind kind, const Options& opt, const CompositeMethod& m, Format fmt,
+                        const cli::NurbsOutput& no) {
+  const CompositeCurve& cc = *in.composite;
+  const std::vector<Speed> sp = cc.speeds(kind);
+  const CompositeMap r = composite_map(cc, sp, m, opt);
+  const bool missed = m.kind == CompositeMethod::Kind::Target && !r.target_reached();
+  const std::string message = missed ? cli::composite_target_missed_message(m) : "";
+  auto report = [&] {
+    return cli::composite_map_json(in.description, cc, kind, opt.digits, m, r, joints(cc, 128), fmt);
+  };
+  if (no.form == cli::NurbsOutput::Form::None) return Answer("report", dump(report()), message);
+  return nurbs_answer(composite_nurbs(cc, r, cli::nurbs_prec(opt)), no, opt.digits, report, message);
+}
+
+/// sample on a composite curve (the CLI's run_sample_composite): the
+/// document and the missed-target message.
+std::pair<std::string, std::string> sample_composite(const Input& in, SpeedKind kind, const Options& opt,
+                                                     const std::string& method, std::optional<long> pieces,
+                                                     const std::optional<std::string>& target,
+                                                     std::optional<long> max_pieces, long K, bool deviation) {
+  const CompositeCurve& cc = *in.composite;
+  if (deviation) throw InvalidArgument("deviation is not available for composite curves");
+  if (method == "exact" && (pieces || target || max_pieces))
+    throw InvalidArgument("pieces, target and max_pieces do not apply to method exact");
+  const std::vector<Speed> sp = cc.speeds(kind);
+  Json rows = Json::array();
+  if (method == "exact") {
+    Json j = cli::composite_sample_header_json(in.description, cc, kind, "exact", nullptr, opt.digits, K);
+    Ball mu;
+    exact_samples_each(cc, sp, K, opt, mu, [&](long k, const LocatedPoint& p) {
+      SamplePoint row;
+      row.s = Rational(k, K - 1);
+      row.t = p.t;
+      row.point = p.point;
+      row.speed = mu;
+      rows.push(cli::sample_row_json(row, opt.digits));
+    });
+    j.set("mu", json_ball(mu, cli::printed_digits(opt.digits)));
+    j.set("samples", rows);
+    return std::make_pair(dump(j), std::string());
+  }
+  const CompositeMethod cm = composite_method_of(method, cc, pieces, target, max_pieces, true);
+  Options ropt = opt;
+  ropt.digits = opt.digits + 3;
+  const CompositeMap r = composite_map(cc, sp, cm, ropt);
+  Json j = cli::composite_sample_header_json(in.description, cc, kind, method == "none" ? "none" : r.method(), &r,
+                                             opt.digits, K);
+  CompositeSampler smp(cc, sp, r, opt.digits, opt.max_prec);
+  for (long k = 0; k < K; ++k) {
+    check_time_budget();
+    rows.push(cli::sample_row_json(smp.at(Rational(k, K - 1)), opt.digits));
+  }
+  j.set("samples", rows);
+  std::string message;
+  if (cm.kind == CompositeMethod::Kind::Target && !r.target_reached())
+    message = "the target u >= " + cm.target.str() + " was not reached on every segment; the best map was sampled";
+  return std::make_pair(dump(j), message);
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_uniparam, m) {
@@ -254,6 +412,9 @@ PYBIND11_MODULE(_uniparam, m) {
       .def_readwrite("curve", &Common::curve)
       .def_readwrite("control", &Common::control)
       .def_readwrite("weights", &Common::weights)
+      .def_readwrite("svg", &Common::svg)
+      .def_readwrite("subpath", &Common::subpath)
+      .def_readwrite("nurbs", &Common::nurbs)
       .def_readwrite("speed", &Common::speed)
       .def_readwrite("digits", &Common::digits)
       .def_readwrite("max_prec", &Common::max_prec)
@@ -296,8 +457,32 @@ PYBIND11_MODULE(_uniparam, m) {
     }
   });
 
-  m.def("curve_text", [](const Common& c) { return guarded(c, [&] { return curve_of(c).str(); }); },
-        "The canonical text of the curve of c (Curve::str()).");
+  m.def(
+      "curve_text",
+      [](const Common& c) {
+        return guarded(c, [&] {
+          const Input in = input_of(c);
+          return in.composite ? in.description : in.curve->str();
+        });
+      },
+      "The canonical text of the curve of c (Curve::str()), or the CLI's description of a composite curve.");
+
+  m.def(
+      "curve_parts",
+      [](const Common& c) {
+        return guarded(c, [&] {
+          Input in = input_of(c);
+          const CompositeCurve cc = in.composite ? std::move(*in.composite) : CompositeCurve(*in.curve);
+          std::vector<std::string> segments, knots, labels;
+          for (std::size_t j = 0; j < cc.size(); ++j) {
+            segments.push_back(cc.segment(j).str());
+            labels.push_back(cc.label(j));
+          }
+          for (const Rational& k : cc.knots()) knots.push_back(k.str());
+          return std::make_tuple(segments, knots, labels);
+        });
+      },
+      "The segments' texts, the knots (exact rationals as text) and the labels of the curve of c.");
 
   m.def(
       "uniformity",
@@ -305,7 +490,11 @@ PYBIND11_MODULE(_uniparam, m) {
         return guarded(c, [&] {
           const Options opt = options_of(c);
           const SpeedKind kind = parse_speed_kind(c.speed);
-          const Curve cv = curve_of(c);
+          const Input in = input_of(c);
+          if (in.composite)
+            return dump(cli::composite_uniformity_json(in.description, *in.composite, kind, opt.digits,
+                                                       uniformity(*in.composite, kind, opt)));
+          const Curve& cv = *in.curve;
           return dump(cli::uniformity_json(cv, kind, opt.digits, uniformity(cv, kind, opt)));
         });
       },
@@ -318,7 +507,14 @@ PYBIND11_MODULE(_uniparam, m) {
           const Options opt = options_of(c);
           const SpeedKind kind = parse_speed_kind(c.speed);
           const Format fmt = cli::parse_format(format);
-          const Curve cv = curve_of(c);
+          const Input in = input_of(c);
+          if (in.composite) {
+            if (at) throw InvalidArgument("at on a composite curve: use sample() (its rows are r(s))");
+            CompositeMethod m;
+            m.kind = CompositeMethod::Kind::Radical;
+            return std::get<1>(composite_answer(in, kind, opt, m, fmt, cli::NurbsOutput{}));
+          }
+          const Curve& cv = *in.curve;
           std::optional<Rational> z;
           if (at) {
             z = rational_arg("at", *at);
@@ -340,17 +536,24 @@ PYBIND11_MODULE(_uniparam, m) {
 
   m.def(
       "moebius",
-      [](const Common& c, const std::vector<std::string>& breakpoints, const std::string& format, bool rational,
-         std::optional<long> rational_digits, const std::string& output) {
+      [](const Common& c, const std::optional<std::vector<std::string>>& breakpoints, const std::string& format,
+         bool rational, std::optional<long> rational_digits, const std::string& output) {
         return guarded(c, [&] {
           const Options opt = options_of(c);
           const SpeedKind kind = parse_speed_kind(c.speed);
           cli::MoebiusPrint how;
           how.json = true;
           how.format = cli::parse_format(format);
-          const auto T = breakpoints_of(breakpoints);
+          const auto T = breakpoints_of(breakpoints.value_or(std::vector<std::string>{"0", "1"}));
           const cli::NurbsOutput no = output_of(output);
-          const Curve cv = curve_of(c);
+          const Input in = input_of(c);
+          if (in.composite) {
+            CompositeMethod m;
+            m.kind = breakpoints ? CompositeMethod::Kind::Breakpoints : CompositeMethod::Kind::Moebius;
+            for (const RealAlgebraic& t : T) m.breakpoints.push_back(t.rational());
+            return composite_answer(in, kind, opt, with_rational(m, rational, rational_digits), how.format, no);
+          }
+          const Curve& cv = *in.curve;
           const MoebiusResult r = finish(cv, moebius_c0(cv, kind, T, opt), rational, rational_digits, opt);
           auto report = [&] { return cli::moebius_json(cv, r, opt.digits, how); };
           if (no.form == cli::NurbsOutput::Form::None) return Answer("report", dump(report()), "");
@@ -385,7 +588,19 @@ PYBIND11_MODULE(_uniparam, m) {
               throw InvalidArgument("target must lie strictly between 0 and 1, got " + *target);
           }
           const cli::NurbsOutput no = output_of(output);
-          const Curve cv = curve_of(c);
+          const Input in = input_of(c);
+          if (in.composite) {
+            CompositeMethod m;
+            m.kind = pieces       ? CompositeMethod::Kind::Pieces
+                     : !T.empty() ? CompositeMethod::Kind::Breakpoints
+                                  : CompositeMethod::Kind::Target;
+            m.pieces = pieces.value_or(0);
+            for (const RealAlgebraic& x : T) m.breakpoints.push_back(x.rational());
+            m.target = t;
+            m.max_pieces = mp;
+            return composite_answer(in, kind, opt, with_rational(m, rational, rational_digits), how.format, no);
+          }
+          const Curve& cv = *in.curve;
           MoebiusResult r = pieces       ? reparam_c0(cv, kind, *pieces, opt)
                             : !T.empty() ? moebius_c0(cv, kind, T, opt)
                                          : reparam_c1(cv, kind, t, opt, mp);
@@ -405,6 +620,10 @@ PYBIND11_MODULE(_uniparam, m) {
         return guarded(c, [&] {
           const Options opt = options_of(c);
           const cli::NurbsOutput no = output_of(output);
+          if (c.svg || c.nurbs)
+            throw InvalidArgument("bezier takes one Bezier curve, given by its control points; for a path or a "
+                                  "spline, moebius(curve, speed=\"parametric\") gives each segment its optimal "
+                                  "Moebius map");
           if (c.control.empty()) throw InvalidArgument("bezier needs control points");
           BezierCurve bz = BezierCurve::parse(c.control, c.weights, static_cast<std::size_t>(opt.max_degree) + 1);
           if (!c.weights.empty() && !bz.is_rational()) throw InvalidArgument("weights: empty list");
@@ -429,10 +648,21 @@ PYBIND11_MODULE(_uniparam, m) {
           const Options opt = options_of(c);
           const SpeedKind kind = parse_speed_kind(c.speed);
           const Rational v = rational_arg(option, value);
-          const Curve cv = curve_of(c);
+          const LocateTarget target = option == "fraction" ? LocateTarget::Fraction : LocateTarget::Integral;
+          const Input in = input_of(c);
+          if (in.composite) {
+            const std::vector<Speed> sp = in.composite->speeds(kind);
+            LocateResult r;
+            try {
+              r = locate(*in.composite, sp, v, target, opt);
+            } catch (const InvalidArgument& e) {
+              throw InvalidArgument(option + ": " + e.what());
+            }
+            return dump(cli::composite_locate_json(in.description, kind, opt.digits, option, v, r));
+          }
+          const Curve& cv = *in.curve;
           check_degree(cv, opt);
           const Speed s(cv, kind);
-          const LocateTarget target = option == "fraction" ? LocateTarget::Fraction : LocateTarget::Integral;
           LocateResult r;
           try {
             r = locate(cv, s, v, target, opt);
@@ -452,7 +682,9 @@ PYBIND11_MODULE(_uniparam, m) {
           const Options opt = options_of(c);
           const SpeedKind kind = parse_speed_kind(c.speed);
           in_range("points", K, 2, 1000000);
-          const Curve cv = curve_of(c);
+          const Input in = input_of(c);
+          if (in.composite) return sample_composite(in, kind, opt, method, pieces, target, max_pieces, K, deviation);
+          const Curve& cv = *in.curve;
           const long pd = cli::printed_digits(opt.digits);
           if (method == "exact") {
             if (pieces || target || max_pieces)
@@ -516,7 +748,18 @@ PYBIND11_MODULE(_uniparam, m) {
           const Options opt = options_of(c);
           const SpeedKind kind = parse_speed_kind(c.speed);
           in_range("points", K, 2, 100000);
-          const Curve cv = curve_of(c);
+          const Input in = input_of(c);
+          if (in.composite) {
+            const CompositeMethod m = composite_method_of(method, *in.composite, pieces, target, max_pieces, false);
+            std::string message;
+            const std::string svg =
+                cli::composite_plot_svg(in.description, *in.composite, kind, m, K, projection, opt, [&] {
+                  message = "the target u >= " + m.target.str() +
+                            " was not reached on every segment; the best map is drawn";
+                });
+            return std::make_pair(svg, message);
+          }
+          const Curve& cv = *in.curve;
           const Reparameterization r = method_of(method, cv, kind, opt, pieces, target, max_pieces, false);
           const std::string svg = cli::plot_svg(cv, kind, r, K, projection, target.value_or("0.99"), opt);
           const auto* mr = r.moebius_result();

@@ -5,8 +5,9 @@
     >>> r.u                                   # a certified Ball
     Ball('0.845695243153366342', '1.2e-19')
 
-Every method takes a curve (a ``Curve``, its text "(x(t), y(t), ...)", or a
-Bezier curve from ``Curve.bezier``) and the options of the CLI as keyword
+Every method takes a curve (a ``Curve``, its text "(x(t), y(t), ...)", a
+Bezier curve from ``Curve.bezier``, or a composite curve from ``Curve.svg``
+or ``Curve.nurbs``) and the options of the CLI as keyword
 arguments: ``speed`` ("angular" or "parametric"), ``digits`` (correct
 decimal digits, default 15), ``max_prec``, ``max_degree``, ``max_bits``,
 ``max_length``, ``max_depth``, ``timeout`` (seconds, default None: no limit)
@@ -47,15 +48,22 @@ def _exact_text(x, exact_float, what):
 
 
 class Curve:
-    """A rational curve p(t), t in [0, 1].
+    """A rational curve p(t), t in [0, 1], or a composite curve.
 
     ``Curve("(t, t^3)")`` parses the CLI's curve syntax (the parser's limits
     as keyword arguments max_degree, max_bits, max_length, max_depth);
     ``Curve.bezier(points, weights=None)`` builds a (rational) Bezier curve
-    from exact control points. ``str(curve)`` is the canonical text of its
-    power-basis form. Raises ParseError (with .column), DomainError (a pole
-    in [0, 1], a constant curve), InvalidArgument, BudgetExceeded.
+    from exact control points; ``Curve.svg(path)`` and ``Curve.nurbs(spline)``
+    build composite curves (the CLI's --svg and --nurbs). ``str(curve)`` is
+    the canonical text of its power-basis form, or for a composite curve of
+    several segments the CLI's description ("SVG path of 4 segments").
+    Raises ParseError (with .column), DomainError (a pole in [0, 1], a
+    constant curve), InvalidArgument, BudgetExceeded.
     """
+
+    _svg = None
+    _subpath = None
+    _nurbs = None
 
     def __init__(self, text, **limits):
         if not isinstance(text, str):
@@ -64,6 +72,85 @@ class Curve:
         self._text, self._control, self._weights = text, "", ""
         self._limits = limits
         self._str = _uniparam.curve_text(self._common(**limits))
+
+    @classmethod
+    def svg(cls, path, subpath=None, max_degree=1000, max_length=1048576):
+        """The composite curve of SVG path data (``uniparam --svg PATH``):
+        commands M L H V C S Q T Z and elliptical arcs that are exactly
+        rational quadratics (others raise InvalidArgument; uniparam never
+        approximates), numbers read exactly as decimals. Each segment keeps
+        its exact Bezier data; segment j of m runs over t in [j/m, (j+1)/m].
+        A path of several subpaths needs ``subpath`` (0-based); a path of
+        one segment is that Bezier curve. ``max_length`` bounds the path's
+        characters, ``max_degree`` the segments' degrees. Raises ParseError
+        (with .column) for bad path data."""
+        if not isinstance(path, str):
+            raise TypeError("Curve.svg(path): path must be the SVG path data as a str, such as "
+                            "'M 0 0 Q 1 2 2 2'")
+        if subpath is not None:
+            subpath = _int("subpath", subpath)
+        self = cls.__new__(cls)
+        self._text, self._control, self._weights = "", "", ""
+        self._svg, self._subpath = path, subpath
+        self._limits = {"max_degree": max_degree, "max_length": max_length}
+        self._str = _uniparam.curve_text(self._common())
+        return self
+
+    @classmethod
+    def nurbs(cls, spline, exact_float=False, max_degree=1000, max_length=1048576):
+        """The composite curve of a NURBS or B-spline (``uniparam --nurbs
+        JSON``): a dict {"degree": p, "knots": [...], "control": [[x, y,
+        ...], ...], "weights": [...]} ("weights" optional) or its JSON text.
+        In a dict, knots, coordinates and weights are exact (int, Fraction,
+        Decimal, decimal/rational strings; floats raise TypeError unless
+        exact_float=True); in JSON text, numbers are read exactly as
+        decimals. One segment per nonempty knot span, the knots mapped onto
+        [0, 1]; a spline of one segment is that Bezier curve."""
+        if isinstance(spline, (bytes, bytearray)):
+            spline = spline.decode("utf-8")
+        if isinstance(spline, dict):
+            spline = _nurbs_text(spline, exact_float)
+        elif not isinstance(spline, str):
+            raise TypeError("Curve.nurbs(spline): expected a dict {'degree', 'knots', 'control', 'weights'} or "
+                            "its JSON text, got %s" % type(spline).__name__)
+        self = cls.__new__(cls)
+        self._text, self._control, self._weights = "", "", ""
+        self._nurbs = spline
+        self._limits = {"max_degree": max_degree, "max_length": max_length}
+        self._str = _uniparam.curve_text(self._common())
+        return self
+
+    @property
+    def path(self):
+        """The SVG path data of a Curve.svg (else None)."""
+        return self._svg
+
+    @property
+    def spline(self):
+        """The NURBS JSON text of a Curve.nurbs (else None)."""
+        return self._nurbs
+
+    @property
+    def segments(self):
+        """The segments as Curves, each on its own parameter [0, 1] (one
+        for a curve that is not composite)."""
+        return [_curve(text, parsed=True) for text in self._parts()[0]]
+
+    @property
+    def knots(self):
+        """The knots 0 = k_0 < ... < k_m = 1 as Fractions: segment j runs
+        over t in [k_j, k_{j+1}]."""
+        return [to_fraction(k) for k in self._parts()[1]]
+
+    @property
+    def labels(self):
+        """What each segment is ("segment 2: L at column 17", "span [0, 1] (knots 1 and 2)")."""
+        return list(self._parts()[2])
+
+    def _parts(self):
+        if getattr(self, "_parts_cache", None) is None:
+            self._parts_cache = _uniparam.curve_parts(self._common())
+        return self._parts_cache
 
     @classmethod
     def bezier(cls, points, weights=None, exact_float=False, max_degree=1000):
@@ -102,6 +189,7 @@ class Curve:
                 max_length=None, max_depth=None, timeout=None, threads=None):
         c = _uniparam.Common()
         c.curve, c.control, c.weights = self._text, self._control, self._weights
+        c.svg, c.subpath, c.nurbs = self._svg, self._subpath, self._nurbs
         c.speed = speed
         c.digits = _int("digits", digits)
         c.max_prec = 0 if max_prec is None else _int("max_prec", max_prec)
@@ -129,18 +217,31 @@ class Curve:
         return self._str
 
     def __repr__(self):
+        if self._svg is not None:
+            return "Curve.svg(%r%s)" % (self._svg, "" if self._subpath is None else ", subpath=%d" % self._subpath)
+        if self._nurbs is not None:
+            return "Curve.nurbs(%r)" % self._nurbs
         if self._control:
             return "Curve.bezier(%s%s)" % (self._control, ", weights=" + self._weights if self._weights else "")
         return "Curve(%r)" % self._str
 
+    def _key(self):
+        # A composite curve is its data; one curve (a path of one segment
+        # too) is its canonical text.
+        if self._svg is not None or self._nurbs is not None:
+            if len(self._parts()[0]) > 1:
+                return (self._svg, self._subpath, self._nurbs)
+        return str(self)
+
     def __eq__(self, other):
-        return isinstance(other, Curve) and str(self) == str(other)
+        return isinstance(other, Curve) and self._key() == other._key()
 
     def __hash__(self):
-        return hash(self._str)
+        return hash(self._key())
 
     def __reduce__(self):  # picklable (Dask ships curves to workers)
-        return (_rebuild_curve, (self._text, self._control, self._weights, self._limits))
+        return (_rebuild_curve, (self._text, self._control, self._weights, self._limits, self._svg, self._subpath,
+                                 self._nurbs))
 
     # The methods, also as module functions.
     def uniformity(self, **kw):
@@ -165,11 +266,47 @@ class Curve:
         return plot(self, **kw)
 
 
-def _rebuild_curve(text, control, weights, limits):
+def _rebuild_curve(text, control, weights, limits, svg=None, subpath=None, nurbs=None):
     c = Curve.__new__(Curve)
     c._text, c._control, c._weights, c._limits = text, control, weights, dict(limits)
+    c._svg, c._subpath, c._nurbs = svg, subpath, nurbs
     c._str = _uniparam.curve_text(c._common())
     return c
+
+
+def _nurbs_text(spline, exact_float):
+    """The JSON text of a NURBS given as a dict, its numbers exact ("p/q"
+    strings for non-integers); other keys and values are passed on for the
+    reader to judge."""
+    def number(x, what):
+        if isinstance(x, bool):
+            raise TypeError("%s: expected a number, got %r" % (what, x))
+        q = to_fraction(x, exact_float=exact_float)
+        return q.numerator if q.denominator == 1 else _fraction_text(q)
+
+    def exact(x, what):
+        try:
+            return number(x, what)
+        except ValueError as e:
+            raise InvalidArgument("%s: %s" % (what, e)) from None
+
+    out = {}
+    for key, value in spline.items():
+        if key in ("knots", "weights") and not isinstance(value, (str, bytes, dict)):
+            value = [exact(x, "%s[%d]" % (key, i)) for i, x in enumerate(value)]
+        elif key == "control" and not isinstance(value, (str, bytes, dict)):
+            rows = []
+            for i, p in enumerate(value):
+                if isinstance(p, (str, bytes, dict)):
+                    raise TypeError("control point %d: expected a sequence of coordinates, got %r" % (i, p))
+                rows.append([exact(x, "control point %d" % i) for x in p])
+            value = rows
+        elif key == "degree" and not isinstance(value, (str, bool)):
+            import numbers
+            if isinstance(value, numbers.Integral):
+                value = int(value)
+        out[key] = value
+    return _json.dumps(out)
 
 
 def _int(name, v):
@@ -179,12 +316,12 @@ def _int(name, v):
     return int(v)
 
 
-def _curve(curve):
+def _curve(curve, parsed=False):
     if isinstance(curve, Curve):
         return curve
     if isinstance(curve, str):
         c = Curve.__new__(Curve)
-        c._text, c._control, c._weights, c._limits, c._str = curve, "", "", {}, None
+        c._text, c._control, c._weights, c._limits, c._str = curve, "", "", {}, curve if parsed else None
         return c
     raise TypeError("expected a Curve or the text of a curve, got %s" % type(curve).__name__)
 
@@ -252,7 +389,7 @@ def moebius(curve, breakpoints=None, format="text", rational=False, rational_dig
     1) (``uniparam moebius``). ``rational=True`` rounds alpha, S and T to
     short rationals (``rational_digits``, default 8) and certifies that map."""
     c = _curve(curve)
-    bp = _breakpoints(breakpoints) if breakpoints is not None else ["0", "1"]
+    bp = _breakpoints(breakpoints) if breakpoints is not None else None
     return _answer(_uniparam.moebius(c._common(**options), bp, format, bool(rational), rational_digits,
                                      _output(output)))
 
@@ -293,7 +430,7 @@ def bezier(points, weights=None, exact_weights="auto", exact_float=False, output
     weights for integral curves. ``points`` and ``weights`` as Curve.bezier,
     or a Curve made by Curve.bezier."""
     c = points if isinstance(points, Curve) else Curve.bezier(points, weights, exact_float=exact_float)
-    if not c.control:
+    if not c.control and c.path is None and c.spline is None:  # paths and splines: the module's message
         raise InvalidArgument("bezier needs control points: pass them, or a Curve.bezier(...)")
     if "speed" in options:
         raise TypeError("bezier works with the parametric speed only (no speed=)")
