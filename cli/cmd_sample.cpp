@@ -145,6 +145,15 @@ Json sample_exact_header_json(const Curve& c, SpeedKind kind, long digits, long 
   return head;
 }
 
+Ball row_deviation(ArcFraction& frac, const SamplePoint& p, long digits, Ball& worst) {
+  const long prec = 2 * digits_to_bits(digits) + 128;
+  Ball d = frac.at(p.t), s(p.s, prec);
+  arb_sub(d.get(), d.get(), s.get(), prec);
+  arb_abs(d.get(), d.get());
+  arb_max(worst.get(), worst.get(), d.get(), prec);
+  return d;
+}
+
 namespace {
 
 /// The bookkeeping of rows streamed to answer() (after stream_stdout()): a
@@ -333,14 +342,7 @@ int run_sample(int argc, char** argv) {
   std::unique_ptr<ArcFraction> frac;
   if (deviation) frac = std::make_unique<ArcFraction>(sp, digits_to_bits(opt.digits) + 8, opt);
   Ball worst(0);
-  auto deviation_of = [&](const SamplePoint& p) {
-    const long prec = 2 * digits_to_bits(opt.digits) + 128;
-    Ball d = frac->at(p.t), s(p.s, prec);
-    arb_sub(d.get(), d.get(), s.get(), prec);
-    arb_abs(d.get(), d.get());
-    arb_max(worst.get(), worst.get(), d.get(), prec);
-    return d;
-  };
+  auto deviation_of = [&](const SamplePoint& p) { return row_deviation(*frac, p, opt.digits, worst); };
   const Json head = sample_header_json(c, kind, r, opt.digits, K);
   const int rc = stream_samples(head, n, K, format, opt, [&](const SampleSink& sink) {
     sample_each(c, sp, r, K, opt.digits, opt.max_prec, sink);
@@ -353,11 +355,14 @@ namespace {
 
 int run_sample_composite(const Args& a, const CompositeCurve& c, SpeedKind kind, const Options& opt, long K,
                          const std::string& format) {
-  if (a.flag("deviation")) throw InvalidArgument("--deviation is not available for composite curves");
   const std::string m = a.get("method", "radical");
-  if (m == "exact")
+  if (m == "exact") {
     for (const char* o : {"pieces", "target", "max-pieces"})
       if (a.has(o)) throw InvalidArgument(std::string("--") + o + " does not apply to --method exact");
+    if (a.flag("deviation"))
+      throw InvalidArgument("--deviation measures a map's rows against --method exact's; it does not apply to "
+                            "--method exact itself");
+  }
   const std::vector<Speed> sp = c.speeds(kind);
   const std::size_t n = c.dimension();
   const std::string description = composite_description(a, c);
@@ -383,12 +388,17 @@ int run_sample_composite(const Args& a, const CompositeCurve& c, SpeedKind kind,
   const Json head =
       composite_sample_header_json(description, c, kind, m == "none" ? "none" : r.method(), &r, opt.digits, K);
   CompositeSampler smp(c, sp, r, opt.digits, opt.max_prec);
+  // --deviation: as for one curve, G over the whole composite curve.
+  std::unique_ptr<ArcFraction> frac;
+  if (a.flag("deviation")) frac = std::make_unique<ArcFraction>(c, sp, digits_to_bits(opt.digits) + 8, opt);
+  Ball worst(0);
+  const auto deviation_of = [&](const SamplePoint& p) { return row_deviation(*frac, p, opt.digits, worst); };
   const int rc = stream_samples(head, n, K, format, opt, [&](const SampleSink& sink) {
     for (long k = 0; k < K; ++k) {
       check_time_budget();
       sink(k, smp.at(Rational(k, K - 1)));
     }
-  });
+  }, frac ? std::function<Ball(const SamplePoint&)>(deviation_of) : std::function<Ball(const SamplePoint&)>(), &worst);
   if (rc) return rc;
   if (cm.kind == CompositeMethod::Kind::Target && !r.target_reached()) {
     warn() << "uniparam sample: the target u >= " << cm.target.str()

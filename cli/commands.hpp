@@ -81,6 +81,10 @@ int run_plot(int argc, char** argv);
 int run_batch(int argc, char** argv);
 CommandSpec locate_spec();
 int run_locate(int argc, char** argv);
+/// A sample's deviation from the exactly uniform parameterization,
+/// |G(t)/mu - s| (frac gives G/mu), as a ball; `worst` becomes the largest so
+/// far (cmd_sample.cpp).
+Ball row_deviation(ArcFraction& frac, const SamplePoint& p, long digits, Ball& worst);
 /// --method, --pieces, --target (cmd_sample.cpp); `with_none` adds
 /// --method none (the original curve).
 std::vector<OptionSpec> method_options(bool with_none);

@@ -364,9 +364,11 @@ std::pair<std::string, std::string> sample_composite(const Input& in, SpeedKind 
                                                      const std::optional<std::string>& target,
                                                      std::optional<long> max_pieces, long K, bool deviation) {
   const CompositeCurve& cc = *in.composite;
-  if (deviation) throw InvalidArgument("deviation is not available for composite curves");
   if (method == "exact" && (pieces || target || max_pieces))
     throw InvalidArgument("pieces, target and max_pieces do not apply to method exact");
+  if (method == "exact" && deviation)
+    throw InvalidArgument("deviation measures a map's rows against method exact's; it does not apply to "
+                          "method exact itself");
   const std::vector<Speed> sp = cc.speeds(kind);
   Json rows = Json::array();
   if (method == "exact") {
@@ -391,11 +393,19 @@ std::pair<std::string, std::string> sample_composite(const Input& in, SpeedKind 
   Json j = cli::composite_sample_header_json(in.description, cc, kind, method == "none" ? "none" : r.method(), &r,
                                              opt.digits, K);
   CompositeSampler smp(cc, sp, r, opt.digits, opt.max_prec);
+  std::unique_ptr<ArcFraction> frac;
+  if (deviation) frac = std::make_unique<ArcFraction>(cc, sp, digits_to_bits(opt.digits) + 8, opt);
+  Ball worst(0);
+  const long pd = cli::printed_digits(opt.digits);
   for (long k = 0; k < K; ++k) {
     check_time_budget();
-    rows.push(cli::sample_row_json(smp.at(Rational(k, K - 1)), opt.digits));
+    const SamplePoint p = smp.at(Rational(k, K - 1));
+    Json row = cli::sample_row_json(p, opt.digits);
+    if (deviation) row.set("deviation", json_ball(cli::row_deviation(*frac, p, opt.digits, worst), pd));
+    rows.push(row);
   }
   j.set("samples", rows);
+  if (deviation) j.set("max_deviation", json_ball(worst, pd));
   std::string message;
   if (cm.kind == CompositeMethod::Kind::Target && !r.target_reached())
     message = "the target u >= " + cm.target.str() + " was not reached on every segment; the best map was sampled";
@@ -719,14 +729,7 @@ PYBIND11_MODULE(_uniparam, m) {
           Json rows = Json::array();
           sample_each(cv, sp, r, K, opt.digits, opt.max_prec, [&](long, const SamplePoint& p) {
             Json row = cli::sample_row_json(p, opt.digits);
-            if (deviation) {
-              const long prec = 2 * digits_to_bits(opt.digits) + 128;
-              Ball d = frac->at(p.t), s(p.s, prec);
-              arb_sub(d.get(), d.get(), s.get(), prec);
-              arb_abs(d.get(), d.get());
-              arb_max(worst.get(), worst.get(), d.get(), prec);
-              row.set("deviation", json_ball(d, pd));
-            }
+            if (deviation) row.set("deviation", json_ball(cli::row_deviation(*frac, p, opt.digits, worst), pd));
             rows.push(row);
           });
           Json j = cli::sample_header_json(cv, kind, r, opt.digits, K);

@@ -128,6 +128,7 @@ def test_reparam_target_missed_warns(cli, composite):
     ({"method": "c1", "target": "0.99"}, ["--method", "c1", "--target", "0.99"]),
     ({"method": "none"}, ["--method", "none"]),
     ({"method": "exact"}, ["--method", "exact"]),
+    ({"method": "c0", "pieces": 4, "deviation": True}, ["--method", "c0", "--pieces", 4, "--deviation"]),
 ])
 def test_sample(cli, composite, how, extra):
     c, args, speed = composite
@@ -307,8 +308,8 @@ def test_invalid_uses():
     c = up.Curve.svg(PATH)
     with pytest.raises(up.InvalidArgument, match="at on a composite curve"):
         up.radical(c, speed="parametric", at="1/2")
-    with pytest.raises(up.InvalidArgument, match="deviation is not available for composite curves"):
-        up.sample(c, speed="parametric", deviation=True)
+    with pytest.raises(up.InvalidArgument, match="does not apply to method exact itself"):
+        up.sample(c, speed="parametric", method="exact", deviation=True)
     with pytest.raises(up.InvalidArgument, match="do not apply to method exact"):
         up.sample(c, speed="parametric", method="exact", pieces=3)
     with pytest.raises(up.InvalidArgument, match="pieces applies to method c0 only"):

@@ -164,6 +164,15 @@ TEST(CompositeCli, SamplesStartAndEndOnThePathAndMeetTheJoints) {
     EXPECT_EQ(rows[1].substr(0, 8), "0,0,0,0,") << method;
     EXPECT_EQ(rows[11].substr(0, 8), "1,1,5,2,") << method << " " << rows[11];
   }
+  // --deviation on the 3-4-5 triangle with r = id (s = t, speeds 3, 4, 5 on
+  // thirds): G(t)/mu - s is -1/12 at s = 1/3 and at s = 2/3, 0 at the ends.
+  const auto dev = run_uniparam({"sample", "--svg", kTriangle, "--speed", "parametric", "--method", "none",
+                                 "--points", "4", "--deviation", "--json"});
+  ASSERT_EQ(dev.exit_code, 0) << dev.err;
+  Ball worst;
+  ASSERT_TRUE(json_ball(dev.out, "max_deviation", worst));
+  EXPECT_TRUE(worst.contains(Rational(1, 12))) << dev.out.substr(dev.out.find("max_deviation"));
+  EXPECT_TRUE(worst.meets_digits(15));
   // Equal arc length steps: the path has length L = int + 3; with 11 points
   // the located parameters increase.
   const auto ex = run_uniparam({"sample", "--svg", path, "--speed", "arclength", "--method", "exact", "--points",
