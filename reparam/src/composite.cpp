@@ -635,10 +635,29 @@ std::shared_ptr<const Track> composite_track(const CompositeCurve& c, const std:
   return std::make_shared<CompositeTrack>(c, speeds, max_prec);
 }
 
+namespace {
+
+// A straight segment among curved ones has angular speed 0 on a whole
+// interval: int_0^t sigma is constant there, and a value it takes there
+// determines no parameter.
+void check_no_flat_segment(const CompositeCurve& c, const std::vector<Speed>& speeds) {
+  bool all = true;
+  for (const Speed& s : speeds) all = all && s.identically_zero();
+  if (all) return;
+  for (std::size_t j = 0; j < c.size(); ++j)
+    if (speeds[j].identically_zero())
+      throw DomainError(c.label(j) +
+                        " is straight: its angular speed is 0 on a whole interval, where the turning angle "
+                        "determines no parameter (use the parametric speed, arc length)");
+}
+
+}  // namespace
+
 LocateResult locate(const CompositeCurve& c, const std::vector<Speed>& speeds, const Rational& value,
                     LocateTarget target, const Options& opt) {
   validate(opt);
   if (speeds.size() != c.size()) throw InvalidArgument("locate: one speed per segment is needed");
+  check_no_flat_segment(c, speeds);
   return locate_on(CompositeTrack(c, speeds, opt.max_prec), value, target, opt);
 }
 
@@ -646,6 +665,7 @@ void exact_samples_each(const CompositeCurve& c, const std::vector<Speed>& speed
                         Ball& mu, const LocatedSink& sink) {
   validate(opt);
   if (speeds.size() != c.size()) throw InvalidArgument("exact_samples_each: one speed per segment is needed");
+  check_no_flat_segment(c, speeds);
   exact_samples_on(CompositeTrack(c, speeds, opt.max_prec), K, opt, mu, sink);
 }
 

@@ -223,6 +223,8 @@ TEST(CompositeCli, RefusalsAreClear) {
       {{"uniformity", "--subpath", "0", "(t, t^2)"}, 2, "--subpath needs --svg"},
       {{"bezier", "--svg", kSplit}, 2, "takes one Bezier curve"},
       {{"radical", "--svg", "M 0 0 Q 1 2 2 2 L 5 2"}, 3, "straight"},
+      {{"locate", "--svg", "M 0 0 L 1 0 Q 2 0 2 1 L 2 3 Q 2 4 3 4", "--fraction", "1/2"}, 3, "straight"},
+      {{"sample", "--svg", "M 0 0 Q 1 2 2 2 L 5 2", "--method", "exact"}, 3, "straight"},
       {{"uniformity", "--svg", "M 0 0 Q 1 2"}, 2, ""},
       {{"uniformity", "--nurbs", "{\"degree\": 2}"}, 2, ""},
   };

@@ -208,7 +208,9 @@ class CompositeSampler {
 ///       be that knot's cumulative integral only by exactness (value 0,
 ///       fraction 1).
 /// \throws as locate(); DomainError when every segment's speed is
-///         identically zero.
+///         identically zero, or some (straight segments, angular speed)
+///         but not all: the integral is constant on them, and a value it
+///         takes there determines no parameter.
 LocateResult locate(const CompositeCurve& c, const std::vector<Speed>& speeds, const Rational& value,
                     LocateTarget target, const Options& opt = {});
 
@@ -216,6 +218,7 @@ LocateResult locate(const CompositeCurve& c, const std::vector<Speed>& speeds, c
 /// the composite's int sigma, the chain running through the segments.
 /// \pre 2 <= K <= 1000000 (InvalidArgument); speeds are c's.
 /// \post as exact_samples_each(); t in the global parameter.
+/// \throws as locate() on a composite curve.
 void exact_samples_each(const CompositeCurve& c, const std::vector<Speed>& speeds, long K, const Options& opt,
                         Ball& mu, const LocatedSink& sink);
 
