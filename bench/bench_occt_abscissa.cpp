@@ -79,7 +79,7 @@ double abs_upper(const Ball& b) {
 }
 
 // Digits of an error e: -log10 e (capped at 30, the reference's accuracy).
-double digits_of(double e) { return e <= 1e-30 ? 30.0 : std::min(30.0, -std::log10(e)); }
+double digits_of(double e) { return std::isnan(e) ? NAN : e <= 1e-30 ? 30.0 : std::min(30.0, -std::log10(e)); }
 
 // One run of OCCT on the curve: the parameters (empty and *failed set when
 // OCCT reports failure or throws).
