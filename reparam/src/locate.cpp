@@ -85,9 +85,14 @@ class Narrower {
         probes = {undecided - quarter, undecided + quarter};
         have_undecided = false;
       } else if (newton && seed.valid && seed.sx > 0) {
-        // y = x - (G(x) - T) / sigma(x); probes y -+ e straddle t when the
-        // step's own error (about (sigma'/2 sigma) d^2, with d the step) and
-        // the value's radius are below e.
+        // y = x - (G(x) - T) / sigma(x) is within e of t when the step's own
+        // error (about (sigma'/2 sigma) d^2, with d the step) and the value's
+        // radius are below e. One probe, y + e or y - e: the one that, when
+        // the prediction holds, moves the end farther from y to within 2e
+        // of t. The next round's Newton step starts there and probes the
+        // other side, so every integral shrinks the bracket like a Newton
+        // step (a missed prediction still moves an end, and a round that
+        // does not shrink the bracket fourfold is followed by a bisection).
         arb_t y, d, e, tmp;
         arb_init(y);
         arb_init(d);
@@ -107,7 +112,8 @@ class Narrower {
           const Rational ed_q = dyadic_near(e, 30);
           if (quarter < ed_q) er = ed_q;
         }
-        probes = {ctr - er, ctr + er};
+        if (ctr - b.lo < b.hi - ctr) probes = {ctr + er};
+        else probes = {ctr - er};
         arb_clear(y);
         arb_clear(d);
         arb_clear(e);
