@@ -75,6 +75,8 @@ class Narrower {
     bool newton = seed.valid;
     bool have_undecided = false;
     Rational undecided;
+    bool last_newton = false;  // the previous round was a Newton round
+    Rational last_width;       // the width before the previous round
     for (long round = 0; round < 8 * (wbits + bits_) + 200; ++round) {
       check_time_budget();
       const Rational width = b.hi - b.lo;
@@ -146,10 +148,15 @@ class Narrower {
         seed.v = v;
         seed.sx = tr_.sigma_estimate(p);
       }
-      // Newton again after a round that shrank the bracket fourfold; one
-      // bisection otherwise (at least halving every two rounds).
+      // Newton again after a round that shrank the bracket fourfold, or
+      // two Newton rounds that did together (one probe moves one end; the
+      // other may still be where the search started); one bisection
+      // otherwise (at least halving every three rounds).
       const Rational shrunk = b.hi - b.lo;
-      newton = !newton_round || shrunk * Rational(4) <= width;
+      const bool shrank = shrunk * Rational(4) <= width || (newton_round && last_newton && shrunk * Rational(4) <= last_width);
+      last_newton = newton_round;
+      last_width = width;
+      newton = !newton_round || shrank;
     }
     return false;
   }
