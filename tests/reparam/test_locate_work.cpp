@@ -75,3 +75,22 @@ TEST(LocateWork, FewIntegralsPerPointOnSmoothArcs) {
     EXPECT_GE(per_point, 2.0) << c;
   }
 }
+
+// Speed::piece_signs is remembered per interval between zeros of sigma, so
+// it must know which interval (a, b) is in: (a, b) holding a zero is
+// refused, wherever the zero lies (here 1/3, not the middle point the
+// signs are taken at), and pieces on either side of it get their own signs.
+TEST(LocateWork, PieceSignsRefuseAPieceAcrossAZero) {
+  const Curve c = Curve::parse("((3*t - 1)^2, (3*t - 1)^3)");
+  const Speed s(c, SpeedKind::Parametric);
+  ASSERT_EQ(s.zeros().size(), 1u);
+  EXPECT_THROW(s.piece_signs(RealAlgebraic(Rational(0)), RealAlgebraic(Rational(1))), DomainError);
+  EXPECT_THROW(s.piece_signs(RealAlgebraic(Rational(1, 4)), RealAlgebraic(Rational(1, 2))), DomainError);
+  const Speed::PieceSigns left = s.piece_signs(RealAlgebraic(Rational(0)), RealAlgebraic(Rational(1, 3)));
+  const Speed::PieceSigns right = s.piece_signs(RealAlgebraic(Rational(1, 3)), RealAlgebraic(Rational(1)));
+  // sigma = 3 |3t - 1| sqrt(4 + 9 (3t - 1)^2): g = 3t - 1 changes sign at 1/3.
+  EXPECT_EQ(left.g, -right.g);
+  // The same interval again, asked differently, gives the same signs.
+  EXPECT_EQ(s.piece_signs(RealAlgebraic(Rational(1, 10)), RealAlgebraic(Rational(1, 5))).g, left.g);
+  EXPECT_EQ(s.piece_signs(RealAlgebraic(Rational(1, 2)), RealAlgebraic(Rational(9, 10))).g, right.g);
+}
