@@ -77,6 +77,8 @@ class Narrower {
     bool newton = seed.valid;
     bool have_undecided = false;
     Rational undecided;
+    bool last_newton = false;  // the previous round was a Newton round
+    Rational last_width;       // the width before the previous round
     for (long round = 0; round < 8 * (wbits + bits_) + 200; ++round) {
       check_time_budget();
       const Rational width = b.hi - b.lo;
@@ -87,9 +89,14 @@ class Narrower {
         probes = {undecided - quarter, undecided + quarter};
         have_undecided = false;
       } else if (newton && seed.valid && seed.sx > 0) {
-        // y = x - (G(x) - T) / sigma(x); probes y -+ e straddle t when the
-        // step's own error (about (sigma'/2 sigma) d^2, with d the step) and
-        // the value's radius are below e.
+        // y = x - (G(x) - T) / sigma(x) is within e of t when the step's own
+        // error (about (sigma'/2 sigma) d^2, with d the step) and the value's
+        // radius are below e. One probe, y + e or y - e: the one that, when
+        // the prediction holds, moves the end farther from y to within 2e
+        // of t. The next round's Newton step starts there and probes the
+        // other side, so every integral shrinks the bracket like a Newton
+        // step (a missed prediction still moves an end, and a round that
+        // does not shrink the bracket fourfold is followed by a bisection).
         arb_t y, d, e, tmp;
         arb_init(y);
         arb_init(d);
@@ -109,7 +116,8 @@ class Narrower {
           const Rational ed_q = dyadic_near(e, 30);
           if (quarter < ed_q) er = ed_q;
         }
-        probes = {ctr - er, ctr + er};
+        if (ctr - b.lo < b.hi - ctr) probes = {ctr + er};
+        else probes = {ctr - er};
         arb_clear(y);
         arb_clear(d);
         arb_clear(e);
@@ -142,10 +150,15 @@ class Narrower {
         seed.v = v;
         seed.sx = tr_.sigma_estimate(p);
       }
-      // Newton again after a round that shrank the bracket fourfold; one
-      // bisection otherwise (at least halving every two rounds).
+      // Newton again after a round that shrank the bracket fourfold, or
+      // two Newton rounds that did together (one probe moves one end; the
+      // other may still be where the search started); one bisection
+      // otherwise (at least halving every three rounds).
       const Rational shrunk = b.hi - b.lo;
-      newton = !newton_round || shrunk * Rational(4) <= width;
+      const bool shrank = shrunk * Rational(4) <= width || (newton_round && last_newton && shrunk * Rational(4) <= last_width);
+      last_newton = newton_round;
+      last_width = width;
+      newton = !newton_round || shrank;
     }
     return false;
   }

@@ -363,6 +363,24 @@ const std::vector<std::complex<double>>& Speed::singularity_hints(bool squared) 
 
 Speed::PieceSigns Speed::piece_signs(const RealAlgebraic& a, const RealAlgebraic& b) const {
   if (!(a < b)) throw DomainError("piece_signs needs a < b");
+  if (zero_) return PieceSigns{};
+  // The interval between consecutive zeros of sigma that holds (a, b).
+  std::size_t piece = 0;
+  while (piece < zeros_.size() && !(a < zeros_[piece].t)) ++piece;
+  if (piece < zeros_.size() && zeros_[piece].t < b)
+    throw DomainError("piece_signs: the speed vanishes inside the piece");
+  {
+    std::lock_guard<std::mutex> lock(lazy_->signs_mutex);
+    if (lazy_->signs.size() <= piece) lazy_->signs.resize(zeros_.size() + 1);
+    if (lazy_->signs[piece].first) return lazy_->signs[piece].second;
+  }
+  const PieceSigns p = piece_signs_at(a, b);
+  std::lock_guard<std::mutex> lock(lazy_->signs_mutex);
+  lazy_->signs[piece] = {true, p};
+  return p;
+}
+
+Speed::PieceSigns Speed::piece_signs_at(const RealAlgebraic& a, const RealAlgebraic& b) const {
   // A rational strictly between a and b: the simplest one in the middle half
   // of a rational interval between them (small numerator and denominator:
   // the exact signs below are cheap at it).

@@ -100,9 +100,12 @@ class Speed {
   /// Signs that fix sigma's analytic continuation on one piece (a, b) free of
   /// zeros of sigma, taken exactly at one rational point inside from g, D and
   /// (plane angular) the evaluation curve's x'y'' - x''y', which vanish on
-  /// (a, b) only at zeros of sigma.
-  /// \pre a < b (checked: DomainError); (a, b) holds no zero of sigma
-  ///      (DomainError where the point taken is one).
+  /// [0, 1] only at zeros of sigma: so they are the same on every (a, b)
+  /// inside one interval between consecutive zeros (or 0, 1), and are
+  /// computed once per such interval and remembered (thread-safe; copies
+  /// share them).
+  /// \pre 0 <= a < b <= 1; a < b checked (DomainError); (a, b) holds no
+  ///      zero of sigma (checked: DomainError).
   struct PieceSigns {
     int g = 1;          ///< sigma = g_sign * g * sqrt(sum K^2) / D on (a, b)
     int component = 1;  ///< plane angular: sigma = component * (x'y'' - x''y') / (x'^2 + y'^2),
@@ -189,12 +192,17 @@ class Speed {
   const std::vector<std::complex<double>>& singularity_hints(bool squared) const;
 
  private:
+  // piece_signs() at one rational point inside (a, b), not remembered.
+  PieceSigns piece_signs_at(const RealAlgebraic& a, const RealAlgebraic& b) const;
   SpeedKind kind_;
   struct Lazy {
     std::once_flag once;
     RatFunc squared;
     std::once_flag hints_once;
     std::vector<std::complex<double>> hints_sigma, hints_squared;
+    std::mutex signs_mutex;  // guards signs
+    // piece_signs() of the interval between zeros i - 1 and i, once known
+    std::vector<std::pair<bool, PieceSigns>> signs;
   };
   std::shared_ptr<Lazy> lazy_;  // squared(), shared by copies
   bool zero_ = false;
