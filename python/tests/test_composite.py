@@ -148,7 +148,7 @@ def test_sample_target_missed_warns(cli):
 
 @pytest.mark.parametrize("how,extra", [
     ({"length": "3"}, ["--length", "3"]),
-    ({"fraction": "1/2"}, ["--fraction", "1/2"]),
+    ({"fraction": "1/2", "speed": "arclength"}, ["--fraction", "1/2", "--speed", "arclength"]),
     ({"fraction": "1/3", "speed": "parametric"}, ["--fraction", "1/3", "--speed", "parametric"]),
 ])
 def test_locate(cli, composite, how, extra):
@@ -239,7 +239,8 @@ def test_glyph(cli):
     same_document(g.uniformity(speed="parametric").json, cli.json("uniformity", "--svg", d, "--speed", "parametric"))
     same_document(g.reparam(speed="parametric", pieces=40).json,
                   cli.json("reparam", "--svg", d, "--speed", "parametric", "--pieces", 40))
-    same_document(g.locate(fraction="1/2").json, cli.json("locate", "--svg", d, "--fraction", "1/2"))
+    same_document(g.locate(fraction="1/2", speed="parametric").json,
+                  cli.json("locate", "--svg", d, "--fraction", "1/2", "--speed", "parametric"))
 
 
 ERRORS = [
@@ -260,6 +261,7 @@ ERRORS = [
 ]
 
 
+
 @pytest.mark.parametrize("call,args,exc,status", ERRORS)
 def test_errors_mirror_cli(cli, call, args, exc, status):
     with pytest.raises(exc) as info:
@@ -271,6 +273,15 @@ def test_errors_mirror_cli(cli, call, args, exc, status):
     if exc is up.BudgetExceeded:  # the limit named as the Python parameter
         message = message.replace("max_degree", "--max-degree")
     assert err.strip() == "uniparam %s: %s" % (command, message)
+
+
+def test_locate_by_turning_refuses_a_straight_segment(cli):
+    # the turning angle is constant along a straight segment: it determines no parameter there
+    with pytest.raises(up.DomainError) as info:
+        up.locate(up.Curve.svg(PATH), fraction="1/2")
+    code, out, err = cli.run("locate", "--svg", PATH, "--fraction", "1/2", check=False)
+    assert code == 3 and out == ""
+    assert err.strip() == "uniparam locate: %s" % info.value
 
 
 def test_parse_error_column(cli):
