@@ -1,6 +1,7 @@
 // cli/cmd_batch.cpp -- `uniparam batch COMMAND [options] < in.jsonl > out.jsonl`:
 // one curve per input line, one JSON result per output line, in order, the
 // lines spread over worker threads of one process.
+#include <flint/flint.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -279,7 +280,11 @@ int run_batch(int argc, char** argv) {
     };
     std::vector<std::thread> pool;
     const std::size_t n = std::min<std::size_t>(static_cast<std::size_t>(jobs), lines.size());
-    for (std::size_t k = 1; k < n; ++k) pool.emplace_back(work);
+    for (std::size_t k = 1; k < n; ++k)
+      pool.emplace_back([&work] {
+        work();
+        flint_cleanup();  // this thread's FLINT/Arb caches
+      });
     work();
     for (auto& t : pool) t.join();
     for (const LineResult& r : results) {
