@@ -46,21 +46,7 @@ CommandSpec locate_spec() {
 
 Json locate_json(const Curve& c, SpeedKind kind, long digits, const std::string& option, const Rational& value,
                  const LocateResult& r) {
-  const long pd = printed_digits(digits);
-  const char* measure = kind == SpeedKind::Parametric ? "length" : "angle";
-  Json j = Json::object();
-  j.set("curve", Json::string(c.str()));
-  j.set("speed", Json::string(to_string(kind)));
-  j.set("digits", Json::number(digits));
-  j.set("given", Json::string(option));
-  j.set("value", Json::string(value.str()));
-  j.set("mu", json_ball(r.mu, pd));
-  j.set(measure, json_ball(r.target, pd));
-  j.set("t", json_ball(r.at.t, pd));
-  Json pt = Json::array();
-  for (const Ball& x : r.at.point) pt.push(json_ball(x, pd));
-  j.set("point", pt);
-  return j;
+  return composite_locate_json(c.str(), kind, digits, option, value, r);
 }
 
 int run_locate(int argc, char** argv) {

@@ -314,6 +314,7 @@ int run_map_composite(const Args& a, const CompositeCurve& c, SpeedKind kind, co
 
 Json composite_locate_json(const std::string& description, SpeedKind kind, long digits, const std::string& option,
                            const Rational& value, const LocateResult& r) {
+  // Also the one-curve document (locate_json), with the curve's formula as its description.
   const long pd = printed_digits(digits);
   const char* measure = kind == SpeedKind::Parametric ? "length" : "angle";
   Json j = Json::object();
