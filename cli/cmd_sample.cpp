@@ -145,6 +145,15 @@ Json sample_exact_header_json(const Curve& c, SpeedKind kind, long digits, long 
   return head;
 }
 
+SamplePoint exact_sample_row(long k, long K, const LocatedPoint& p, const Ball& mu) {
+  SamplePoint row;
+  row.s = Rational(k, K - 1);
+  row.t = p.t;
+  row.point = p.point;
+  row.speed = mu;
+  return row;
+}
+
 Ball row_deviation(ArcFraction& frac, const SamplePoint& p, long digits, Ball& worst) {
   const long prec = 2 * digits_to_bits(digits) + 128;
   Ball d = frac.at(p.t), s(p.s, prec);
@@ -296,12 +305,7 @@ int run_sample_exact(const Args& a, const Curve& c, SpeedKind kind, const Option
   Ball mu;
   return stream_samples(head, c.dimension(), K, format, opt, [&](const SampleSink& sink) {
     exact_samples_each(c, sp, K, opt, mu, [&](long k, const LocatedPoint& p) {
-      SamplePoint row;
-      row.s = Rational(k, K - 1);
-      row.t = p.t;
-      row.point = p.point;
-      row.speed = mu;
-      sink(k, row);
+      sink(k, exact_sample_row(k, K, p, mu));
     });
   }, {}, nullptr, &mu);
 }
@@ -372,12 +376,7 @@ int run_sample_composite(const Args& a, const CompositeCurve& c, SpeedKind kind,
     Ball mu;
     return stream_samples(head, n, K, format, opt, [&](const SampleSink& sink) {
       exact_samples_each(c, sp, K, opt, mu, [&](long k, const LocatedPoint& p) {
-        SamplePoint row;
-        row.s = Rational(k, K - 1);
-        row.t = p.t;
-        row.point = p.point;
-        row.speed = mu;
-        sink(k, row);
+        sink(k, exact_sample_row(k, K, p, mu));
       });
     }, {}, nullptr, &mu);
   }

@@ -27,14 +27,7 @@ Json uniformity_json(const Curve& c, SpeedKind kind, long digits, const Uniformi
   j.set("speed", Json::string(to_string(kind)));
   j.set("digits", Json::number(digits));
   j.set("speed_squared", json_ratfunc(r.speed_squared));
-  Json zs = Json::array();
-  for (const auto& z : r.zeros) {
-    Json e = Json::object();
-    e.set("t", json_algebraic(z.t, digits));
-    e.set("multiplicity", Json::number(z.multiplicity));
-    zs.push(e);
-  }
-  j.set("zeros", zs);
+  j.set("zeros", json_zeros(r.zeros, digits));
   j.set("identically_zero", Json::boolean(r.identically_zero));
   j.set("mu", json_ball(r.mu, pd));
   j.set("mean_square", json_ball(r.mean_square, pd));

@@ -81,6 +81,9 @@ int run_plot(int argc, char** argv);
 int run_batch(int argc, char** argv);
 CommandSpec locate_spec();
 int run_locate(int argc, char** argv);
+/// Row k of K of the exactly uniform samples as a SamplePoint: s = k/(K-1),
+/// the located t and point, and mu as the speed (cmd_sample.cpp).
+SamplePoint exact_sample_row(long k, long K, const LocatedPoint& p, const Ball& mu);
 /// A sample's deviation from the exactly uniform parameterization,
 /// |G(t)/mu - s| (frac gives G/mu), as a ball; `worst` becomes the largest so
 /// far (cmd_sample.cpp).

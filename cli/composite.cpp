@@ -153,14 +153,7 @@ Json composite_uniformity_json(const std::string& description, const CompositeCu
     p.set("label", Json::string(c.label(i)));
     p.set("curve", Json::string(c.segment(i).str()));
     p.set("t_interval", Json::array().push(json_rational(c.knots()[i], pd)).push(json_rational(c.knots()[i + 1], pd)));
-    Json zs = Json::array();
-    for (const auto& z : s.zeros) {
-      Json e = Json::object();
-      e.set("t", json_algebraic(z.t, digits));
-      e.set("multiplicity", Json::number(z.multiplicity));
-      zs.push(e);
-    }
-    p.set("zeros", zs);
+    p.set("zeros", json_zeros(s.zeros, digits));
     p.set("identically_zero", Json::boolean(s.identically_zero));
     p.set("mu", json_ball(s.mu, pd));
     p.set("mean_square", json_ball(s.mean_square, pd));

@@ -48,4 +48,15 @@ Json json_surd(const QuadraticSurd& q, const Ball& b, long pd) {
   return j;
 }
 
+Json json_zeros(const std::vector<SpeedZero>& zeros, long digits) {
+  Json zs = Json::array();
+  for (const auto& z : zeros) {
+    Json e = Json::object();
+    e.set("t", json_algebraic(z.t, digits));
+    e.set("multiplicity", Json::number(z.multiplicity));
+    zs.push(e);
+  }
+  return zs;
+}
+
 }  // namespace uniparam::cli

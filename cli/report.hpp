@@ -29,5 +29,7 @@ Json json_surd(const QuadraticSurd& q, const Ball& b, long pd);
 
 /// {"text": ..., "latex": ..., "maple": ...} of a rational function.
 Json json_ratfunc(const RatFunc& r);
+/// [{"t": algebraic, "multiplicity": k}, ...] of the zeros of a speed.
+Json json_zeros(const std::vector<SpeedZero>& zeros, long digits);
 
 }  // namespace uniparam::cli

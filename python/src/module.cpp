@@ -375,12 +375,7 @@ std::pair<std::string, std::string> sample_composite(const Input& in, SpeedKind 
     Json j = cli::composite_sample_header_json(in.description, cc, kind, "exact", nullptr, opt.digits, K);
     Ball mu;
     exact_samples_each(cc, sp, K, opt, mu, [&](long k, const LocatedPoint& p) {
-      SamplePoint row;
-      row.s = Rational(k, K - 1);
-      row.t = p.t;
-      row.point = p.point;
-      row.speed = mu;
-      rows.push(cli::sample_row_json(row, opt.digits));
+      rows.push(cli::sample_row_json(cli::exact_sample_row(k, K, p, mu), opt.digits));
     });
     j.set("mu", json_ball(mu, cli::printed_digits(opt.digits)));
     j.set("samples", rows);
@@ -707,12 +702,7 @@ PYBIND11_MODULE(_uniparam, m) {
             Ball mu;
             Json rows = Json::array();
             exact_samples_each(cv, sp, K, opt, mu, [&](long k, const LocatedPoint& p) {
-              SamplePoint row;
-              row.s = Rational(k, K - 1);
-              row.t = p.t;
-              row.point = p.point;
-              row.speed = mu;
-              rows.push(cli::sample_row_json(row, opt.digits));
+              rows.push(cli::sample_row_json(cli::exact_sample_row(k, K, p, mu), opt.digits));
             });
             Json j = cli::sample_exact_header_json(cv, kind, opt.digits, K);
             j.set("mu", json_ball(mu, pd));
