@@ -52,14 +52,6 @@ class Parser {
     throw ParseError(col, expected, multiline_ ? "line " + std::to_string(line) + ": " + detail : detail);
   }
 
-  static std::string shown(char c) {
-    const auto u = static_cast<unsigned char>(c);
-    if (u < 0x20 || u >= 0x7f) {
-      static const char* hex = "0123456789abcdef";
-      return std::string("byte 0x") + hex[u >> 4] + hex[u & 15];
-    }
-    return std::string("'") + c + "'";
-  }
 
   // Newlines occur only in whitespace (a raw one in a string is an error),
   // so the line is tracked here.
@@ -101,7 +93,7 @@ class Parser {
     } else if (literal("null")) {
       v.kind = JsonValue::Kind::Null;
     } else {
-      fail(i_, "a JSON value", "unexpected " + shown(c));
+      fail(i_, "a JSON value", "unexpected " + shown_char(c));
     }
     return v;
   }
@@ -119,7 +111,7 @@ class Parser {
       if (i_ >= s_.size()) fail(i_, "',' or ']'", "unterminated array");
       if (s_[i_] == ',') { ++i_; continue; }
       if (s_[i_] == ']') { ++i_; return; }
-      fail(i_, "',' or ']'", "unexpected " + shown(s_[i_]) + " in an array");
+      fail(i_, "',' or ']'", "unexpected " + shown_char(s_[i_]) + " in an array");
     }
   }
 
@@ -131,14 +123,14 @@ class Parser {
     for (;;) {
       skip_ws();
       if (i_ >= s_.size()) fail(i_, "a key", "unterminated object");
-      if (s_[i_] != '"') fail(i_, "a key in double quotes", "unexpected " + shown(s_[i_]) + " in an object");
+      if (s_[i_] != '"') fail(i_, "a key in double quotes", "unexpected " + shown_char(s_[i_]) + " in an object");
       const std::size_t key_at = i_;
       std::string key = string_literal();
       for (const auto& m : v.members)
         if (m.first == key) fail(key_at, "", "duplicate key " + json_quote(key));
       skip_ws();
       if (i_ >= s_.size() || s_[i_] != ':')
-        fail(i_, "':'", i_ >= s_.size() ? "unterminated object" : "unexpected " + shown(s_[i_]) + " after a key");
+        fail(i_, "':'", i_ >= s_.size() ? "unterminated object" : "unexpected " + shown_char(s_[i_]) + " after a key");
       ++i_;
       skip_ws();
       if (i_ >= s_.size()) fail(i_, "a JSON value", "unterminated object");
@@ -148,7 +140,7 @@ class Parser {
       if (i_ >= s_.size()) fail(i_, "',' or '}'", "unterminated object");
       if (s_[i_] == ',') { ++i_; continue; }
       if (s_[i_] == '}') { ++i_; return; }
-      fail(i_, "',' or '}'", "unexpected " + shown(s_[i_]) + " in an object");
+      fail(i_, "',' or '}'", "unexpected " + shown_char(s_[i_]) + " in an object");
     }
   }
 
@@ -193,23 +185,6 @@ class Parser {
     return v;
   }
 
-  static void put_utf8(std::string& out, std::uint32_t cp) {
-    if (cp < 0x80) {
-      out += static_cast<char>(cp);
-    } else if (cp < 0x800) {
-      out += static_cast<char>(0xC0 | (cp >> 6));
-      out += static_cast<char>(0x80 | (cp & 0x3F));
-    } else if (cp < 0x10000) {
-      out += static_cast<char>(0xE0 | (cp >> 12));
-      out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
-      out += static_cast<char>(0x80 | (cp & 0x3F));
-    } else {
-      out += static_cast<char>(0xF0 | (cp >> 18));
-      out += static_cast<char>(0x80 | ((cp >> 12) & 0x3F));
-      out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
-      out += static_cast<char>(0x80 | (cp & 0x3F));
-    }
-  }
 
   // A raw multi-byte UTF-8 sequence starting at i_ (lead byte >= 0x80):
   // checked (no overlong forms, no surrogates, at most U+10FFFF) and copied.
@@ -221,7 +196,7 @@ class Parser {
     if (b0 >= 0xC2 && b0 <= 0xDF) { len = 2; cp = b0 & 0x1F; }
     else if (b0 >= 0xE0 && b0 <= 0xEF) { len = 3; cp = b0 & 0x0F; }
     else if (b0 >= 0xF0 && b0 <= 0xF4) { len = 4; cp = b0 & 0x07; }
-    else fail(at, "UTF-8 text", "invalid UTF-8 " + shown(s_[at]) + " in a string");
+    else fail(at, "UTF-8 text", "invalid UTF-8 " + shown_char(s_[at]) + " in a string");
     for (int k = 1; k < len; ++k) {
       if (at + k >= s_.size()) fail(at, "UTF-8 text", "truncated UTF-8 sequence in a string");
       const auto b = static_cast<unsigned char>(s_[at + k]);
@@ -243,7 +218,7 @@ class Parser {
       const char c = s_[i_];
       const auto u = static_cast<unsigned char>(c);
       if (c == '"') { ++i_; return out; }
-      if (u < 0x20) fail(i_, "'\\n' style escapes", "raw control character " + shown(c) + " in a string");
+      if (u < 0x20) fail(i_, "'\\n' style escapes", "raw control character " + shown_char(c) + " in a string");
       if (u >= 0x80) { utf8_sequence(out); continue; }
       if (c != '\\') { out += c; ++i_; continue; }
       const std::size_t esc = i_;
@@ -270,7 +245,7 @@ class Parser {
             if (lo < 0xDC00 || lo > 0xDFFF) fail(esc, "a low surrogate \\uDC00-\\uDFFF", "invalid surrogate pair");
             cp = 0x10000 + ((cp - 0xD800) << 10) + (lo - 0xDC00);
           }
-          put_utf8(out, cp);
+          append_utf8(out, cp);
           break;
         }
         default:
@@ -394,5 +369,23 @@ std::string JsonValue::dump() const {
 JsonValue parse_json(const std::string& text, const JsonLimits& limits) { return Parser(text, limits).parse_document(); }
 
 std::string json_quote(const std::string& s) { return Json::string(s).dump(-1); }
+
+void append_utf8(std::string& out, unsigned long cp) {
+  if (cp < 0x80) {
+    out += static_cast<char>(cp);
+  } else if (cp < 0x800) {
+    out += static_cast<char>(0xC0 | (cp >> 6));
+    out += static_cast<char>(0x80 | (cp & 0x3F));
+  } else if (cp < 0x10000) {
+    out += static_cast<char>(0xE0 | (cp >> 12));
+    out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
+    out += static_cast<char>(0x80 | (cp & 0x3F));
+  } else {
+    out += static_cast<char>(0xF0 | (cp >> 18));
+    out += static_cast<char>(0x80 | ((cp >> 12) & 0x3F));
+    out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
+    out += static_cast<char>(0x80 | (cp & 0x3F));
+  }
+}
 
 }  // namespace uniparam

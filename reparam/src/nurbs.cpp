@@ -287,6 +287,44 @@ bool overlaps(const std::vector<Ball>& a, const std::vector<Ball>& b) {
   throw std::logic_error("the NURBS of p o r differs from p(r(s)) " + what);
 }
 
+// p(t), exactly.
+std::vector<Rational> exact_point(const Curve& c, const Rational& t) {
+  std::vector<Rational> v;
+  for (const auto& x : c.components()) v.push_back(x(t));
+  return v;
+}
+
+// The self-check of an exact NURBS: n(s) equals expected(segment, s) =
+// p(r(s)) exactly at s = sa + (sb - sa) q / 4, q = 0..4, of every segment.
+template <class Expected>
+void check_exact_nurbs(const Nurbs& n, const std::vector<Segment<Rational>>& segs, Expected expected) {
+  for (const auto& s : segs) {
+    check_time_budget();
+    for (long q = 0; q <= 4; ++q) {
+      const Rational sv = s.sa + (s.sb - s.sa) * Rational(q, 4);
+      if (nurbs_eval(n, sv) != expected(s, sv)) internal("at s = " + sv.str());
+    }
+  }
+}
+
+// The self-check of a ball NURBS: n(s) overlaps expected(s), an enclosure of
+// p(r(s)), at the same five points of every segment (the ends taken as they
+// are, every point clamped to [0, 1]).
+template <class Expected>
+void check_ball_nurbs(const BField& f, const Nurbs& n, const std::vector<Segment<Ball>>& segs, long prec,
+                      Expected expected) {
+  for (const auto& s : segs) {
+    check_time_budget();
+    for (long q = 0; q <= 4; ++q) {
+      Ball sv = f.add(s.sa, f.mul(f.sub(s.sb, s.sa), f.q(Rational(q, 4))));
+      if (q == 0) sv = s.sa;
+      if (q == 4) sv = s.sb;
+      clamp_unit(sv.get(), prec);
+      if (!overlaps(nurbs_eval(n, sv, prec), expected(sv))) internal("at s = " + sv.str(10));
+    }
+  }
+}
+
 }  // namespace
 
 // Index in the knot vector of the start of segment i (i = 0..segments; the
@@ -319,17 +357,9 @@ Nurbs moebius_nurbs(const Curve& c, const MoebiusResult& r, long prec) {
     n.kind = Nurbs::Kind::Exact;
     n.segments = segs.size();
     fill_balls_from_exact(n, prec);
-    // the check: exactly p(r(s)) at u = 0, 1/4, ..., 1 of every segment
-    for (const auto& s : segs) {
-      check_time_budget();
-      for (long q = 0; q <= 4; ++q) {
-        const Rational sv = s.sa + (s.sb - s.sa) * Rational(q, 4);
-        const Rational t = moebius_exact(r, s.piece, sv);
-        const std::vector<Rational> v = nurbs_eval(n, sv);
-        for (std::size_t k = 0; k < c.dimension(); ++k)
-          if (v[k] != c.components()[k](t)) internal("at s = " + sv.str());
-      }
-    }
+    check_exact_nurbs(n, segs, [&](const Segment<Rational>& seg, const Rational& sv) {
+      return exact_point(c, moebius_exact(r, seg.piece, sv));
+    });
     return n;
   }
   const BField f{prec};
@@ -343,17 +373,7 @@ Nurbs moebius_nurbs(const Curve& c, const MoebiusResult& r, long prec) {
   assemble(f, segs, d, n.knots, n.points, n.weights);
   n.kind = Nurbs::Kind::Balls;
   n.segments = segs.size();
-  for (const auto& s : segs) {
-    check_time_budget();
-    for (long q = 0; q <= 4; ++q) {
-      Ball sv = f.add(s.sa, f.mul(f.sub(s.sb, s.sa), f.q(Rational(q, 4))));
-      if (q == 0) sv = s.sa;
-      if (q == 4) sv = s.sb;
-      clamp_unit(sv.get(), prec);
-      if (!overlaps(nurbs_eval(n, sv, prec), moebius_eval_point(c, r, sv, prec)))
-        internal("at s = " + sv.str(10));
-    }
-  }
+  check_ball_nurbs(f, n, segs, prec, [&](const Ball& sv) { return moebius_eval_point(c, r, sv, prec); });
   return n;
 }
 
@@ -410,17 +430,10 @@ Nurbs composite_nurbs(const CompositeCurve& c, const CompositeMap& m, long prec)
     n.kind = Nurbs::Kind::Exact;
     n.segments = segs.size();
     fill_balls_from_exact(n, prec);
-    for (const auto& s : segs) {
-      check_time_budget();
-      const auto [j, i] = origin[s.piece];
-      for (long q = 0; q <= 4; ++q) {
-        const Rational sv = s.sa + (s.sb - s.sa) * Rational(q, 4);
-        const Rational t = moebius_exact(*parts[j], i, (sv - m.S()[j]) / (m.S()[j + 1] - m.S()[j]));
-        const std::vector<Rational> v = nurbs_eval(n, sv);
-        for (std::size_t k = 0; k < c.dimension(); ++k)
-          if (v[k] != c.segment(j).components()[k](t)) internal("at s = " + sv.str());
-      }
-    }
+    check_exact_nurbs(n, segs, [&](const Segment<Rational>& seg, const Rational& sv) {
+      const auto [j, i] = origin[seg.piece];
+      return exact_point(c.segment(j), moebius_exact(*parts[j], i, (sv - m.S()[j]) / (m.S()[j + 1] - m.S()[j])));
+    });
     return n;
   }
   std::vector<Segment<Ball>> segs;
@@ -438,16 +451,7 @@ Nurbs composite_nurbs(const CompositeCurve& c, const CompositeMap& m, long prec)
   assemble(bf, segs, D, n.knots, n.points, n.weights);
   n.kind = Nurbs::Kind::Balls;
   n.segments = segs.size();
-  for (const auto& s : segs) {
-    check_time_budget();
-    for (long q = 0; q <= 4; ++q) {
-      Ball sv = bf.add(s.sa, bf.mul(bf.sub(s.sb, s.sa), bf.q(Rational(q, 4))));
-      if (q == 0) sv = s.sa;
-      if (q == 4) sv = s.sb;
-      clamp_unit(sv.get(), prec);
-      if (!overlaps(nurbs_eval(n, sv, prec), c.eval(m.eval_r(c, sv, prec), prec))) internal("at s = " + sv.str(10));
-    }
-  }
+  check_ball_nurbs(bf, n, segs, prec, [&](const Ball& sv) { return c.eval(m.eval_r(c, sv, prec), prec); });
   return n;
 }
 

@@ -40,7 +40,7 @@ class SvgReader {
     while (i_ < d_.size()) {
       const char cmd = d_[i_];
       const std::size_t cmd_at = i_;
-      if (!is_command(cmd)) fail(i_, "an SVG path command letter", "unexpected " + shown(cmd));
+      if (!is_command(cmd)) fail(i_, "an SVG path command letter", "unexpected " + shown_char(cmd));
       ++i_;
       skip_wsp();
       command(cmd, cmd_at);
@@ -76,14 +76,6 @@ class SvgReader {
   }
   static bool is_wsp(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f'; }
   static bool digit(char c) { return c >= '0' && c <= '9'; }
-  static std::string shown(char c) {
-    const auto u = static_cast<unsigned char>(c);
-    if (u < 0x20 || u >= 0x7f) {
-      static const char* hex = "0123456789abcdef";
-      return std::string("byte 0x") + hex[u >> 4] + hex[u & 15];
-    }
-    return std::string("'") + c + "'";
-  }
 
   [[noreturn]] void fail(std::size_t at, const std::string& expected, const std::string& detail) const {
     throw ParseError(at + 1, expected, "SVG path: " + detail);
@@ -119,7 +111,7 @@ class SvgReader {
     }
     if (!digits) {
       if (start >= d_.size()) fail(start, what, "the path data ends where a number was expected");
-      fail(start, what, "unexpected " + shown(d_[start]) + " where a number was expected");
+      fail(start, what, "unexpected " + shown_char(d_[start]) + " where a number was expected");
     }
     std::string text = d_.substr(start, i_ - start);
     if (i_ < d_.size() && (d_[i_] == 'e' || d_[i_] == 'E')) {
@@ -141,7 +133,7 @@ class SvgReader {
     if (i_ >= d_.size() || (d_[i_] != '0' && d_[i_] != '1'))
       fail(i_, "an arc flag '0' or '1'",
            i_ >= d_.size() ? "the path data ends where an arc flag was expected"
-                           : "unexpected " + shown(d_[i_]) + " where an arc flag was expected");
+                           : "unexpected " + shown_char(d_[i_]) + " where an arc flag was expected");
     return d_[i_++] == '1';
   }
 

@@ -12,6 +12,7 @@
 #include <set>
 #include <sstream>
 
+#include "support/de_boor.hpp"
 #include "support/run.hpp"
 #include "uniparam/uniparam.hpp"
 
@@ -68,27 +69,7 @@ ExactNurbs read_exact(const std::string& j) {
 }
 
 std::vector<Rational> de_boor(const ExactNurbs& n, const Rational& s) {
-  const long p = n.degree;
-  const long m = static_cast<long>(n.points.size());
-  long k = p;
-  while (k + 1 < m && n.knots[k + 1] <= s) ++k;
-  std::vector<std::vector<Rational>> d;
-  for (long j = 0; j <= p; ++j) {
-    const long i = j + k - p;
-    std::vector<Rational> h;
-    for (const auto& x : n.points[i]) h.push_back(x * n.weights[i]);
-    h.push_back(n.weights[i]);
-    d.push_back(h);
-  }
-  for (long r = 1; r <= p; ++r)
-    for (long j = p; j >= r; --j) {
-      const long i = j + k - p;
-      const Rational a = (s - n.knots[i]) / (n.knots[i + p - r + 1] - n.knots[i]);
-      for (std::size_t c = 0; c < d[j].size(); ++c) d[j][c] = (Rational(1) - a) * d[j - 1][c] + a * d[j][c];
-    }
-  std::vector<Rational> out;
-  for (std::size_t c = 0; c + 1 < d[p].size(); ++c) out.push_back(d[p][c] / d[p].back());
-  return out;
+  return test_support::de_boor(n.degree, n.knots, n.points, n.weights, s);
 }
 
 // The exact map of `--rational --json` and the curve; checks the NURBS of

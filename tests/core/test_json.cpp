@@ -8,6 +8,7 @@
 #include <random>
 #include <string>
 
+#include "support/errors.hpp"
 #include "uniparam/core/error.hpp"
 #include "uniparam/core/json.hpp"
 
@@ -25,15 +26,6 @@ ParseError parse_error(const std::string& text, const JsonLimits& lim = {}) {
   return ParseError(0, "", "none");
 }
 
-std::string message_of_invalid(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InvalidArgument& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no InvalidArgument";
-  return "";
-}
 
 TEST(JsonReader, ParsesEveryKind) {
   const JsonValue v = parse_json(R"( {"a": null, "b": true, "c": false, "d": -0.5e3, "e": "x\ty", "f": [1, [2], {}], "g": {"h": []}} )");
@@ -195,22 +187,22 @@ TEST(JsonReader, LengthLimit) {
 
 TEST(JsonReader, TypedAccessorsNameTheValue) {
   const JsonValue v = parse_json(R"({"degree": "two", "knots": 3, "w": [1e999999], "x": "1/0", "n": 2.5})");
-  std::string m = message_of_invalid([&] { v.find("degree")->as_long("\"degree\"", 1, 10); });
+  std::string m = test_support::message_of<InvalidArgument>([&] { v.find("degree")->as_long("\"degree\"", 1, 10); });
   EXPECT_NE(m.find("\"degree\" must be an integer, got a string"), std::string::npos) << m;
-  m = message_of_invalid([&] { v.find("knots")->as_array("\"knots\""); });
+  m = test_support::message_of<InvalidArgument>([&] { v.find("knots")->as_array("\"knots\""); });
   EXPECT_NE(m.find("\"knots\" must be an array, got a number"), std::string::npos) << m;
-  m = message_of_invalid([&] { v.find("w")->items[0].as_rational("weight 0"); });
+  m = test_support::message_of<InvalidArgument>([&] { v.find("w")->items[0].as_rational("weight 0"); });
   EXPECT_NE(m.find("weight 0"), std::string::npos) << m;
   EXPECT_NE(m.find("exponent"), std::string::npos) << m;
-  m = message_of_invalid([&] { v.find("x")->as_rational("x"); });
+  m = test_support::message_of<InvalidArgument>([&] { v.find("x")->as_rational("x"); });
   EXPECT_NE(m.find("x: '1/0'"), std::string::npos) << m;
-  m = message_of_invalid([&] { v.find("n")->as_long("n", 1, 10); });
+  m = test_support::message_of<InvalidArgument>([&] { v.find("n")->as_long("n", 1, 10); });
   EXPECT_NE(m.find("n must be an integer from 1 to 10"), std::string::npos) << m;
-  m = message_of_invalid([&] { v.find("knots")->find("a"); });
+  m = test_support::message_of<InvalidArgument>([&] { v.find("knots")->find("a"); });
   EXPECT_NE(m.find("must be an object"), std::string::npos) << m;
-  m = message_of_invalid([&] { v.as_string("the line"); });
+  m = test_support::message_of<InvalidArgument>([&] { v.as_string("the line"); });
   EXPECT_NE(m.find("the line must be a string, got an object"), std::string::npos) << m;
-  m = message_of_invalid([&] { v.find("degree")->as_bool("flag"); });
+  m = test_support::message_of<InvalidArgument>([&] { v.find("degree")->as_bool("flag"); });
   EXPECT_NE(m.find("flag must be true or false"), std::string::npos) << m;
 }
 

@@ -13,6 +13,7 @@
 #include "support/iterations.hpp"
 #include "uniparam/core/decimal.hpp"
 #include "uniparam/core/error.hpp"
+#include "uniparam/core/json.hpp"
 #include "uniparam/core/parser.hpp"
 #include "uniparam/core/printer.hpp"
 
@@ -83,24 +84,6 @@ std::string roundtrip_string(const std::string& s) {
   return back;
 }
 
-// Appends code point cp as UTF-8.
-void put_utf8(std::string& out, unsigned long cp) {
-  if (cp < 0x80) {
-    out += static_cast<char>(cp);
-  } else if (cp < 0x800) {
-    out += static_cast<char>(0xC0 | (cp >> 6));
-    out += static_cast<char>(0x80 | (cp & 0x3F));
-  } else if (cp < 0x10000) {
-    out += static_cast<char>(0xE0 | (cp >> 12));
-    out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
-    out += static_cast<char>(0x80 | (cp & 0x3F));
-  } else {
-    out += static_cast<char>(0xF0 | (cp >> 18));
-    out += static_cast<char>(0x80 | ((cp >> 12) & 0x3F));
-    out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
-    out += static_cast<char>(0x80 | (cp & 0x3F));
-  }
-}
 
 // The value of "key": "<string>" in a one-line dump.
 std::string field(const std::string& dumped, const std::string& key) {
@@ -252,7 +235,7 @@ TEST(Json, EscapingRoundTripsProperty) {
         case 2: cp = 0x80 + rng() % 0xD780; break;  // BMP below the surrogates
         default: cp = 0x10000 + rng() % 0x100000; break;
       }
-      put_utf8(s, cp);
+      append_utf8(s, cp);
     }
     SCOPED_TRACE("iteration " + std::to_string(it));
     EXPECT_EQ(roundtrip_string(s), s);

@@ -7,6 +7,7 @@
 
 #include <random>
 
+#include "support/de_boor.hpp"
 #include "support/curves.hpp"
 #include "support/iterations.hpp"
 #include "uniparam/uniparam.hpp"
@@ -76,30 +77,9 @@ Rational r_exact(const MoebiusResult& r, const Rational& s) {
   return r.T_exact[i] + (r.T_exact[i + 1] - r.T_exact[i]) * num / (num + a * (Rational(1) - u));
 }
 
-// De Boor's algorithm on the homogeneous control points (w P, w), exactly.
+// De Boor's algorithm, exactly (tests/support/de_boor.hpp).
 std::vector<Rational> de_boor(const Nurbs& n, const Rational& s) {
-  const long p = n.degree;
-  const auto& U = n.knots_exact;
-  const long m = static_cast<long>(n.points_exact.size());
-  long k = p;  // span: U[k] <= s < U[k+1], the last nonempty span for s = 1
-  while (k + 1 < m && U[k + 1] <= s) ++k;
-  std::vector<std::vector<Rational>> d;
-  for (long j = 0; j <= p; ++j) {
-    const long i = j + k - p;
-    std::vector<Rational> h;
-    for (const auto& x : n.points_exact[i]) h.push_back(x * n.weights_exact[i]);
-    h.push_back(n.weights_exact[i]);
-    d.push_back(h);
-  }
-  for (long r = 1; r <= p; ++r)
-    for (long j = p; j >= r; --j) {
-      const long i = j + k - p;
-      const Rational a = (s - U[i]) / (U[i + p - r + 1] - U[i]);
-      for (std::size_t c = 0; c < d[j].size(); ++c) d[j][c] = (Rational(1) - a) * d[j - 1][c] + a * d[j][c];
-    }
-  std::vector<Rational> out;
-  for (std::size_t c = 0; c + 1 < d[p].size(); ++c) out.push_back(d[p][c] / d[p].back());
-  return out;
+  return test_support::de_boor(n.degree, n.knots_exact, n.points_exact, n.weights_exact, s);
 }
 
 // Clamped knot vector of degree p with interior multiplicities <= p, sizes

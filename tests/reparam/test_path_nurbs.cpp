@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "support/errors.hpp"
 #include "uniparam/core/error.hpp"
 #include "uniparam/reparam/path.hpp"
 
@@ -86,15 +87,6 @@ std::string nurbs_json(long p, const std::vector<Rational>& u, const std::vector
   return s + "}";
 }
 
-std::string message_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no exception";
-  return "";
-}
 
 TEST(NurbsInput, FullCircleWithRationalWeights) {
   // Four quarter circles, each with w1^2 / (w0 w2) = 1/2: weights 1, 1, 2, 2, 4, 4, 8, 8, 16.
@@ -229,13 +221,13 @@ TEST(NurbsInput, ValidationErrors) {
        "span [1, 2] (knots 2 and 3) is a single point"},
   };
   for (const auto& c : cases) {
-    const std::string m = message_of([&] { parse_nurbs(c.json); });
+    const std::string m = test_support::message_of([&] { parse_nurbs(c.json); });
     EXPECT_NE(m.find(c.words), std::string::npos) << c.json << "\n -> " << m;
   }
   EXPECT_THROW(parse_nurbs("{\"degree\": 1,"), ParseError);
   NurbsLimits lim;
   lim.max_points = 2;
-  EXPECT_NE(message_of([&] {
+  EXPECT_NE(test_support::message_of([&] {
               parse_nurbs(R"({"degree": 1, "knots": [0, 0, 1, 2, 2], "control": [[0, 0], [1, 1], [2, 0]]})", lim);
             }).find("more than 2 control points"),
             std::string::npos);

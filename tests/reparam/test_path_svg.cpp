@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "support/errors.hpp"
 #include "uniparam/core/error.hpp"
 #include "uniparam/reparam/path.hpp"
 
@@ -61,15 +62,6 @@ std::string text_of(const std::vector<PathInput>& paths) {
   return s;
 }
 
-std::string message_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no exception";
-  return "";
-}
 
 TEST(SvgPath, EveryCommandLetter) {
   const auto paths = parse_svg_path(
@@ -179,7 +171,7 @@ TEST(SvgPath, RelativeAndAbsoluteSpellingsAgree) {
     } catch (const InvalidArgument& e) {
       // a subpath of zero-length segments only (M then Z, say): both spellings must fail alike
       const std::regex column("column [0-9]+");
-      EXPECT_EQ(std::regex_replace(message_of([&] { parse_svg_path(rel); }), column, ""),
+      EXPECT_EQ(std::regex_replace(test_support::message_of([&] { parse_svg_path(rel); }), column, ""),
                 std::regex_replace(std::string(e.what()), column, ""));
       continue;
     }
@@ -263,9 +255,9 @@ TEST(SvgPath, ZeroLengthSegmentsDropped) {
   ASSERT_EQ(p.segments.size(), 2u);
   EXPECT_EQ(p.knots, (std::vector<Rational>{R(0), R(1, 2), R(1)}));
   EXPECT_EQ(p.labels[1].substr(0, 10), "segment 2:");
-  const std::string m = message_of([] { parse_svg_path("M0 0 L1 1 M 5 5 L 5 5"); });
+  const std::string m = test_support::message_of([] { parse_svg_path("M0 0 L1 1 M 5 5 L 5 5"); });
   EXPECT_NE(m.find("subpath 2 at column 11 has no segment"), std::string::npos) << m;
-  EXPECT_NE(message_of([] { parse_svg_path("M 1 1"); }).find("subpath 1 at column 1 has no segment"),
+  EXPECT_NE(test_support::message_of([] { parse_svg_path("M 1 1"); }).find("subpath 1 at column 1 has no segment"),
             std::string::npos);
 }
 
@@ -387,11 +379,11 @@ TEST(SvgPath, ArcRadiiScaledUpAndDegenerate) {
 }
 
 TEST(SvgPath, ArcsThatWouldNeedApproximationAreRefused) {
-  std::string m = message_of([] { parse_svg_path("M 0 0 L 1 0 A 5 5 45 0 1 9 0"); });
+  std::string m = test_support::message_of([] { parse_svg_path("M 0 0 L 1 0 A 5 5 45 0 1 9 0"); });
   EXPECT_NE(m.find("arc 1 at column 13"), std::string::npos) << m;
   EXPECT_NE(m.find("45 degrees is not a multiple of 90"), std::string::npos) << m;
   EXPECT_NE(m.find("does not approximate"), std::string::npos) << m;
-  m = message_of([] { parse_svg_path("M 0 0 A 5 5 0 0 1 8 0 a 5 5 0 0 1 1 0"); });
+  m = test_support::message_of([] { parse_svg_path("M 0 0 A 5 5 0 0 1 8 0 a 5 5 0 0 1 1 0"); });
   EXPECT_NE(m.find("arc 2 at column 23: its center is irrational (the radicand 99 of"), std::string::npos) << m;
   EXPECT_NE(m.find("does not approximate"), std::string::npos) << m;
 }
@@ -426,12 +418,12 @@ TEST(SvgPath, ParseErrorsWithColumns) {
   EXPECT_THROW(parse_svg_path(" \n "), InvalidArgument);
   SvgLimits lim;
   lim.max_length = 10;
-  EXPECT_NE(message_of([&] { parse_svg_path("M 0 0 L 1 1", lim); }).find("more than the limit of 10"),
+  EXPECT_NE(test_support::message_of([&] { parse_svg_path("M 0 0 L 1 1", lim); }).find("more than the limit of 10"),
             std::string::npos);
   lim = SvgLimits{};
   lim.max_segments = 3;
   EXPECT_NO_THROW(parse_svg_path("M 0 0 1 1 2 2 3 3", lim));
-  EXPECT_NE(message_of([&] { parse_svg_path("M 0 0 1 1 2 2 3 3 4 4", lim); }).find("more than 3 segments"),
+  EXPECT_NE(test_support::message_of([&] { parse_svg_path("M 0 0 1 1 2 2 3 3 4 4", lim); }).find("more than 3 segments"),
             std::string::npos);
 }
 

@@ -88,4 +88,8 @@ JsonValue parse_json(const std::string& text, const JsonLimits& limits = {});
 /// valid JSON).
 std::string json_quote(const std::string& s);
 
+/// Appends the code point cp (\pre cp <= 0x10FFFF, not checked) to out as
+/// 1 to 4 bytes of UTF-8. Never throws beyond allocation.
+void append_utf8(std::string& out, unsigned long cp);
+
 }  // namespace uniparam
