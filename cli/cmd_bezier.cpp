@@ -110,9 +110,7 @@ Json bezier_json(const BezierCurve& bz, const BezierResult& r, long digits, bool
     j.set("P", json_ball(r.P, pd));
     j.set("Q", json_ball(r.Q, pd));
     j.set("alpha", json_ball(r.alpha, pd));
-    Json w = Json::array();
-    for (const auto& b : r.weights) w.push(json_ball(b, pd));
-    j.set("weights", w);
+    j.set("weights", json_balls(r.weights, pd));
   }
   j.set("mu", json_ball(r.mu, pd));
   j.set("u_before", json_ball(r.u_before, pd));

@@ -49,9 +49,7 @@ Json radical_at_json(const Rational& z, const SamplePoint& v, long digits) {
   Json e = Json::object();
   e.set("z", json_rational(z, pd));
   e.set("r", json_ball(v.t, pd));
-  Json pt = Json::array();
-  for (const auto& b : v.point) pt.push(json_ball(b, pd));
-  e.set("p_r", pt);
+  e.set("p_r", json_balls(v.point, pd));
   e.set("speed", json_ball(v.speed, pd));
   e.set("at_joint", Json::boolean(v.at_joint));
   return e;
@@ -72,11 +70,7 @@ Json radical_json(const Curve& c, const RadicalResult& r, long digits, Format fm
   }
   j.set("t", t);
   j.set("multiplicity", mult);
-  auto arr = [&](const std::vector<Ball>& v) {
-    Json x = Json::array();
-    for (const auto& b : v) x.push(json_ball(b, pd));
-    return x;
-  };
+  auto arr = [&](const std::vector<Ball>& v) { return json_balls(v, pd); };
   auto per_piece = [&](Ball PieceIntegrals::*m) {
     Json x = Json::array();
     for (const auto& p : r.integrals) x.push(json_ball(p.*m, pd));

@@ -29,7 +29,7 @@ std::vector<OptionSpec> method_options(bool with_none) {
   };
 }
 
-Reparameterization read_method(const Args& a, const Curve& c, SpeedKind kind, const Options& opt, bool with_none) {
+std::string read_method_name(const Args& a, bool with_none) {
   const std::string m = a.get("method", "radical");
   if (m != "radical" && m != "c0" && m != "c1" && !(with_none && m == "none"))
     throw InvalidArgument("unknown method '" + m + "' (expected radical, c0, c1" +
@@ -37,6 +37,11 @@ Reparameterization read_method(const Args& a, const Curve& c, SpeedKind kind, co
   if (a.has("pieces") && m != "c0") throw InvalidArgument("--pieces applies to --method c0 only");
   if (a.has("target") && m != "c1") throw InvalidArgument("--target applies to --method c1 only");
   if (a.has("max-pieces") && m != "c1") throw InvalidArgument("--max-pieces applies to --method c1 only");
+  return m;
+}
+
+Reparameterization read_method(const Args& a, const Curve& c, SpeedKind kind, const Options& opt, bool with_none) {
+  const std::string m = read_method_name(a, with_none);
   if (m == "radical") return Reparameterization(radical(c, kind, opt));
   if (m == "c0") return Reparameterization(reparam_c0(c, kind, a.get_long("pieces", 3, 1, 1000), opt));
   if (m == "c1") {
@@ -112,8 +117,7 @@ Json sample_header_json(const Curve& c, SpeedKind kind, const Reparameterization
   head.set("mu", json_ball(r.mu(), pd));
   head.set("u_before", json_ball(r.u_before(), pd));
   head.set("u_after", json_ball(r.u_after(), pd));
-  Json js = Json::array(), jt = Json::array();
-  for (const auto& b : r.joints_s()) js.push(json_ball(b, pd));
+  Json js = json_balls(r.joints_s(), pd), jt = Json::array();
   for (const auto& t : r.joints_t()) jt.push(json_algebraic(t, digits));
   Json joints = Json::object();
   joints.set("s", js);
@@ -127,9 +131,7 @@ Json sample_row_json(const SamplePoint& p, long digits) {
   Json row = Json::object();
   row.set("s", json_rational(p.s, pd));
   row.set("t", json_ball(p.t, pd));
-  Json pt = Json::array();
-  for (const auto& b : p.point) pt.push(json_ball(b, pd));
-  row.set("point", pt);
+  row.set("point", json_balls(p.point, pd));
   row.set("speed", json_ball(p.speed, pd));
   row.set("at_joint", Json::boolean(p.at_joint));
   return row;

@@ -91,6 +91,11 @@ Ball row_deviation(ArcFraction& frac, const SamplePoint& p, long digits, Ball& w
 /// --method, --pieces, --target (cmd_sample.cpp); `with_none` adds
 /// --method none (the original curve).
 std::vector<OptionSpec> method_options(bool with_none);
+/// The name given by --method ("radical", "c0", "c1", or "none" when
+/// `with_none`; default "radical"), after checking that --pieces, --target and
+/// --max-pieces come only with the method they belong to.
+/// \throws InvalidArgument for an unknown method or a misplaced option.
+std::string read_method_name(const Args& a, bool with_none);
 /// The reparameterization of c selected by --method, computed with `opt`.
 Reparameterization read_method(const Args& a, const Curve& c, SpeedKind kind, const Options& opt, bool with_none);
 /// Exit status after using r: 4, with a message on stderr, when r is a C1

@@ -190,13 +190,7 @@ int run_uniformity_composite(const Args& a, const CompositeCurve& c, SpeedKind k
 }
 
 CompositeMethod read_composite_method(const Args& a, const CompositeCurve& c, bool with_none) {
-  const std::string m = a.get("method", "radical");
-  if (m != "radical" && m != "c0" && m != "c1" && !(with_none && m == "none"))
-    throw InvalidArgument("unknown method '" + m + "' (expected radical, c0, c1" +
-                          std::string(with_none ? " or none)" : ")"));
-  if (a.has("pieces") && m != "c0") throw InvalidArgument("--pieces applies to --method c0 only");
-  if (a.has("target") && m != "c1") throw InvalidArgument("--target applies to --method c1 only");
-  if (a.has("max-pieces") && m != "c1") throw InvalidArgument("--max-pieces applies to --method c1 only");
+  const std::string m = read_method_name(a, with_none);
   CompositeMethod cm;
   if (m == "radical") cm.kind = CompositeMethod::Kind::Radical;
   if (m == "c0") {
@@ -319,9 +313,7 @@ Json composite_locate_json(const std::string& description, SpeedKind kind, long 
   j.set("mu", json_ball(r.mu, pd));
   j.set(measure, json_ball(r.target, pd));
   j.set("t", json_ball(r.at.t, pd));
-  Json pt = Json::array();
-  for (const Ball& x : r.at.point) pt.push(json_ball(x, pd));
-  j.set("point", pt);
+  j.set("point", json_balls(r.at.point, pd));
   return j;
 }
 

@@ -270,6 +270,12 @@ Json json_ball(const Ball& b, long sig_digits) {
   return j;
 }
 
+Json json_balls(const std::vector<Ball>& bs, long sig_digits) {
+  Json a = Json::array();
+  for (const Ball& b : bs) a.push(json_ball(b, sig_digits));
+  return a;
+}
+
 Json json_rational(const Rational& q, long sig_digits) {
   const std::string mid = decimal_string(q, sig_digits);
   Rational err = q - Rational::parse(mid);

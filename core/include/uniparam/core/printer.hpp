@@ -63,6 +63,8 @@ class Json {
 /// [mid - rad, mid + rad]. `sig_digits` significant digits for mid; the
 /// printing error is included in rad (see decimal.hpp).
 Json json_ball(const Ball& b, long sig_digits);
+/// A JSON array of json_ball(b, sig_digits) for each b, in order.
+Json json_balls(const std::vector<Ball>& bs, long sig_digits);
 /// An exact rational: {"mid": "<decimal>", "rad": "0", "exact": "p/q"} when
 /// the decimal is exact, otherwise rad bounds the decimal's error and
 /// "exact" still gives p/q.
