@@ -13,7 +13,7 @@
 #include <sstream>
 
 #include "support/run.hpp"
-#include "uniparam/uniparam.hpp"
+#include "uniparam/reparam/all.hpp"
 
 using namespace uniparam;
 using uniparam::test_support::run_uniparam;
