@@ -53,10 +53,19 @@ uniparam::Options engine_options(const Options& o) {
 
 std::string facade_message(std::string m) {
   static const std::pair<const char*, const char*> names[] = {
-      {"--timeout SECONDS", "Options::time_limit"}, {"--timeout", "Options::time_limit"},
-      {"--max-prec", "Options::max_prec"},          {"--max-degree", "Options::max_degree"},
-      {"--max-length", "Options::max_input_length"}, {"--digits", "Options::digits"},
+      {"--timeout SECONDS", "Options::time_limit"},
+      {"--timeout", "Options::time_limit"},
+      {"--max-prec", "Options::max_prec"},
+      {"--max-degree", "Options::max_degree"},
+      {"--max-length", "Options::max_input_length"},
+      {"--digits", "Options::digits"},
       {"--threads", "Options::threads"},
+      {"--speed parametric", "Options::speed = SpeedKind::Parametric"},
+      {"--rational-digits", "rational_digits"},
+      {"--pieces", "pieces"},
+      {"--target", "the target"},
+      {"raise it with --max-bits", "a fixed limit of the library"},
+      {"raise it with --max-depth", "a fixed limit of the library"},
   };
   for (const auto& [from, to] : names)
     for (std::size_t at = m.find(from); at != std::string::npos; at = m.find(from, at + 1)) {
