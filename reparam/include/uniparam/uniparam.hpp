@@ -93,7 +93,8 @@ class Ball {
   /// The exact ball [0 +/- 0].
   Ball();
 
-  /// The midpoint and the radius, exactly (rad >= 0).
+  /// The midpoint and the radius, exactly (rad >= 0). \throws DomainError
+  /// for a ball that is not finite (no reported ball is).
   Rational mid() const;
   Rational rad() const;
   /// mid - rad and mid + rad, exactly: certified lower and upper bounds.
@@ -169,9 +170,9 @@ class Curve {
   static Curve parse(const std::string& text, const Options& o = {});
   /// The Bezier curve of control points p_0..p_n (n >= 1, all of one
   /// dimension >= 2) and, when not empty, positive weights v_0..v_n.
-  /// \throws InvalidArgument naming the offending point or weight, or for a
-  ///         degree above Options::max_degree; DomainError when every point
-  ///         is equal.
+  /// \throws InvalidArgument naming the offending point or weight;
+  ///         DomainError when every point is equal; BudgetExceeded for a
+  ///         degree above Options::max_degree.
   static Curve bezier(const std::vector<std::vector<Rational>>& points, const std::vector<Rational>& weights = {},
                       const Options& o = {});
   /// The same from text "[[x0, y0], [x1, y1], ...]" and "[w0, w1, ...]"
@@ -227,7 +228,9 @@ struct Uniformity {
   Ball u;            ///< mu^2 / int sigma^2, in (0, 1]; 1 = uniform
   /// sigma == 0 on [0, 1] (the angular speed of a straight line): mu = 0, u = 1.
   bool identically_zero = false;
-  std::vector<Zero> zeros;  ///< in the curve's (global) parameter, increasing
+  /// In the curve's (global) parameter, increasing; for a composite curve
+  /// segment by segment (a zero at a knot listed by each segment it ends).
+  std::vector<Zero> zeros;
 };
 
 /// Certified uniformity of c for Options::speed.
@@ -307,7 +310,8 @@ class Reparameterization {
   /// Number of pieces N (over all segments of a composite curve).
   std::size_t pieces() const;
   /// The joints (s_i, t_i), i = 0..N, in the global parameters; s_0 = t_0 =
-  /// 0 and s_N = t_N = 1 exactly.
+  /// 0 and s_N = t_N = 1 exactly. \post each ball contains the joint and
+  /// meets Options::digits.
   struct Joint {
     Ball s, t;
   };
@@ -353,10 +357,12 @@ class Reparameterization {
     std::string interval;            ///< "[s_i, s_{i+1}]"
     std::string r;                   ///< the map, e.g. "(a s + b) / (c s + d)"
     std::vector<std::string> point;  ///< components of p(r(s))
-    /// Exact formulas (rational data, Bezier's surd); otherwise the
-    /// coefficients are certified balls' midpoints to Options::digits.
+    /// Exact formulas (rational data, r = id); otherwise the coefficients
+    /// are midpoints of certified balls, to Options::digits (rounded values,
+    /// not enclosures: use eval_r and at for certified numbers).
     bool exact = false;
   };
+  /// Every piece's formulas, in order. \throws as eval_r (time limit).
   std::vector<Formula> formulas(Format f = Format::Text) const;
 
   /// p o r as one NURBS (Moebius methods and Bezier bilinear; exact for a
