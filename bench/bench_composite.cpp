@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "uniparam/uniparam.hpp"
+#include "uniparam/reparam/all.hpp"
 
 namespace {
 

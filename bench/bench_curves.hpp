@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "uniparam/uniparam.hpp"
+#include "uniparam/reparam/all.hpp"
 
 namespace uniparam::bench {
 

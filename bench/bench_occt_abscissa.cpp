@@ -45,7 +45,7 @@
 #include <vector>
 
 #include "uniparam/core/json.hpp"
-#include "uniparam/uniparam.hpp"
+#include "uniparam/reparam/all.hpp"
 
 namespace {
 

@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "input.hpp"
+#include "uniparam/core/parallel.hpp"
 
 namespace uniparam::cli {
 
@@ -188,14 +189,16 @@ int run_command(const Command& c, int argc, char** argv, bool watchdog) {
   const Args a = parse_args(c.spec, argc, argv, 2);
   if (a.help) return c.run(argc, argv);
   const double seconds = read_timeout(a);
-  // Every parallel loop reads UNIPARAM_THREADS (core/parallel.hpp): --threads
-  // sets it, and a value given in the environment passes the same check.
+  // --threads holds for this command's parallel loops (and their workers:
+  // core/parallel.hpp), the process environment untouched; without it the
+  // loops read UNIPARAM_THREADS, which passes the same check here.
+  std::size_t threads = 0;
   if (a.has("threads")) {
-    const long n = a.get_long("threads", 1, 1, kMaxThreads);
-    setenv("UNIPARAM_THREADS", std::to_string(n).c_str(), 1);
+    threads = static_cast<std::size_t>(a.get_long("threads", 1, 1, kMaxThreads));
   } else if (const char* e = std::getenv("UNIPARAM_THREADS"); e && *e) {
     parse_long("UNIPARAM_THREADS", e, 1, kMaxThreads);
   }
+  const ScopedWorkerCount workers(threads);
   const TimeBudget budget(seconds);
   if (!watchdog) return c.run(argc, argv);
   const Watchdog backstop(seconds, c.spec.name);

@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "args.hpp"
-#include "uniparam/uniparam.hpp"
+#include "uniparam/reparam/all.hpp"
 
 namespace uniparam::cli {
 

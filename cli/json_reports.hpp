@@ -10,7 +10,7 @@
 #include <optional>
 #include <string>
 
-#include "uniparam/uniparam.hpp"
+#include "uniparam/reparam/all.hpp"
 
 namespace uniparam::cli {
 

@@ -10,7 +10,7 @@
 
 #include "commands.hpp"
 #include "output.hpp"
-#include "uniparam/uniparam.hpp"
+#include "uniparam/reparam/all.hpp"
 
 namespace {
 

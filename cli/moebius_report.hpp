@@ -2,7 +2,7 @@
 // `moebius` and `reparam` commands): JSON, text and formulas.
 #pragma once
 
-#include "uniparam/uniparam.hpp"
+#include "uniparam/reparam/all.hpp"
 
 namespace uniparam::cli {
 

@@ -6,8 +6,9 @@
 #include <vector>
 
 #include "args.hpp"
-#include "uniparam/uniparam.hpp"
+#include "uniparam/reparam/all.hpp"
 #include "uniparam/reparam/nurbs.hpp"
+#include "uniparam/reparam/step.hpp"
 
 namespace uniparam::cli {
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <utility>
 
-#include "uniparam/uniparam.hpp"
+#include "uniparam/reparam/all.hpp"
 
 namespace uniparam::cli {
 

@@ -11,12 +11,13 @@
 #include <string>
 
 int main(int argc, char** argv) {
+  namespace up = uniparam::api;
   const std::string text = argc > 1 ? argv[1] : "(t, t^2)";
   try {
-    uniparam::Curve c = uniparam::parse_curve(text);
-    uniparam::Options o;
+    up::Options o;
     o.digits = 20;
-    uniparam::UniformityResult r = uniparam::uniformity(c, uniparam::SpeedKind::Angular, o);
+    const up::Curve c = up::Curve::parse(text, o);
+    const up::Uniformity r = up::uniformity(c, o);
     std::cout << "curve = " << text << "\n";
     std::cout << "mu = " << r.mu.str(o.digits) << "\n";
     std::cout << "u = " << r.u.str(o.digits) << "\n";

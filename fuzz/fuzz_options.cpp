@@ -27,7 +27,7 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "uniparam/uniparam.hpp"
+#include "uniparam/reparam/all.hpp"
 
 namespace {
 

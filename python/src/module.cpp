@@ -37,7 +37,7 @@
 #include "report.hpp"
 #include "svg.hpp"
 #include "uniparam/core/parallel.hpp"
-#include "uniparam/uniparam.hpp"
+#include "uniparam/reparam/all.hpp"
 
 namespace py = pybind11;
 using namespace uniparam;

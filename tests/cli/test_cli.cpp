@@ -5,7 +5,7 @@
 
 #include "support/json.hpp"
 #include "support/run.hpp"
-#include "uniparam/uniparam.hpp"
+#include "uniparam/reparam/all.hpp"
 
 using uniparam::test_support::encloses;
 using uniparam::test_support::run_uniparam;

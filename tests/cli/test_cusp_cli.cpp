@@ -12,7 +12,7 @@
 
 #include "support/json.hpp"
 #include "support/run.hpp"
-#include "uniparam/uniparam.hpp"
+#include "uniparam/reparam/all.hpp"
 
 using uniparam::Rational;
 using uniparam::test_support::certified_real;

@@ -14,7 +14,7 @@
 
 #include "support/de_boor.hpp"
 #include "support/run.hpp"
-#include "uniparam/uniparam.hpp"
+#include "uniparam/reparam/all.hpp"
 
 using namespace uniparam;
 using uniparam::test_support::run_uniparam;

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "support/run.hpp"
-#include "uniparam/uniparam.hpp"
+#include "uniparam/reparam/all.hpp"
 
 using uniparam::test_support::run_uniparam;
 using uniparam::test_support::shell_quote;

@@ -14,7 +14,7 @@
 
 #include "support/run.hpp"
 #include "support/svg.hpp"
-#include "uniparam/uniparam.hpp"
+#include "uniparam/reparam/all.hpp"
 
 using uniparam::Rational;
 using uniparam::test_support::group;

@@ -27,7 +27,7 @@
 
 #include "support/run.hpp"
 #include "support/svg.hpp"
-#include "uniparam/uniparam.hpp"
+#include "uniparam/reparam/all.hpp"
 
 extern char** environ;
 

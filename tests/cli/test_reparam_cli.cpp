@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "support/run.hpp"
-#include "uniparam/uniparam.hpp"
+#include "uniparam/reparam/all.hpp"
 
 using uniparam::Rational;
 using uniparam::test_support::run_uniparam;

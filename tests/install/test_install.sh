@@ -27,6 +27,13 @@ config="$(find "$prefix" -name uniparamConfig.cmake -print -quit)"
 [ -n "$config" ] || { echo "FAIL: no uniparamConfig.cmake installed under $prefix" >&2; exit 1; }
 [ -f "$prefix/include/uniparam/uniparam.hpp" ] \
   || { echo "FAIL: public header uniparam/uniparam.hpp not installed" >&2; exit 1; }
+# The public headers and nothing else: no engine header, no FLINT/Arb include.
+headers="$(cd "$prefix/include" && find . -type f | sort | tr '\n' ' ')"
+[ "$headers" = "./uniparam/error.hpp ./uniparam/uniparam.hpp " ] \
+  || { echo "FAIL: installed headers are '$headers', not the public uniparam/uniparam.hpp and uniparam/error.hpp" >&2; exit 1; }
+if grep -nE '#include *[<"](flint/|arb|acb|arf|mag|fmpz|fmpq)' "$prefix/include/uniparam/"*.hpp; then
+  echo "FAIL: a public header includes a FLINT/Arb header" >&2; exit 1
+fi
 
 args=(-S "$examples" -B "$ebuild" -DCMAKE_PREFIX_PATH="$prefix"
       -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF

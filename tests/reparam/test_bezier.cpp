@@ -11,7 +11,7 @@
 #include "support/curves.hpp"
 #include "support/iterations.hpp"
 #include "support/reference.hpp"
-#include "uniparam/uniparam.hpp"
+#include "uniparam/reparam/all.hpp"
 
 using namespace uniparam;
 using test_support::iterations;

@@ -9,7 +9,7 @@
 #include <random>
 #include <vector>
 
-#include "uniparam/uniparam.hpp"
+#include "uniparam/reparam/all.hpp"
 
 using namespace uniparam;
 

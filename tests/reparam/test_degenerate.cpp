@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "support/reference.hpp"
-#include "uniparam/uniparam.hpp"
+#include "uniparam/reparam/all.hpp"
 
 using namespace uniparam;
 

@@ -8,7 +8,7 @@
 #include <functional>
 #include <vector>
 
-#include "uniparam/uniparam.hpp"
+#include "uniparam/reparam/all.hpp"
 
 using namespace uniparam;
 

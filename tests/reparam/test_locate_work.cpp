@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "../../reparam/src/track.hpp"
-#include "uniparam/uniparam.hpp"
+#include "uniparam/reparam/all.hpp"
 
 using namespace uniparam;
 

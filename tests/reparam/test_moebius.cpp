@@ -7,7 +7,7 @@
 
 #include "support/reference.hpp"
 #include "uniparam/reparam/moebius.hpp"
-#include "uniparam/uniparam.hpp"
+#include "uniparam/reparam/all.hpp"
 
 using namespace uniparam;
 

@@ -10,7 +10,7 @@
 #include "support/de_boor.hpp"
 #include "support/curves.hpp"
 #include "support/iterations.hpp"
-#include "uniparam/uniparam.hpp"
+#include "uniparam/reparam/all.hpp"
 
 using namespace uniparam;
 using uniparam::test_support::iterations;

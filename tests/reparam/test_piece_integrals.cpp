@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "support/iterations.hpp"
-#include "uniparam/uniparam.hpp"
+#include "uniparam/reparam/all.hpp"
 
 using namespace uniparam;
 

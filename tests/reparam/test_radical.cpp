@@ -11,7 +11,7 @@
 #include "uniparam/reparam/radical.hpp"
 #include "support/curves.hpp"
 #include "support/reference.hpp"
-#include "uniparam/uniparam.hpp"
+#include "uniparam/reparam/all.hpp"
 
 using namespace uniparam;
 

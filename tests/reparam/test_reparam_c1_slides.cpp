@@ -27,7 +27,7 @@
 
 #include "support/curves.hpp"
 #include "support/iterations.hpp"
-#include "uniparam/uniparam.hpp"
+#include "uniparam/reparam/all.hpp"
 
 using namespace uniparam;
 using uniparam::test_support::iterations;

@@ -18,7 +18,7 @@
 #include "support/iterations.hpp"
 #include "uniparam/algebra/approx_roots.hpp"
 #include "uniparam/algebra/quadrature.hpp"
-#include "uniparam/uniparam.hpp"
+#include "uniparam/reparam/all.hpp"
 
 using namespace uniparam;
 

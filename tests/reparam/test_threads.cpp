@@ -12,7 +12,7 @@
 
 #include "support/curves.hpp"
 #include "support/iterations.hpp"
-#include "uniparam/uniparam.hpp"
+#include "uniparam/reparam/all.hpp"
 
 namespace uniparam {
 namespace {

@@ -9,7 +9,7 @@
 
 #include "support/curves.hpp"
 #include "support/reference.hpp"
-#include "uniparam/uniparam.hpp"
+#include "uniparam/reparam/all.hpp"
 
 using namespace uniparam;
 
