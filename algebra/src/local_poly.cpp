@@ -14,6 +14,7 @@
 
 #include "uniparam/algebra/deflation.hpp"
 #include "uniparam/algebra/double_centred.hpp"
+#include "uniparam/algebra/local_expansion.hpp"
 #include "uniparam/core/error.hpp"
 
 namespace uniparam {
@@ -179,38 +180,23 @@ bool is_wide_ball(const acb_t z) {
 
 namespace {
 
-/// One cell: p(c + w) = P(w) + T(w) with |T^(j)(w)| <= tail[j] for
-/// |w| <= 2h, h = 2^-(level+1); P1 = P', P2 = P''.
+/// One cell: the expansion e of p at the cell's centre c, p(c + w) =
+/// P(w) + T(w) with |T^(j)(w)| <= tail[j] for |w| <= 2h, h = 2^-(level+1)
+/// (local_expansion.hpp); P1 = P', P2 = P''.
 struct Cell {
-  int level = 0;
-  arf_t centre;
-  arb_poly_t P, P1, P2;
-  mag_struct tail[3];
+  LocalExpansion e;
+  arb_poly_t P1, P2;
   std::vector<double> mid;  // midpoints of P in double (eval_double)
   Cell() {
-    arf_init(centre);
-    arb_poly_init(P);
     arb_poly_init(P1);
     arb_poly_init(P2);
-    for (auto& t : tail) mag_init(&t);
   }
   ~Cell() {
-    arf_clear(centre);
-    arb_poly_clear(P);
     arb_poly_clear(P1);
     arb_poly_clear(P2);
-    for (auto& t : tail) mag_clear(&t);
   }
   Cell(const Cell&) = delete;
   Cell& operator=(const Cell&) = delete;
-};
-
-struct MagBox {
-  mag_t v;
-  MagBox() { mag_init(v); }
-  ~MagBox() { mag_clear(v); }
-  MagBox(const MagBox&) = delete;
-  MagBox& operator=(const MagBox&) = delete;
 };
 
 struct CellKey {
@@ -232,61 +218,22 @@ struct CellKeyHash {
   }
 };
 
-// Drops the high terms of the expansion c (in w = t - centre, on cells of
-// half-width 2^-(level+1)) whose contribution to p, p', p'' on |w| <= 2h is
-// below 2^-wp times the scale sum |c_k| h^k of p on the cell, adding their
-// bound to tail[j]. Keeps at least 3 terms.
-void truncate(Cell& cell, long wp) {
-  const slong n = arb_poly_length(cell.P);
-  if (n <= 3) return;
-  mag_t h, rho, scale, eps, a, t0, t1, t2, n0, n1, n2, c1, c2;
-  for (mag_struct* m : {h, rho, scale, eps, a, t0, t1, t2, n0, n1, n2, c1, c2}) mag_init(m);
-  mag_one(h);
-  mag_mul_2exp_si(h, h, -(cell.level + 1));
-  mag_mul_2exp_si(rho, h, 1);
-  // rpow[k] = rho^k (upper bounds; rho is a power of two)
-  std::vector<MagBox> rpow(static_cast<std::size_t>(n));
-  mag_one(rpow[0].v);
-  for (slong k = 1; k < n; ++k) mag_mul(rpow[static_cast<std::size_t>(k)].v, rpow[static_cast<std::size_t>(k - 1)].v, rho);
-  // scale = sum |c_k| h^k = sum |c_k| rho^k 2^-k (it only sets the tolerance)
-  for (slong k = 0; k < n; ++k) {
-    arb_get_mag(a, cell.P->coeffs + k);
-    mag_mul(a, a, rpow[static_cast<std::size_t>(k)].v);
-    mag_mul_2exp_si(a, a, -k);
-    mag_add(scale, scale, a);
-  }
+// Drops the high terms of the cell's expansion whose contribution to p,
+// p', p'' on |w| <= 2h is below 2^-wp times the scale sum |c_k| h^k of p
+// on the cell (truncate_local_expansion), adding their bound to the tails.
+void truncate(LocalExpansion& e, long wp) {
+  if (arb_poly_length(e.P) <= 3) return;
+  const long log2h = -(e.level + 1);
+  mag_t scale, eps;
+  mag_init(scale);
+  mag_init(eps);
+  local_expansion_variation(scale, nullptr, e, log2h);
+  arb_get_mag(eps, e.P->coeffs);
+  mag_add(scale, scale, eps);
   mag_mul_2exp_si(eps, scale, -wp);
-  // Suffix sums from the top: t0 = sum_{k >= K} |c_k| rho^k,
-  // t1 = sum k |c_k| rho^(k-1), t2 = sum k (k-1) |c_k| rho^(k-2); K is
-  // lowered while t0, t1 rho and t2 rho^2 stay below eps.
-  slong K = n;
-  for (slong k = n - 1; k >= 3; --k) {
-    arb_get_mag(a, cell.P->coeffs + k);
-    mag_mul(a, a, rpow[static_cast<std::size_t>(k - 2)].v);  // |c_k| rho^(k-2)
-    mag_mul(n2, a, rho);
-    mag_mul(n2, n2, rho);
-    mag_add(n0, t0, n2);  // + |c_k| rho^k
-    mag_mul(n1, a, rho);
-    mag_mul_ui(n1, n1, static_cast<ulong>(k));
-    mag_add(n1, t1, n1);  // + k |c_k| rho^(k-1)
-    mag_mul_ui(n2, a, static_cast<ulong>(k * (k - 1)));
-    mag_add(n2, t2, n2);  // + k (k-1) |c_k| rho^(k-2)
-    mag_mul(c1, n1, rho);
-    mag_mul(c2, n2, rho);
-    mag_mul(c2, c2, rho);
-    if (mag_cmp(n0, eps) > 0 || mag_cmp(c1, eps) > 0 || mag_cmp(c2, eps) > 0) break;
-    mag_swap(t0, n0);
-    mag_swap(t1, n1);
-    mag_swap(t2, n2);
-    K = k;
-  }
-  if (K < n) {
-    arb_poly_truncate(cell.P, K);
-    mag_add(cell.tail + 0, cell.tail + 0, t0);
-    mag_add(cell.tail + 1, cell.tail + 1, t1);
-    mag_add(cell.tail + 2, cell.tail + 2, t2);
-  }
-  for (mag_struct* m : {h, rho, scale, eps, a, t0, t1, t2, n0, n1, n2, c1, c2}) mag_clear(m);
+  truncate_local_expansion(e, log2h + 1, eps, 3);
+  mag_clear(scale);
+  mag_clear(eps);
 }
 
 // True when a ball-shifted cell kept its accuracy: the error of its
@@ -294,7 +241,7 @@ void truncate(Cell& cell, long wp) {
 // 2^-(wp - kGuardBits) times its scale sum |c_k| h^k (wp - kGuardBits is at
 // least the caller's precision). It fails where p is much larger on the
 // parent's disc than on this cell (near a cluster of p's zeros).
-bool accurate(const Cell& cell, long wp) {
+bool accurate(const LocalExpansion& cell, long wp) {
   const slong n = arb_poly_length(cell.P);
   mag_t h, rho, hk, rk, a, scale, err;
   for (mag_struct* m : {h, rho, hk, rk, a, scale, err}) mag_init(m);
@@ -526,12 +473,8 @@ CellPtr build_cell(CellStore& store, const Poly& p, const CellKey& key) {
   const int level = key.level;
   const unsigned long long j = key.j;
   const bool coarse = key.coarse;
-  std::unique_ptr<RealAlgebraic> root;
   auto cell = std::make_shared<Cell>();
-  cell->level = level;
-  // centre = (2j + 1) 2^-(level+1)
-  arf_set_ui(cell->centre, 2 * j + 1);
-  arf_mul_2exp_si(cell->centre, cell->centre, -(level + 1));
+  LocalExpansion& e = cell->e;
   if (coarse) {
     // Truncated at kCoarseBits: a ball shift of the coarse parent (few
     // terms), or, at the exact levels and where that shift lost accuracy
@@ -540,18 +483,20 @@ CellPtr build_cell(CellStore& store, const Poly& p, const CellKey& key) {
     bool built = false;
     if (level > kExactLevel) {
       const CellPtr parent = get_cell(store, p, variant, wp, level - 1, j >> 1, true);
-      taylor_shift_pow2(cell->P, parent->P, -(level + 1), child_side(j), kCoarsePrec);
-      for (int t = 0; t < 3; ++t) mag_set(cell->tail + t, parent->tail + t);
-      truncate(*cell, kCoarseBits);
-      built = level > kMaxExactLevel || accurate(*cell, kCoarseBits + kGuardBits);
+      local_expansion_child(e, parent->e, child_side(j), kCoarsePrec);
+      truncate(e, kCoarseBits);
+      built = level > kMaxExactLevel || accurate(e, kCoarseBits + kGuardBits);
     }
     if (!built) {
       const CellPtr fine = get_cell(store, p, variant, wp, level, j, false);
-      arb_poly_set_round(cell->P, fine->P, kCoarsePrec);
-      for (int t = 0; t < 3; ++t) mag_set(cell->tail + t, fine->tail + t);
-      truncate(*cell, kCoarseBits);
+      e.level = level;
+      e.j = j;
+      arf_set(e.centre, fine->e.centre);
+      arb_poly_set_round(e.P, fine->e.P, kCoarsePrec);
+      for (int t = 0; t < 3; ++t) mag_set(e.tail + t, fine->e.tail + t);
+      truncate(e, kCoarseBits);
     }
-    arb_poly_derivative(cell->P1, cell->P, kCoarsePrec);
+    arb_poly_derivative(cell->P1, e.P, kCoarsePrec);
     arb_poly_derivative(cell->P2, cell->P1, kCoarsePrec);
     return cell;
   }
@@ -559,84 +504,35 @@ CellPtr build_cell(CellStore& store, const Poly& p, const CellKey& key) {
   if (level > kExactLevel) {
     // From the parent: its disc |t - c_p| <= 2 h_p holds this cell's disc
     // |t - c| <= 2h = h_p (|c - c_p| = h_p / 2), so its tail bounds hold here.
-    const CellPtr parent_ptr = get_cell(store, p, variant, wp, level - 1, j >> 1, false);
-    const Cell& parent = *parent_ptr;
-    taylor_shift_pow2(cell->P, parent.P, -(level + 1), child_side(j), wp);
-    for (int t = 0; t < 3; ++t) mag_set(cell->tail + t, parent.tail + t);
-    truncate(*cell, wp);
+    const CellPtr parent = get_cell(store, p, variant, wp, level - 1, j >> 1, false);
+    local_expansion_child(e, parent->e, child_side(j), wp);
+    truncate(e, wp);
     // p may be far larger on the parent's disc than on this cell's: then the
     // parent's rounding and tail swamp p here, and up to kMaxExactLevel the
     // cell is rebuilt by an exact shift instead.
-    built = level > kMaxExactLevel || accurate(*cell, wp);
-    if (!built) {
-      arb_poly_zero(cell->P);
-      for (auto& t : cell->tail) mag_zero(&t);
-    }
+    built = level > kMaxExactLevel || accurate(e, wp);
   }
   if (!built) {
+    // An exact integer Taylor shift; for p / (t - gamma), deflated in the
+    // local basis by an enclosure of gamma.
+    local_expansion_exact(e, p, level, j, wp);
     if (variant >= 0) {
-      std::lock_guard<std::mutex> lock(store.mu);
-      root = std::make_unique<RealAlgebraic>(store.roots[static_cast<std::size_t>(variant)].value);
-    }
-    const long n = p.degree();
-    // p(c + w) = 2^(-L n) q(J + 2^L w) with q(x) = 2^(L n) p(x / 2^L),
-    // L = level + 1, J = 2j + 1: an exact integer Taylor shift.
-    const long L = level + 1;
-    fmpz_poly_t q, s;
-    fmpz_poly_init(q);
-    fmpz_poly_init(s);
-    fmpz_poly_fit_length(q, n + 1);
-    for (long k = 0; k <= n; ++k) fmpz_mul_2exp(q->coeffs + k, p.get()->coeffs + k, static_cast<ulong>(L * (n - k)));
-    _fmpz_poly_set_length(q, n + 1);
-    _fmpz_poly_normalise(q);
-    fmpz_t J;
-    fmpz_init_set_ui(J, 2 * j + 1);
-    fmpz_poly_taylor_shift(s, q, J);
-    fmpz_clear(J);
-    const slong len = fmpz_poly_length(s);
-    arb_poly_fit_length(cell->P, len);
-    for (slong k = 0; k < len; ++k) {
-      arb_set_round_fmpz(cell->P->coeffs + k, s->coeffs + k, wp);
-      arb_mul_2exp_si(cell->P->coeffs + k, cell->P->coeffs + k, L * (k - n));
-    }
-    _arb_poly_set_length(cell->P, len);
-    _arb_poly_normalise(cell->P);
-    fmpz_poly_clear(q);
-    fmpz_poly_clear(s);
-    if (variant >= 0 && len > 0) {
-      // Deflation in the local basis: p(c + w) = (w - w_g) Q(w) exactly, with
-      // w_g = gamma - c (p(gamma) = 0); synthetic division from the top
-      // (stable for |w_g| within the cell's disc, where it is used); the
-      // remainder is exactly 0 and is dropped.
-      arb_t wg, acc;
-      arb_init(wg);
-      arb_init(acc);
-      const Ball g = root->to_ball(wp + 32);
-      arb_sub_arf(wg, g.get(), cell->centre, wp + 32);
-      arb_poly_t Q;
-      arb_poly_init(Q);
-      arb_poly_fit_length(Q, len - 1);
-      arb_set(acc, cell->P->coeffs + len - 1);
-      for (slong k = len - 1; k >= 1; --k) {
-        arb_set(Q->coeffs + k - 1, acc);
-        arb_mul(acc, acc, wg, wp);
-        arb_add(acc, acc, cell->P->coeffs + k - 1, wp);
+      std::unique_ptr<RealAlgebraic> root;
+      {
+        std::lock_guard<std::mutex> lock(store.mu);
+        root = std::make_unique<RealAlgebraic>(store.roots[static_cast<std::size_t>(variant)].value);
       }
-      _arb_poly_set_length(Q, len - 1);
-      _arb_poly_normalise(Q);
-      arb_poly_swap(cell->P, Q);
-      arb_poly_clear(Q);
-      arb_clear(wg);
-      arb_clear(acc);
+      const Ball g = root->to_ball(wp + 32);
+      deflate_local_expansion(e, g.get(), wp);
     }
-    truncate(*cell, wp);
+    truncate(e, wp);
   }
-  arb_poly_derivative(cell->P1, cell->P, wp);
+  arb_poly_derivative(cell->P1, e.P, wp);
   arb_poly_derivative(cell->P2, cell->P1, wp);
-  const slong len = arb_poly_length(cell->P);
+  const slong len = arb_poly_length(e.P);
   cell->mid.resize(static_cast<std::size_t>(len));
   for (slong k = 0; k < len; ++k)
-    cell->mid[static_cast<std::size_t>(k)] = arf_get_d(arb_midref(cell->P->coeffs + k), ARF_RND_NEAR);
+    cell->mid[static_cast<std::size_t>(k)] = arf_get_d(arb_midref(e.P->coeffs + k), ARF_RND_NEAR);
   return cell;
 }
 
@@ -758,9 +654,9 @@ bool LocalPoly::eval_cells(int variant, acb_t v, acb_t d1, acb_t d2, const acb_t
   // On a wide ball this bounds p by its expansion on the disc
   // |t - c| <= |mid z - c| + rad z, at most twice z's radius: a little
   // looser than a centred form at mid z, and O(K) instead of an O(K^2) shift.
-  const arb_poly_struct* polys[3] = {cell->P, cell->P1, cell->P2};
+  const arb_poly_struct* polys[3] = {cell->e.P, cell->P1, cell->P2};
   acb_ptr outs[3] = {v, d1, d2};
-  const slong K = std::max<slong>(arb_poly_length(cell->P), 1);
+  const slong K = std::max<slong>(arb_poly_length(cell->e.P), 1);
   if (acb_is_real(w)) {
     arb_srcptr pw = scratch().real.powers(acb_realref(w), K, prec);
     for (int j = 0; j <= 2; ++j) {
@@ -768,7 +664,7 @@ bool LocalPoly::eval_cells(int variant, acb_t v, acb_t d1, acb_t d2, const acb_t
       arb_dot(acb_realref(outs[j]), nullptr, 0, polys[j]->coeffs, 1, pw, 1, arb_poly_length(polys[j]), prec);
       arb_zero(acb_imagref(outs[j]));
       // p is real on real balls: the tail widens the real part only
-      arb_add_error_mag(acb_realref(outs[j]), cell->tail + j);
+      arb_add_error_mag(acb_realref(outs[j]), cell->e.tail + j);
     }
   } else {
     acb_srcptr pw = scratch().complex.powers(w, K, prec);
@@ -780,7 +676,7 @@ bool LocalPoly::eval_cells(int variant, acb_t v, acb_t d1, acb_t d2, const acb_t
       const slong len = arb_poly_length(polys[j]);
       arb_dot(acb_realref(outs[j]), nullptr, 0, polys[j]->coeffs, 1, parts, 2, len, prec);
       arb_dot(acb_imagref(outs[j]), nullptr, 0, polys[j]->coeffs, 1, parts + 1, 2, len, prec);
-      acb_add_error_mag(outs[j], cell->tail + j);
+      acb_add_error_mag(outs[j], cell->e.tail + j);
     }
   }
   acb_clear(w);
@@ -803,7 +699,7 @@ void LocalPoly::eval_double(double t, double* v, double* d1, double* d2) const {
     const long wp = (64 + kGuardBits + FLINT_BITS - 1) / FLINT_BITS * FLINT_BITS;
     const CellPtr cp = get_cell(cache.store, p_, -1, wp, kPointLevel, cell_index(t, kPointLevel), false);
     const Cell& cell = *cp;
-    const double w = t - arf_get_d(cell.centre, ARF_RND_NEAR);
+    const double w = t - arf_get_d(cell.e.centre, ARF_RND_NEAR);
     for (std::size_t k = cell.mid.size(); k-- > 0;) {
       c[2] = c[2] * w + c[1];
       c[1] = c[1] * w + c[0];
@@ -832,7 +728,7 @@ void LocalPoly::eval_double_taylor(double t, int order, double* b) const {
     const CellPtr cp = get_cell(cache.store, p_, -1, wp, kPointLevel, cell_index(x, kPointLevel), false);
     arf_clear(x);
     a = cp->mid;
-    w = t - arf_get_d(cp->centre, ARF_RND_NEAR);
+    w = t - arf_get_d(cp->e.centre, ARF_RND_NEAR);
   }
   // Taylor shift by w (repeated synthetic division): after pass j, a[j] is
   // the j-th coefficient at t; only the first order + 1 passes are needed.

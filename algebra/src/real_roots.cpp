@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "root_refine.hpp"
+#include "uniparam/algebra/local_expansion.hpp"
 #include "uniparam/algebra/squarefree.hpp"
 #include "uniparam/core/ball_poly.hpp"
 #include "uniparam/core/budget.hpp"
@@ -731,23 +732,9 @@ Poly cell_poly(const Poly& G, const Cell& cell) {
 // over), then truncated again: away from G's complex roots only a few terms
 // matter, so a cell costs O(K^2) with K << n instead of an O(n^2) exact shift.
 
-/// A local expansion of G at a cell's centre (see above).
-struct Expansion {
-  arb_poly_t P;
-  mag_t tail0, tail1;
-  Expansion() {
-    arb_poly_init(P);
-    mag_init(tail0);
-    mag_init(tail1);
-  }
-  ~Expansion() {
-    arb_poly_clear(P);
-    mag_clear(tail0);
-    mag_clear(tail1);
-  }
-  Expansion(const Expansion&) = delete;
-  Expansion& operator=(const Expansion&) = delete;
-};
+/// A local expansion of G at a cell's centre (see above); its tails bound
+/// the dropped terms on |w| <= h.
+using Expansion = LocalExpansion;
 
 /// Owning mag_t for local use.
 struct MagVar {
@@ -761,46 +748,11 @@ struct MagVar {
 /// Drops the top terms of e (cell half-width h = 2^log2h) while their
 /// contributions sum |c_k| h^k to G and h sum k |c_k| h^(k-1) to h G' on
 /// |w| <= h stay below eps, adding their bounds to the tails. Keeps >= 2 terms.
-void truncate_expansion(Expansion& e, long log2h, const mag_t eps) {
-  const slong n = arb_poly_length(e.P);
-  MagVar s0, s1, n0, n1, a, c1;
-  slong K = n;
-  for (slong k = n - 1; k >= 2; --k) {
-    arb_get_mag(a.v, e.P->coeffs + k);
-    mag_mul_2exp_si(a.v, a.v, log2h * (k - 1));  // |c_k| h^(k-1)
-    mag_mul_ui(n1.v, a.v, static_cast<ulong>(k));
-    mag_add(n1.v, n1.v, s1.v);
-    mag_mul_2exp_si(a.v, a.v, log2h);  // |c_k| h^k
-    mag_add(n0.v, s0.v, a.v);
-    mag_mul_2exp_si(c1.v, n1.v, log2h);
-    if (mag_cmp(n0.v, eps) > 0 || mag_cmp(c1.v, eps) > 0) break;
-    mag_swap(s0.v, n0.v);
-    mag_swap(s1.v, n1.v);
-    K = k;
-  }
-  if (K < n) {
-    arb_poly_truncate(e.P, K);
-    mag_add(e.tail0, e.tail0, s0.v);
-    mag_add(e.tail1, e.tail1, s1.v);
-  }
-}
+void truncate_expansion(Expansion& e, long log2h, const mag_t eps) { truncate_local_expansion(e, log2h, eps, 2); }
 
 /// Upper bounds var0 = sum_{k>=1} |c_k| h^k and var1 = sum_{k>=2} k |c_k| h^(k-1).
 void variations(const Expansion& e, long log2h, mag_t var0, mag_t var1) {
-  mag_zero(var0);
-  mag_zero(var1);
-  MagVar a, b;
-  const slong n = arb_poly_length(e.P);
-  for (slong k = 1; k < n; ++k) {
-    arb_get_mag(a.v, e.P->coeffs + k);
-    mag_mul_2exp_si(a.v, a.v, log2h * (k - 1));
-    if (k >= 2) {
-      mag_mul_ui(b.v, a.v, static_cast<ulong>(k));
-      mag_add(var1, var1, b.v);
-    }
-    mag_mul_2exp_si(a.v, a.v, log2h);
-    mag_add(var0, var0, a.v);
-  }
+  local_expansion_variation(var0, var1, e, log2h);
 }
 
 /// Sign of G at the cell end m + side * h (side = +-1): from the expansion when
@@ -814,7 +766,7 @@ int end_sign(const Expansion& e, const Poly& G, const Cell& cell, int side, long
     if (side < 0) arb_neg(acc.v, acc.v);
     arb_add(acc.v, acc.v, e.P->coeffs + k, prec);
   }
-  arb_add_error_mag(acc.v, e.tail0);
+  arb_add_error_mag(acc.v, e.tail + 0);
   if (arb_is_positive(acc.v)) return 1;
   if (arb_is_negative(acc.v)) return -1;
   const Integer c = side < 0 ? cell.c : cell.c + Integer(1);
@@ -866,8 +818,8 @@ int end_test(const Expansion& e, long log2h, int dir, long prec) {
     const int sigma = arb_is_positive(B->coeffs + 1) ? 1 : arb_is_negative(B->coeffs + 1) ? -1 : 0;
     if (sigma != 0) {
       MagVar b0, b1, a, m;
-      mag_set(b0.v, e.tail0);
-      mag_set(b1.v, e.tail1);
+      mag_set(b0.v, e.tail + 0);
+      mag_set(b1.v, e.tail + 1);
       for (slong k = 2; k < n; ++k) {
         if (sigma > 0 ? arb_is_nonnegative(B->coeffs + k) : arb_is_nonpositive(B->coeffs + k)) continue;
         arb_get_mag(a.v, B->coeffs + k);
@@ -915,16 +867,9 @@ std::unique_ptr<Expansion> anchor_expansion(const Poly& G, const Cell& cell, Anc
   const slong n = G.degree();
   const long L = cell.k + 1;
   // s(x) = 2^(L n) G(x / 2^L) shifted by 2c + 1: G(m + w) = 2^(-L n) s(2^L w).
-  Poly s;
-  {
-    Poly q(G);
-    fmpz* c = q.get()->coeffs;
-    for (slong i = 0; i <= n; ++i) fmpz_mul_2exp(c + i, c + i, static_cast<ulong>(L * (n - i)));
-    Integer J;
-    fmpz_mul_2exp(J.get(), cell.c.get(), 1);
-    fmpz_add_ui(J.get(), J.get(), 1);
-    fmpz_poly_taylor_shift(s.get(), q.get(), J.get());
-  }
+  const int level = static_cast<int>(cell.k);
+  const unsigned long long index = fmpz_get_ui(cell.c.get());
+  const Poly s = local_shift_exact(G, level, index);
   // The terms on the cell (|w| <= 2^-L) are s_j 2^(-L n): at most 2^log_s in all.
   long bits = 0;
   for (slong j = 0; j <= n; ++j) bits = std::max<long>(bits, static_cast<long>(fmpz_bits(s.get()->coeffs + j)));
@@ -949,13 +894,7 @@ std::unique_ptr<Expansion> anchor_expansion(const Poly& G, const Cell& cell, Anc
   mag_set_ui_2exp_si(an.eps.v, 1, an.log_v - kExtraBits);
   const long wp = limb_bits(std::max(64L, log_s - an.log_v + kExtraBits + 32));
   auto e = std::make_unique<Expansion>();
-  arb_poly_fit_length(e->P, n + 1);
-  for (slong j = 0; j <= n; ++j) {
-    arb_set_round_fmpz(e->P->coeffs + j, s.get()->coeffs + j, wp);
-    arb_mul_2exp_si(e->P->coeffs + j, e->P->coeffs + j, L * (j - n));
-  }
-  _arb_poly_set_length(e->P, n + 1);
-  _arb_poly_normalise(e->P);
+  set_local_expansion(*e, s, n, level, index, wp);
   truncate_expansion(*e, -L, an.eps.v);
   return e;
 }
@@ -1008,12 +947,12 @@ void subdivide(const Poly& G, std::vector<Cell>& leaves, std::vector<Cell>& exac
     const long log_scale = mag_is_finite(rad.v) && !mag_is_zero(rad.v) ? fmpz_get_si(MAG_EXPREF(rad.v)) : an.log_v;
     const long cwp = limb_bits(std::max(64L, log_scale - an.log_v + kExtraBits + 32));
     // G on the cell: P_0 +- (var0 + tail0)
-    mag_add(err.v, var0.v, e.tail0);
+    mag_add(err.v, var0.v, e.tail + 0);
     if (len > 0) arb_get_mag_lower(lo.v, e.P->coeffs);
     else mag_zero(lo.v);
     if (mag_cmp(lo.v, err.v) > 0) continue;  // no root in the closed cell
     // G' on the cell: P_1 +- (var1 + tail1)
-    mag_add(err.v, var1.v, e.tail1);
+    mag_add(err.v, var1.v, e.tail + 1);
     if (len > 1) arb_get_mag_lower(lo.v, e.P->coeffs + 1);
     else mag_zero(lo.v);
     if (mag_cmp(lo.v, err.v) > 0) {  // G monotone: at most one root
@@ -1036,7 +975,7 @@ void subdivide(const Poly& G, std::vector<Cell>& leaves, std::vector<Cell>& exac
     // below G's variation on the cell; else a new anchor, or the exact VCA.
     mag_zero(rad.v);
     if (len > 0) mag_set(rad.v, arb_radref(e.P->coeffs));
-    mag_add(rad.v, rad.v, e.tail0);
+    mag_add(rad.v, rad.v, e.tail + 0);
     mag_mul_2exp_si(rad.v, rad.v, 16);
     const bool inaccurate = mag_cmp(rad.v, var0.v) > 0;
     if (sc.cell.k >= max_depth || cells > cell_cap || (inaccurate && (sc.fresh || anchors.size() >= anchor_cap))) {
@@ -1057,7 +996,7 @@ void subdivide(const Poly& G, std::vector<Cell>& leaves, std::vector<Cell>& exac
     if (!mid_may_vanish) {
       ArbVar g;
       arb_set(g.v, e.P->coeffs);
-      arb_add_error_mag(g.v, e.tail0);
+      arb_add_error_mag(g.v, e.tail + 0);
       mid_may_vanish = arb_contains_zero(g.v);
     }
     if (mid_may_vanish) {
@@ -1066,10 +1005,7 @@ void subdivide(const Poly& G, std::vector<Cell>& leaves, std::vector<Cell>& exac
     }
     for (int side : {1, -1}) {  // the right child first: the left is processed first
       auto ch = std::make_unique<Expansion>();
-      arb_poly_set_round(ch->P, e.P, cwp);
-      taylor_shift_pow2(ch->P, ch->P, log2h - 1, side, cwp);
-      mag_set(ch->tail0, e.tail0);
-      mag_set(ch->tail1, e.tail1);
+      local_expansion_child(*ch, e, side, cwp);
       truncate_expansion(*ch, log2h - 1, an.eps.v);
       stack.push_back({{side < 0 ? c2 : c2 + Integer(1), k2}, std::move(ch), sc.anchor, false});
     }
