@@ -16,6 +16,7 @@
 #include "uniparam/algebra/double_centred.hpp"
 #include "uniparam/algebra/local_expansion.hpp"
 #include "uniparam/core/error.hpp"
+#include "uniparam/core/horner_loss.hpp"
 
 namespace uniparam {
 
@@ -367,7 +368,7 @@ struct LocalPoly::Cache {
   CellStore store;  // store.mu also guards `deflated`
   // fallback for p / (t - roots[i]): the deflated power basis, per (i, prec)
   std::map<std::pair<int, long>, std::shared_ptr<const BallPoly>> deflated;
-  // Set once, at construction (see horner_loss_bits):
+  // Set once, at construction (from horner_loss_bits, core/horner_loss.hpp):
   // eval_double may take Horner's rule on the power basis
   bool double_horner = false;
   // wide real-centred balls take the centred form in double (when usable)
@@ -375,37 +376,6 @@ struct LocalPoly::Cache {
 };
 
 namespace {
-
-// UNCERTIFIED estimate (it only chooses a path): the bits that Horner's rule
-// in double on the power basis loses on [0, 1], log2 of sum |c_k| over the
-// largest |value| on 33 points of [0, 1], the most of p, p' and p'' (the
-// Bezier curves' power bases lose ~10 bits from degree 12, dense random
-// coefficients ~2). Infinite for a polynomial that vanishes on the grid, or
-// whose coefficients overflow a double.
-double horner_loss_bits(const Poly& p) {
-  const long n = p.degree();
-  std::vector<double> c(static_cast<std::size_t>(std::max(n + 1, 0L)));
-  for (long k = 0; k <= n; ++k) c[static_cast<std::size_t>(k)] = fmpz_get_d(p.get()->coeffs + k);
-  double loss = 0;
-  std::size_t len = c.size();  // c[0 .. len): the coefficients of p^(j)
-  for (int j = 0; j < 3 && len > 0; ++j) {
-    if (j > 0) {  // the derivative (in double: this is an estimate anyway)
-      for (std::size_t k = 1; k < len; ++k) c[k - 1] = c[k] * static_cast<double>(k);
-      if (--len == 0) break;
-    }
-    double sum = 0, big = 0;
-    for (std::size_t k = 0; k < len; ++k) sum += std::fabs(c[k]);
-    for (int i = 0; i <= 32; ++i) {
-      const double t = i / 32.0;
-      double v = 0;
-      for (std::size_t k = len; k-- > 0;) v = v * t + c[k];
-      big = std::max(big, std::fabs(v));
-    }
-    if (!std::isfinite(sum) || !std::isfinite(big) || !(big > 0)) return HUGE_VAL;
-    loss = std::max(loss, std::log2(sum / big));
-  }
-  return loss;
-}
 
 // eval_double takes Horner's rule on the power basis up to this degree and
 // loss (horner_loss_bits): there the cells cost more than they save (their
@@ -435,7 +405,7 @@ LocalPoly::LocalPoly(const Poly& p)
     : p_(p), b_(p), b1_(p.derivative()), b2_(p.derivative().derivative()), cache_(std::make_shared<Cache>()) {
   const long n = p.degree();
   if (n < 0 || n > std::max(kDoubleHornerMaxDegree, DoubleCentredForm::kMaxDegree)) return;
-  const double loss = horner_loss_bits(p);
+  const double loss = horner_loss_bits(p, 0, 1, 2);
   cache_->double_horner = n <= kDoubleHornerMaxDegree && loss <= kDoubleHornerMaxLoss;
   // (eval takes it above kMinLength only; eval_disk at any length)
   if (loss <= kDoubleCentredMaxLoss) cache_->centred = DoubleCentredForm(p);
