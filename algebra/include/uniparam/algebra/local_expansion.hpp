@@ -4,7 +4,7 @@
 //
 // The one expansion engine of the algebra layer: LocalPoly's cached cells
 // (local_poly.hpp: evaluation on balls) and the certified ball subdivision
-// of the real-root isolation (real_roots.cpp) both build, shift and
+// of the real-root isolation (root_subdivision.cpp) both build, shift and
 // truncate their expansions here. It depends on core/ only (no
 // RealAlgebraic), so root isolation can use it; deflation by a root takes
 // an enclosure of the root.
