@@ -1,20 +1,21 @@
+// LocalPoly (local_poly.hpp): the evaluation paths (power basis and centred
+// forms, the centred form in double, the cells of local_cells.hpp) and the
+// deflation by a RealAlgebraic root.
 #include "uniparam/algebra/local_poly.hpp"
 
-#include <arb_poly.h>
-#include <flint/fmpz_poly.h>
+#include <acb_poly.h>
 
 #include <algorithm>
 #include <cmath>
-#include <future>
 #include <map>
+#include <memory>
 #include <mutex>
-#include <optional>
-#include <unordered_map>
+#include <utility>
 #include <vector>
 
+#include "local_cells.hpp"
 #include "uniparam/algebra/deflation.hpp"
 #include "uniparam/algebra/double_centred.hpp"
-#include "local_cells.hpp"
 #include "uniparam/core/ball_regions.hpp"
 #include "uniparam/core/error.hpp"
 #include "uniparam/core/horner_loss.hpp"
