@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "root_refine.hpp"
+#include "uniparam/core/ball_regions.hpp"
 #include "uniparam/core/decimal.hpp"
 #include "uniparam/core/error.hpp"
 
@@ -74,10 +75,11 @@ RealAlgebraic::RealAlgebraic(const IsolatedRoot& r) { init(r, nullptr); }
 namespace {
 
 // The sign of lambda f(x) from sev's enclosure at 64 bits on a ball of
-// radius 2^-23 around x, 0 when the enclosure does not exclude 0
-// (undecided). Certified as sev's contract is. The radius, as in the
-// interval Newton steps (real_roots.cpp): a narrower ball would make a
-// factored evaluator build full-precision expansions near every end.
+// radius 2^(kCoarseBallLog2 + 1) = 2^-23 around x, 0 when the enclosure does
+// not exclude 0 (undecided). Certified as sev's contract is. The radius, as
+// in the interval Newton steps (root_refine.cpp): a ball that is not wide
+// (core/ball_regions.hpp) would make a factored evaluator build
+// full-precision expansions near every end.
 int evaluator_sign(const ScaledEvaluator& sev, const Rational& x) {
   arb_t X, v;
   arb_init(X);
@@ -85,7 +87,7 @@ int evaluator_sign(const ScaledEvaluator& sev, const Rational& x) {
   arb_set_fmpq(X, x.get(), 64);
   // widened, not replaced: the rounding of a far x (|x| > 2^40) exceeds
   // 2^-23, and a ball without x could decide the wrong sign
-  if (mag_cmp_2exp_si(arb_radref(X), -23) < 0) arb_add_error_2exp_si(X, -23);
+  if (mag_cmp_2exp_si(arb_radref(X), kCoarseBallLog2 + 1) < 0) arb_add_error_2exp_si(X, kCoarseBallLog2 + 1);
   sev.ev(v, nullptr, X, 64);
   const int s = !arb_is_finite(v) ? 0 : arb_is_positive(v) ? 1 : arb_is_negative(v) ? -1 : 0;
   arb_clear(X);

@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "uniparam/core/error.hpp"
+#include "uniparam/core/horner_loss.hpp"
 
 namespace uniparam {
 namespace {
@@ -193,30 +194,11 @@ std::vector<C> aberth(const Poly& p, bool* converged, int max_sweeps, bool near_
   return out;
 }
 
-/// log2 of sum |c_k| over the largest |p| on 33 points of [lo, lo + 2] (lo
-/// = -1) or of [0, 1] (lo = 0), in double on p's coefficients scaled to the
-/// largest (the scale cancels in the ratio; underflowed ones count as 0);
-/// infinity when p vanishes at every point.
-double horner_loss(const Poly& p, int lo) {
-  const long n = p.degree();
-  const std::vector<double> c = scaled_doubles(p);
-  double sum = 0, peak = 0;
-  for (double ck : c) sum += std::fabs(ck);
-  const double step = lo < 0 ? 1.0 / 16 : 1.0 / 32;
-  for (int i = 0; i <= 32; ++i) {
-    const double x = lo + i * step;
-    double h = c[n];
-    for (long k = n; k-- > 0;) h = h * x + c[k];
-    peak = std::max(peak, std::fabs(h));
-  }
-  return peak > 0 ? std::log2(sum / peak) : std::numeric_limits<double>::infinity();
-}
-
 }  // namespace
 
 double power_basis_loss(const Poly& p) {
   if (p.is_zero()) throw InvalidArgument("power_basis_loss: the zero polynomial");
-  return horner_loss(p, 0);
+  return horner_loss_bits(p, 0, 1, 0);
 }
 
 std::vector<C> approximate_complex_roots(const Poly& p, bool* converged, int max_sweeps) {
@@ -228,7 +210,7 @@ std::vector<C> approximate_roots_near_unit_interval(const Poly& p, double max_lo
   if (p.is_zero()) throw InvalidArgument("approximate_roots_near_unit_interval: the zero polynomial has no finite root set");
   if (converged) *converged = false;
   const Poly q = centred_at_half(p);  // q(s) = 2^n p((1 + s) / 2)
-  const double l = horner_loss(q, -1);
+  const double l = horner_loss_bits(q, -1, 1, 0);
   if (loss) *loss = l;
   if (!(l <= max_loss)) return {};
   std::vector<C> z = aberth(q, converged, 60, true);

@@ -1,20 +1,24 @@
+// LocalPoly (local_poly.hpp): the evaluation paths (power basis and centred
+// forms, the centred form in double, the cells of local_cells.hpp) and the
+// deflation by a RealAlgebraic root.
 #include "uniparam/algebra/local_poly.hpp"
 
-#include <arb_poly.h>
-#include <flint/fmpz_poly.h>
+#include <acb_poly.h>
 
 #include <algorithm>
 #include <cmath>
-#include <future>
 #include <map>
+#include <memory>
 #include <mutex>
-#include <optional>
-#include <unordered_map>
+#include <utility>
 #include <vector>
 
+#include "local_cells.hpp"
 #include "uniparam/algebra/deflation.hpp"
 #include "uniparam/algebra/double_centred.hpp"
+#include "uniparam/core/ball_regions.hpp"
 #include "uniparam/core/error.hpp"
+#include "uniparam/core/horner_loss.hpp"
 
 namespace uniparam {
 
@@ -99,51 +103,15 @@ void centred_outputs(acb_ptr outs[3], const acb_poly_t c, const mag_t r, bool re
   mag_clear(err);
 }
 
-// Radius of a complex ball: an upper bound of |t - mid z| over z.
-void ball_radius(mag_t r, const acb_t z) { mag_hypot(r, arb_radref(acb_realref(z)), arb_radref(acb_imagref(z))); }
-
 // Polynomials of at most this length are evaluated in the power basis: the
 // cells cost more than they save (and low degrees lose little to
 // cancellation).
 constexpr long kMinLength = 3;
-// Cells up to this level are computed by an exact integer Taylor shift;
-// deeper ones from their parent's (truncated) expansion by a ball shift,
-// O(K^2) at the working precision instead of O(n^2) on integers of about
-// (level + 1) n bits. Up to kMaxExactLevel a ball-shifted cell that lost
-// accuracy (accurate() below) is rebuilt exactly.
-constexpr int kExactLevel = 3;
-constexpr int kMaxExactLevel = 6;
-// Finest level (cells of width 2^-40).
-constexpr int kMaxLevel = 40;
-// Level of the cells for narrow balls (quadrature nodes): 64 cells on [0, 1].
-constexpr int kPointLevel = 6;
-// Wide balls (radius >= 2^-24: the quadrature's error bounds, whose
-// enclosures are as wide as p's variation on them) use coarse cells,
-// truncated at 2^-kCoarseBits of the cell's scale instead of 2^-wp: far fewer
-// terms, so far cheaper shifts and evaluations (rational space curves of
-// degree 150: a quarter fewer instructions for the uniformity). Coarse cells of the
-// exact levels are the fine ones truncated; deeper ones are ball shifts of
-// their coarse parent, checked by accurate() as fine cells are.
-constexpr long kCoarseBits = 24;
-// Working precision of the coarse cells' shifts (one limb): their rounding
-// must stay below 2^-kCoarseBits of the cell's scale after the bits a shift
-// loses, which accurate() checks.
-constexpr long kCoarsePrec = 64;
-// The level that surely holds a wide ball assumes its midpoint anywhere in
-// the cell; one level deeper is tried first (it holds a ball centred near
-// its cell's centre, e.g. an ellipse around a dyadic subinterval): a disc
-// about two thirds as large, so tighter bounds and fewer failed ellipses
-// (bez-rat-space 150 uniformity: 266 quadrature steps instead of 328).
-constexpr int kWideDeeper = 1;
-// Extra bits of the cells' working precision over the caller's: deep cells
-// are shifted from their parents, which costs a few bits per level.
-constexpr long kGuardBits = 12;
-// Bounded memory: the cache is emptied when it holds more cells.
-constexpr std::size_t kMaxCells = 20000;
 
 // Enclosures of p(z), and p'(z), p''(z) where d1, d2 are non-null, for a
 // polynomial with ball coefficients p and its derivatives p1 = p', p2 = p''
-// (the power-basis fallback). Narrow balls (radius < 2^-24) and lengths <= 2:
+// (the power-basis fallback). Narrow balls (radius < 2^kCoarseBallLog2,
+// core/ball_regions.hpp) and lengths <= 2:
 // Horner. Wide balls: the centred form at the exact midpoint m of z,
 //     p^(j)(z) in j! c_j + sum_{k > j} k!/(k-j)! |c_k| r^(k-j) (unit disc),
 // c_k = p^(k)(m)/k! by one Taylor shift (centred_shift).
@@ -153,7 +121,7 @@ void centred_eval(acb_t v, acb_t d1, acb_t d2, const BallPoly& p, const BallPoly
   mag_init(r);
   ball_radius(r, z);
   // Narrow balls (the quadrature's nodes) and low degrees: Horner is tight.
-  if (p.length() <= 2 || mag_cmp_2exp_si(r, -24) < 0) {
+  if (p.length() <= 2 || mag_cmp_2exp_si(r, kCoarseBallLog2) < 0) {
     mag_clear(r);
     p.evaluate(v, z, prec);
     if (d1) p1.evaluate(d1, z, prec);
@@ -171,256 +139,20 @@ void centred_eval(acb_t v, acb_t d1, acb_t d2, const BallPoly& p, const BallPoly
 
 }  // namespace
 
-bool is_wide_ball(const acb_t z) {
-  return mag_cmp_2exp_si(arb_radref(acb_realref(z)), -24) >= 0 || mag_cmp_2exp_si(arb_radref(acb_imagref(z)), -24) >= 0;
-}
-
-// ---------------------------------------------------------------------------
-
-namespace {
-
-/// One cell: p(c + w) = P(w) + T(w) with |T^(j)(w)| <= tail[j] for
-/// |w| <= 2h, h = 2^-(level+1); P1 = P', P2 = P''.
-struct Cell {
-  int level = 0;
-  arf_t centre;
-  arb_poly_t P, P1, P2;
-  mag_struct tail[3];
-  std::vector<double> mid;  // midpoints of P in double (eval_double)
-  Cell() {
-    arf_init(centre);
-    arb_poly_init(P);
-    arb_poly_init(P1);
-    arb_poly_init(P2);
-    for (auto& t : tail) mag_init(&t);
-  }
-  ~Cell() {
-    arf_clear(centre);
-    arb_poly_clear(P);
-    arb_poly_clear(P1);
-    arb_poly_clear(P2);
-    for (auto& t : tail) mag_clear(&t);
-  }
-  Cell(const Cell&) = delete;
-  Cell& operator=(const Cell&) = delete;
-};
-
-struct MagBox {
-  mag_t v;
-  MagBox() { mag_init(v); }
-  ~MagBox() { mag_clear(v); }
-  MagBox(const MagBox&) = delete;
-  MagBox& operator=(const MagBox&) = delete;
-};
-
-struct CellKey {
-  long prec;
-  int level;
-  int variant;
-  unsigned long long j;
-  bool coarse;
-  bool operator==(const CellKey& o) const {
-    return prec == o.prec && level == o.level && variant == o.variant && j == o.j && coarse == o.coarse;
-  }
-};
-struct CellKeyHash {
-  std::size_t operator()(const CellKey& k) const {
-    return std::hash<unsigned long long>()(k.j * 1000003ULL ^ static_cast<unsigned long long>(k.level) * 7919ULL ^
-                                           static_cast<unsigned long long>(k.prec) * 104729ULL ^
-                                           static_cast<unsigned long long>(k.variant + 1) * 15485863ULL ^
-                                           static_cast<unsigned long long>(k.coarse));
-  }
-};
-
-// Drops the high terms of the expansion c (in w = t - centre, on cells of
-// half-width 2^-(level+1)) whose contribution to p, p', p'' on |w| <= 2h is
-// below 2^-wp times the scale sum |c_k| h^k of p on the cell, adding their
-// bound to tail[j]. Keeps at least 3 terms.
-void truncate(Cell& cell, long wp) {
-  const slong n = arb_poly_length(cell.P);
-  if (n <= 3) return;
-  mag_t h, rho, scale, eps, a, t0, t1, t2, n0, n1, n2, c1, c2;
-  for (mag_struct* m : {h, rho, scale, eps, a, t0, t1, t2, n0, n1, n2, c1, c2}) mag_init(m);
-  mag_one(h);
-  mag_mul_2exp_si(h, h, -(cell.level + 1));
-  mag_mul_2exp_si(rho, h, 1);
-  // rpow[k] = rho^k (upper bounds; rho is a power of two)
-  std::vector<MagBox> rpow(static_cast<std::size_t>(n));
-  mag_one(rpow[0].v);
-  for (slong k = 1; k < n; ++k) mag_mul(rpow[static_cast<std::size_t>(k)].v, rpow[static_cast<std::size_t>(k - 1)].v, rho);
-  // scale = sum |c_k| h^k = sum |c_k| rho^k 2^-k (it only sets the tolerance)
-  for (slong k = 0; k < n; ++k) {
-    arb_get_mag(a, cell.P->coeffs + k);
-    mag_mul(a, a, rpow[static_cast<std::size_t>(k)].v);
-    mag_mul_2exp_si(a, a, -k);
-    mag_add(scale, scale, a);
-  }
-  mag_mul_2exp_si(eps, scale, -wp);
-  // Suffix sums from the top: t0 = sum_{k >= K} |c_k| rho^k,
-  // t1 = sum k |c_k| rho^(k-1), t2 = sum k (k-1) |c_k| rho^(k-2); K is
-  // lowered while t0, t1 rho and t2 rho^2 stay below eps.
-  slong K = n;
-  for (slong k = n - 1; k >= 3; --k) {
-    arb_get_mag(a, cell.P->coeffs + k);
-    mag_mul(a, a, rpow[static_cast<std::size_t>(k - 2)].v);  // |c_k| rho^(k-2)
-    mag_mul(n2, a, rho);
-    mag_mul(n2, n2, rho);
-    mag_add(n0, t0, n2);  // + |c_k| rho^k
-    mag_mul(n1, a, rho);
-    mag_mul_ui(n1, n1, static_cast<ulong>(k));
-    mag_add(n1, t1, n1);  // + k |c_k| rho^(k-1)
-    mag_mul_ui(n2, a, static_cast<ulong>(k * (k - 1)));
-    mag_add(n2, t2, n2);  // + k (k-1) |c_k| rho^(k-2)
-    mag_mul(c1, n1, rho);
-    mag_mul(c2, n2, rho);
-    mag_mul(c2, c2, rho);
-    if (mag_cmp(n0, eps) > 0 || mag_cmp(c1, eps) > 0 || mag_cmp(c2, eps) > 0) break;
-    mag_swap(t0, n0);
-    mag_swap(t1, n1);
-    mag_swap(t2, n2);
-    K = k;
-  }
-  if (K < n) {
-    arb_poly_truncate(cell.P, K);
-    mag_add(cell.tail + 0, cell.tail + 0, t0);
-    mag_add(cell.tail + 1, cell.tail + 1, t1);
-    mag_add(cell.tail + 2, cell.tail + 2, t2);
-  }
-  for (mag_struct* m : {h, rho, scale, eps, a, t0, t1, t2, n0, n1, n2, c1, c2}) mag_clear(m);
-}
-
-// True when a ball-shifted cell kept its accuracy: the error of its
-// expansion on the disc |w| <= 2h, sum rad(c_k) (2h)^k + tail, is at most
-// 2^-(wp - kGuardBits) times its scale sum |c_k| h^k (wp - kGuardBits is at
-// least the caller's precision). It fails where p is much larger on the
-// parent's disc than on this cell (near a cluster of p's zeros).
-bool accurate(const Cell& cell, long wp) {
-  const slong n = arb_poly_length(cell.P);
-  mag_t h, rho, hk, rk, a, scale, err;
-  for (mag_struct* m : {h, rho, hk, rk, a, scale, err}) mag_init(m);
-  mag_one(h);
-  mag_mul_2exp_si(h, h, -(cell.level + 1));
-  mag_mul_2exp_si(rho, h, 1);
-  mag_one(hk);
-  mag_one(rk);
-  mag_set(err, cell.tail + 0);
-  for (slong k = 0; k < n; ++k) {
-    arf_get_mag(a, arb_midref(cell.P->coeffs + k));
-    mag_mul(a, a, hk);
-    mag_add(scale, scale, a);
-    mag_mul(a, arb_radref(cell.P->coeffs + k), rk);
-    mag_add(err, err, a);
-    mag_mul(hk, hk, h);
-    mag_mul(rk, rk, rho);
-  }
-  mag_mul_2exp_si(scale, scale, -(wp - kGuardBits));
-  const bool ok = !mag_is_zero(scale) && mag_cmp(err, scale) <= 0;
-  for (mag_struct* m : {h, rho, hk, rk, a, scale, err}) mag_clear(m);
-  return ok;
-}
-
-using CellPtr = std::shared_ptr<const Cell>;
-using CellMap = std::unordered_map<CellKey, CellPtr, CellKeyHash>;
-
-// A vector of Arb balls that only grows (no allocation per evaluation).
-template <typename Ptr, Ptr (*Init)(slong), void (*Clear)(Ptr, slong)>
-struct Growing {
-  Ptr v = nullptr;
-  slong cap = 0;
-  Growing() = default;
-  Growing(const Growing&) = delete;
-  Growing& operator=(const Growing&) = delete;
-  ~Growing() {
-    if (v) Clear(v, cap);
-  }
-  Ptr at_least(slong n) {
-    if (n > cap) {
-      if (v) Clear(v, cap);
-      cap = std::max(n, 2 * cap);
-      v = Init(cap);
-    }
-    return v;
-  }
-};
-
-// Scratch for the powers of w, one per thread. The powers of the last w
-// (and precision) are kept: a speed evaluates all its factors at the same
-// z, and factors of similar degree use cells with the same centre at the
-// same level (the level depends on z alone), so they share w = z - c and
-// its powers (7.5% of a degree-150 rational space curve's radical,
-// one thread). Reused powers are the ones recomputing would give (the same
-// products of the same balls at the same precision), so results do not
-// change.
-template <typename Ptr, Ptr (*Init)(slong), void (*Clear)(Ptr, slong), typename Ball, void (*BallInit)(Ball*),
-          void (*BallClear)(Ball*), int (*Equal)(const Ball*, const Ball*), void (*Set)(Ball*, const Ball*),
-          void (*One)(Ball*), void (*Mul)(Ball*, const Ball*, const Ball*, slong)>
-struct PowerMemo {
-  Growing<Ptr, Init, Clear> pw;
-  Ball w;           // the ball whose powers pw holds
-  long prec = 0;    // their precision
-  slong valid = 0;  // pw[0..valid) = w^0..w^(valid-1)
-  PowerMemo() { BallInit(&w); }
-  PowerMemo(const PowerMemo&) = delete;
-  PowerMemo& operator=(const PowerMemo&) = delete;
-  ~PowerMemo() { BallClear(&w); }
-  /// w^0, ..., w^(n-1) at precision p (n >= 1).
-  Ptr powers(const Ball* x, slong n, long p) {
-    if (n > pw.cap) valid = 0;  // at_least reallocates
-    Ptr v = pw.at_least(n);
-    if (valid == 0 || p != prec || !Equal(&w, x)) {
-      Set(&w, x);
-      prec = p;
-      One(v);
-      valid = 1;
-    }
-    for (; valid < n; ++valid) Mul(v + valid, v + valid - 1, &w, p);
-    return v;
-  }
-};
-
-struct Scratch {
-  PowerMemo<arb_ptr, _arb_vec_init, _arb_vec_clear, arb_struct, arb_init, arb_clear, arb_equal, arb_set, arb_one,
-            arb_mul>
-      real;
-  PowerMemo<acb_ptr, _acb_vec_init, _acb_vec_clear, acb_struct, acb_init, acb_clear, acb_equal, acb_set, acb_one,
-            acb_mul>
-      complex;
-};
-
-Scratch& scratch() {
-  thread_local Scratch s;
-  return s;
-}
-
-// The cells of one polynomial, shared by a LocalPoly and its copies (threads
-// included). `mu` guards every member. A cell is built outside the lock by
-// the first thread that asks for it, once: its key is in `building` until it
-// is in `cells`, and other threads asking for it wait for that build (in
-// parallel phases, two workers often need the same cell at once; building it
-// twice repeated its exact shift). Waiting cannot deadlock: a build waits
-// only on cells of a lower level or, for a coarse cell, the fine cell of the
-// same key, so the waits follow a well-founded order.
-struct CellStore {
-  std::mutex mu;
-  CellMap cells;
-  std::unordered_map<CellKey, std::shared_future<CellPtr>, CellKeyHash> building;
-  // variant i >= 0 expands p / (t - roots[i].value); value lies in
-  // [mid - rad, mid + rad] (doubles, for DoubleCentredForm::eval_deflated)
+struct LocalPoly::Cache {
+  // the cells of p and of its deflations: variant i is p / (t - roots[i].value)
+  detail::LocalCells cells;
+  std::mutex mu;  // guards roots and deflated
+  // roots[i].value lies in [mid - rad, mid + rad] (doubles, for
+  // DoubleCentredForm::eval_deflated)
   struct Root {
     RealAlgebraic value;
     double mid, rad;
   };
   std::vector<Root> roots;
-  std::size_t builds = 0;            // builds started (LocalPoly::builds)
-};
-
-}  // namespace
-
-struct LocalPoly::Cache {
-  CellStore store;  // store.mu also guards `deflated`
   // fallback for p / (t - roots[i]): the deflated power basis, per (i, prec)
   std::map<std::pair<int, long>, std::shared_ptr<const BallPoly>> deflated;
-  // Set once, at construction (see horner_loss_bits):
+  // Set once, at construction (from horner_loss_bits, core/horner_loss.hpp):
   // eval_double may take Horner's rule on the power basis
   bool double_horner = false;
   // wide real-centred balls take the centred form in double (when usable)
@@ -428,37 +160,6 @@ struct LocalPoly::Cache {
 };
 
 namespace {
-
-// UNCERTIFIED estimate (it only chooses a path): the bits that Horner's rule
-// in double on the power basis loses on [0, 1], log2 of sum |c_k| over the
-// largest |value| on 33 points of [0, 1], the most of p, p' and p'' (the
-// Bezier curves' power bases lose ~10 bits from degree 12, dense random
-// coefficients ~2). Infinite for a polynomial that vanishes on the grid, or
-// whose coefficients overflow a double.
-double horner_loss_bits(const Poly& p) {
-  const long n = p.degree();
-  std::vector<double> c(static_cast<std::size_t>(std::max(n + 1, 0L)));
-  for (long k = 0; k <= n; ++k) c[static_cast<std::size_t>(k)] = fmpz_get_d(p.get()->coeffs + k);
-  double loss = 0;
-  std::size_t len = c.size();  // c[0 .. len): the coefficients of p^(j)
-  for (int j = 0; j < 3 && len > 0; ++j) {
-    if (j > 0) {  // the derivative (in double: this is an estimate anyway)
-      for (std::size_t k = 1; k < len; ++k) c[k - 1] = c[k] * static_cast<double>(k);
-      if (--len == 0) break;
-    }
-    double sum = 0, big = 0;
-    for (std::size_t k = 0; k < len; ++k) sum += std::fabs(c[k]);
-    for (int i = 0; i <= 32; ++i) {
-      const double t = i / 32.0;
-      double v = 0;
-      for (std::size_t k = len; k-- > 0;) v = v * t + c[k];
-      big = std::max(big, std::fabs(v));
-    }
-    if (!std::isfinite(sum) || !std::isfinite(big) || !(big > 0)) return HUGE_VAL;
-    loss = std::max(loss, std::log2(sum / big));
-  }
-  return loss;
-}
 
 // eval_double takes Horner's rule on the power basis up to this degree and
 // loss (horner_loss_bits): there the cells cost more than they save (their
@@ -488,7 +189,7 @@ LocalPoly::LocalPoly(const Poly& p)
     : p_(p), b_(p), b1_(p.derivative()), b2_(p.derivative().derivative()), cache_(std::make_shared<Cache>()) {
   const long n = p.degree();
   if (n < 0 || n > std::max(kDoubleHornerMaxDegree, DoubleCentredForm::kMaxDegree)) return;
-  const double loss = horner_loss_bits(p);
+  const double loss = horner_loss_bits(p, 0, 1, 2);
   cache_->double_horner = n <= kDoubleHornerMaxDegree && loss <= kDoubleHornerMaxLoss;
   // (eval takes it above kMinLength only; eval_disk at any length)
   if (loss <= kDoubleCentredMaxLoss) cache_->centred = DoubleCentredForm(p);
@@ -499,293 +200,9 @@ LocalPoly::LocalPoly(LocalPoly&&) noexcept = default;
 LocalPoly& LocalPoly::operator=(LocalPoly&&) noexcept = default;
 LocalPoly::~LocalPoly() = default;
 
-std::size_t LocalPoly::cells() const {
-  if (!cache_) return 0;  // moved from
-  std::lock_guard<std::mutex> lock(cache_->store.mu);
-  return cache_->store.cells.size();
-}
+std::size_t LocalPoly::cells() const { return cache_ ? cache_->cells.cells() : 0; }  // 0: moved from
 
-std::size_t LocalPoly::builds() const {
-  if (!cache_) return 0;  // moved from
-  std::lock_guard<std::mutex> lock(cache_->store.mu);
-  return cache_->store.builds;
-}
-
-namespace {
-
-// A cell's centre is its parent's plus child_side(j) 2^-(level+1): the odd
-// index is the right half.
-int child_side(unsigned long long j) { return (j & 1) ? 1 : -1; }
-
-CellPtr get_cell(CellStore& store, const Poly& p, int variant, long wp, int level, unsigned long long j, bool coarse);
-
-// Builds the cell `key` of p (see get_cell); does not store it.
-CellPtr build_cell(CellStore& store, const Poly& p, const CellKey& key) {
-  const int variant = key.variant;
-  const long wp = key.prec;
-  const int level = key.level;
-  const unsigned long long j = key.j;
-  const bool coarse = key.coarse;
-  std::unique_ptr<RealAlgebraic> root;
-  auto cell = std::make_shared<Cell>();
-  cell->level = level;
-  // centre = (2j + 1) 2^-(level+1)
-  arf_set_ui(cell->centre, 2 * j + 1);
-  arf_mul_2exp_si(cell->centre, cell->centre, -(level + 1));
-  if (coarse) {
-    // Truncated at kCoarseBits: a ball shift of the coarse parent (few
-    // terms), or, at the exact levels and where that shift lost accuracy
-    // (checked up to kMaxExactLevel, as for fine cells: deeper, the
-    // rebuild costs more than the looser bounds), the fine cell truncated.
-    bool built = false;
-    if (level > kExactLevel) {
-      const CellPtr parent = get_cell(store, p, variant, wp, level - 1, j >> 1, true);
-      taylor_shift_pow2(cell->P, parent->P, -(level + 1), child_side(j), kCoarsePrec);
-      for (int t = 0; t < 3; ++t) mag_set(cell->tail + t, parent->tail + t);
-      truncate(*cell, kCoarseBits);
-      built = level > kMaxExactLevel || accurate(*cell, kCoarseBits + kGuardBits);
-    }
-    if (!built) {
-      const CellPtr fine = get_cell(store, p, variant, wp, level, j, false);
-      arb_poly_set_round(cell->P, fine->P, kCoarsePrec);
-      for (int t = 0; t < 3; ++t) mag_set(cell->tail + t, fine->tail + t);
-      truncate(*cell, kCoarseBits);
-    }
-    arb_poly_derivative(cell->P1, cell->P, kCoarsePrec);
-    arb_poly_derivative(cell->P2, cell->P1, kCoarsePrec);
-    return cell;
-  }
-  bool built = false;
-  if (level > kExactLevel) {
-    // From the parent: its disc |t - c_p| <= 2 h_p holds this cell's disc
-    // |t - c| <= 2h = h_p (|c - c_p| = h_p / 2), so its tail bounds hold here.
-    const CellPtr parent_ptr = get_cell(store, p, variant, wp, level - 1, j >> 1, false);
-    const Cell& parent = *parent_ptr;
-    taylor_shift_pow2(cell->P, parent.P, -(level + 1), child_side(j), wp);
-    for (int t = 0; t < 3; ++t) mag_set(cell->tail + t, parent.tail + t);
-    truncate(*cell, wp);
-    // p may be far larger on the parent's disc than on this cell's: then the
-    // parent's rounding and tail swamp p here, and up to kMaxExactLevel the
-    // cell is rebuilt by an exact shift instead.
-    built = level > kMaxExactLevel || accurate(*cell, wp);
-    if (!built) {
-      arb_poly_zero(cell->P);
-      for (auto& t : cell->tail) mag_zero(&t);
-    }
-  }
-  if (!built) {
-    if (variant >= 0) {
-      std::lock_guard<std::mutex> lock(store.mu);
-      root = std::make_unique<RealAlgebraic>(store.roots[static_cast<std::size_t>(variant)].value);
-    }
-    const long n = p.degree();
-    // p(c + w) = 2^(-L n) q(J + 2^L w) with q(x) = 2^(L n) p(x / 2^L),
-    // L = level + 1, J = 2j + 1: an exact integer Taylor shift.
-    const long L = level + 1;
-    fmpz_poly_t q, s;
-    fmpz_poly_init(q);
-    fmpz_poly_init(s);
-    fmpz_poly_fit_length(q, n + 1);
-    for (long k = 0; k <= n; ++k) fmpz_mul_2exp(q->coeffs + k, p.get()->coeffs + k, static_cast<ulong>(L * (n - k)));
-    _fmpz_poly_set_length(q, n + 1);
-    _fmpz_poly_normalise(q);
-    fmpz_t J;
-    fmpz_init_set_ui(J, 2 * j + 1);
-    fmpz_poly_taylor_shift(s, q, J);
-    fmpz_clear(J);
-    const slong len = fmpz_poly_length(s);
-    arb_poly_fit_length(cell->P, len);
-    for (slong k = 0; k < len; ++k) {
-      arb_set_round_fmpz(cell->P->coeffs + k, s->coeffs + k, wp);
-      arb_mul_2exp_si(cell->P->coeffs + k, cell->P->coeffs + k, L * (k - n));
-    }
-    _arb_poly_set_length(cell->P, len);
-    _arb_poly_normalise(cell->P);
-    fmpz_poly_clear(q);
-    fmpz_poly_clear(s);
-    if (variant >= 0 && len > 0) {
-      // Deflation in the local basis: p(c + w) = (w - w_g) Q(w) exactly, with
-      // w_g = gamma - c (p(gamma) = 0); synthetic division from the top
-      // (stable for |w_g| within the cell's disc, where it is used); the
-      // remainder is exactly 0 and is dropped.
-      arb_t wg, acc;
-      arb_init(wg);
-      arb_init(acc);
-      const Ball g = root->to_ball(wp + 32);
-      arb_sub_arf(wg, g.get(), cell->centre, wp + 32);
-      arb_poly_t Q;
-      arb_poly_init(Q);
-      arb_poly_fit_length(Q, len - 1);
-      arb_set(acc, cell->P->coeffs + len - 1);
-      for (slong k = len - 1; k >= 1; --k) {
-        arb_set(Q->coeffs + k - 1, acc);
-        arb_mul(acc, acc, wg, wp);
-        arb_add(acc, acc, cell->P->coeffs + k - 1, wp);
-      }
-      _arb_poly_set_length(Q, len - 1);
-      _arb_poly_normalise(Q);
-      arb_poly_swap(cell->P, Q);
-      arb_poly_clear(Q);
-      arb_clear(wg);
-      arb_clear(acc);
-    }
-    truncate(*cell, wp);
-  }
-  arb_poly_derivative(cell->P1, cell->P, wp);
-  arb_poly_derivative(cell->P2, cell->P1, wp);
-  const slong len = arb_poly_length(cell->P);
-  cell->mid.resize(static_cast<std::size_t>(len));
-  for (slong k = 0; k < len; ++k)
-    cell->mid[static_cast<std::size_t>(k)] = arf_get_d(arb_midref(cell->P->coeffs + k), ARF_RND_NEAR);
-  return cell;
-}
-
-// The cell (level, j) of variant `variant` (-1: p; i >= 0: p / (t - roots[i]))
-// at working precision wp, built on demand, once (see CellStore).
-// Thread-safe. An exception in the build reaches every thread waiting for it
-// and the key is freed, so a later call tries again.
-CellPtr get_cell(CellStore& store, const Poly& p, int variant, long wp, int level, unsigned long long j, bool coarse) {
-  const CellKey key{wp, level, variant, j, coarse};
-  // Made only when this thread builds the cell: a promise allocates its
-  // shared state, and most calls find the cell stored.
-  std::optional<std::promise<CellPtr>> promise;
-  {
-    std::unique_lock<std::mutex> lock(store.mu);
-    auto it = store.cells.find(key);
-    if (it != store.cells.end()) return it->second;
-    auto b = store.building.find(key);
-    if (b != store.building.end()) {
-      const std::shared_future<CellPtr> pending = b->second;
-      lock.unlock();
-      return pending.get();
-    }
-    promise.emplace();
-    store.building.emplace(key, promise->get_future().share());
-    ++store.builds;
-  }
-  CellPtr cell;
-  try {
-    cell = build_cell(store, p, key);
-  } catch (...) {
-    {
-      std::lock_guard<std::mutex> lock(store.mu);
-      store.building.erase(key);
-    }
-    promise->set_exception(std::current_exception());
-    throw;
-  }
-  {
-    std::lock_guard<std::mutex> lock(store.mu);
-    if (store.cells.size() >= kMaxCells) store.cells.clear();  // bounded memory: start again (holders keep theirs)
-    store.cells.emplace(key, cell);
-    store.building.erase(key);
-  }
-  promise->set_value(cell);
-  return cell;
-}
-
-// True when the ball z lies in the disc |t - c| <= 2h of the cell of level
-// `level` centred at c; w = z - c.
-bool in_disc(acb_t w, const arf_t centre, int level, const acb_t z, long prec) {
-  acb_set(w, z);
-  arb_sub_arf(acb_realref(w), acb_realref(z), centre, prec);
-  mag_t m;
-  mag_init(m);
-  acb_get_mag(m, w);
-  const bool ok = mag_is_finite(m) && mag_cmp_2exp_si(m, -level) <= 0;
-  mag_clear(m);
-  return ok;
-}
-
-// Index of the level-l cell whose closure holds x (clamped to [0, 1]).
-// Exact from x rounded down to a double d: every cell end k 2^-l <= x
-// (k < 2^53) is a double, so d >= k 2^-l too and floor(d 2^l) = floor(x 2^l).
-unsigned long long cell_index(double d, int level) {
-  const unsigned long long cells = 1ULL << level;
-  if (!(d > 0)) return 0;
-  const double y = std::floor(std::ldexp(d, level));
-  return y < static_cast<double>(cells - 1) ? static_cast<unsigned long long>(y) : cells - 1;
-}
-
-unsigned long long cell_index(const arf_t x, int level) { return cell_index(arf_get_d(x, ARF_RND_FLOOR), level); }
-
-}  // namespace
-
-bool LocalPoly::eval_cells(int variant, acb_t v, acb_t d1, acb_t d2, const acb_t z, long prec) const {
-  Cache& cache = *cache_;
-  // Cells are shared by every caller whose precision rounds to the same
-  // number of limbs (the quadrature's attempts, the optimiser, ...).
-  const long wp = (prec + kGuardBits + FLINT_BITS - 1) / FLINT_BITS * FLINT_BITS;
-  acb_t w;
-  acb_init(w);
-  const bool wide = is_wide_ball(z);
-  CellPtr cell;
-  // The cell depends on z alone (never on what was evaluated before), so
-  // results do not depend on the order of evaluations or on threads.
-  int level = kPointLevel;
-  if (wide) {
-    // The deepest level whose disc |t - c| <= 2h holds z for any c within h
-    // of Re(mid z): h = 2^-(level+1) >= rad(z) + |Im(mid z)| =: s; as
-    // s < 2^e with e = MAG_EXP(s), level = -e - 1 will do.
-    mag_t s;
-    mag_init(s);
-    ball_radius(s, z);
-    mag_t im;
-    mag_init(im);
-    arf_get_mag(im, arb_midref(acb_imagref(z)));
-    mag_add(s, s, im);
-    mag_clear(im);
-    const long lv = mag_is_zero(s) ? kMaxLevel : -fmpz_get_si(MAG_EXPREF(s)) - 1;
-    mag_clear(s);
-    level = static_cast<int>(std::min<long>(std::max<long>(lv, 0), kMaxLevel));
-  }
-  arf_t centre;
-  arf_init(centre);
-  for (level = wide ? std::min(level + kWideDeeper, kMaxLevel) : level; level >= 0 && !cell; --level) {
-    const unsigned long long j = cell_index(arb_midref(acb_realref(z)), level);
-    arf_set_ui(centre, 2 * j + 1);
-    arf_mul_2exp_si(centre, centre, -(level + 1));
-    if (in_disc(w, centre, level, z, prec))
-      cell = get_cell(cache.store, p_, variant, wp, level, j, wide);
-  }
-  arf_clear(centre);
-  if (!cell) {
-    acb_clear(w);
-    return false;
-  }
-  // sum c_k w^k with w = z - c, plus the tails: the powers of w once, then
-  // one dot product per output (Arb's arb_dot: no intermediate rounding).
-  // On a wide ball this bounds p by its expansion on the disc
-  // |t - c| <= |mid z - c| + rad z, at most twice z's radius: a little
-  // looser than a centred form at mid z, and O(K) instead of an O(K^2) shift.
-  const arb_poly_struct* polys[3] = {cell->P, cell->P1, cell->P2};
-  acb_ptr outs[3] = {v, d1, d2};
-  const slong K = std::max<slong>(arb_poly_length(cell->P), 1);
-  if (acb_is_real(w)) {
-    arb_srcptr pw = scratch().real.powers(acb_realref(w), K, prec);
-    for (int j = 0; j <= 2; ++j) {
-      if (!outs[j]) continue;
-      arb_dot(acb_realref(outs[j]), nullptr, 0, polys[j]->coeffs, 1, pw, 1, arb_poly_length(polys[j]), prec);
-      arb_zero(acb_imagref(outs[j]));
-      // p is real on real balls: the tail widens the real part only
-      arb_add_error_mag(acb_realref(outs[j]), cell->tail + j);
-    }
-  } else {
-    acb_srcptr pw = scratch().complex.powers(w, K, prec);
-    // real coefficients: real and imaginary parts are two real dot products
-    // over the interleaved parts of the powers (stride 2)
-    arb_srcptr parts = reinterpret_cast<arb_srcptr>(pw);
-    for (int j = 0; j <= 2; ++j) {
-      if (!outs[j]) continue;
-      const slong len = arb_poly_length(polys[j]);
-      arb_dot(acb_realref(outs[j]), nullptr, 0, polys[j]->coeffs, 1, parts, 2, len, prec);
-      arb_dot(acb_imagref(outs[j]), nullptr, 0, polys[j]->coeffs, 1, parts + 1, 2, len, prec);
-      acb_add_error_mag(outs[j], cell->tail + j);
-    }
-  }
-  acb_clear(w);
-  return true;
-}
+std::size_t LocalPoly::builds() const { return cache_ ? cache_->cells.builds() : 0; }
 
 void LocalPoly::eval_double(double t, double* v, double* d1, double* d2) const {
   double c[3] = {0, 0, 0};
@@ -798,12 +215,9 @@ void LocalPoly::eval_double(double t, double* v, double* d1, double* d2) const {
     }
     c[2] *= 2;
   } else {
-    Cache& cache = *cache_;
-    // 64 + guard bits: the same cells as a 64-bit certified evaluation.
-    const long wp = (64 + kGuardBits + FLINT_BITS - 1) / FLINT_BITS * FLINT_BITS;
-    const CellPtr cp = get_cell(cache.store, p_, -1, wp, kPointLevel, cell_index(t, kPointLevel), false);
-    const Cell& cell = *cp;
-    const double w = t - arf_get_d(cell.centre, ARF_RND_NEAR);
+    const detail::CellPtr cp = cache_->cells.point_cell(p_, t);
+    const detail::Cell& cell = *cp;
+    const double w = t - arf_get_d(cell.e.centre, ARF_RND_NEAR);
     for (std::size_t k = cell.mid.size(); k-- > 0;) {
       c[2] = c[2] * w + c[1];
       c[1] = c[1] * w + c[0];
@@ -824,15 +238,9 @@ void LocalPoly::eval_double_taylor(double t, int order, double* b) const {
   if (n + 1 <= kMinLength || !(t >= 0 && t <= 1)) {
     for (long k = 0; k <= n; ++k) a.push_back(fmpz_get_d(p_.get()->coeffs + k));
   } else {
-    Cache& cache = *cache_;
-    const long wp = (64 + kGuardBits + FLINT_BITS - 1) / FLINT_BITS * FLINT_BITS;  // eval_double's cells
-    arf_t x;
-    arf_init(x);
-    arf_set_d(x, t);
-    const CellPtr cp = get_cell(cache.store, p_, -1, wp, kPointLevel, cell_index(x, kPointLevel), false);
-    arf_clear(x);
+    const detail::CellPtr cp = cache_->cells.point_cell(p_, t);  // eval_double's cells
     a = cp->mid;
-    w = t - arf_get_d(cp->centre, ARF_RND_NEAR);
+    w = t - arf_get_d(cp->e.centre, ARF_RND_NEAR);
   }
   // Taylor shift by w (repeated synthetic division): after pass j, a[j] is
   // the j-th coefficient at t; only the first order + 1 passes are needed.
@@ -856,7 +264,7 @@ void LocalPoly::eval(acb_t v, acb_t d1, acb_t d2, const acb_t z, long prec) cons
   // cell's build and centred at the ball's own midpoint.
   if (cache_->centred.usable() && is_wide_ball(z) && cache_->centred.eval(v, d1, d2, z, kDoubleCentredMaxError))
     return;
-  if (!eval_cells(-1, v, d1, d2, z, prec)) centred_eval(v, d1, d2, b_, b1_, b2_, z, prec);
+  if (!cache_->cells.eval(p_, -1, v, d1, d2, z, prec)) centred_eval(v, d1, d2, b_, b1_, b2_, z, prec);
 }
 
 bool LocalPoly::has_disk_form() const { return cache_->centred.usable(); }
@@ -884,12 +292,12 @@ void LocalPoly::eval_deflated(acb_t v, const acb_t z, const RealAlgebraic& gamma
   int variant = -1;
   double g_mid = 0, g_rad = 0;
   {
-    std::lock_guard<std::mutex> lock(cache.store.mu);
-    for (std::size_t i = 0; i < cache.store.roots.size(); ++i)
-      if (cache.store.roots[i].value == gamma) variant = static_cast<int>(i);
+    std::lock_guard<std::mutex> lock(cache.mu);
+    for (std::size_t i = 0; i < cache.roots.size(); ++i)
+      if (cache.roots[i].value == gamma) variant = static_cast<int>(i);
     if (variant >= 0) {
-      g_mid = cache.store.roots[static_cast<std::size_t>(variant)].mid;
-      g_rad = cache.store.roots[static_cast<std::size_t>(variant)].rad;
+      g_mid = cache.roots[static_cast<std::size_t>(variant)].mid;
+      g_rad = cache.roots[static_cast<std::size_t>(variant)].rad;
     }
   }
   if (variant < 0) {
@@ -901,31 +309,35 @@ void LocalPoly::eval_deflated(acb_t v, const acb_t z, const RealAlgebraic& gamma
     g_mid = arf_get_d(arb_midref(g.get()), ARF_RND_NEAR);
     g_rad = (mag_get_d(arb_radref(g.get())) + std::fabs(g_mid) * 0x1p-52 + 0x1p-1070) * (1 + 0x1p-50);
     if (!std::isfinite(g_mid) || !std::isfinite(g_rad)) g_rad = HUGE_VAL;  // (never used then)
-    std::lock_guard<std::mutex> lock(cache.store.mu);
-    for (std::size_t i = 0; i < cache.store.roots.size() && variant < 0; ++i)  // another thread may have added it
-      if (cache.store.roots[i].value == gamma) variant = static_cast<int>(i);
+    std::lock_guard<std::mutex> lock(cache.mu);
+    for (std::size_t i = 0; i < cache.roots.size() && variant < 0; ++i)  // another thread may have added it
+      if (cache.roots[i].value == gamma) variant = static_cast<int>(i);
     if (variant < 0) {
-      cache.store.roots.push_back({gamma, g_mid, g_rad});
-      variant = static_cast<int>(cache.store.roots.size()) - 1;
+      cache.roots.push_back({gamma, g_mid, g_rad});
+      // the cells' variant of the same index: p / (t - gamma), gamma enclosed
+      // by a copy of the RealAlgebraic (each call refines its own copy)
+      variant = cache.cells.add_variant([gamma](long bits) { return gamma.to_ball(bits); });
     }
   }
   // Wide balls of low degree: the centred form of the quotient in double.
   if (cache.centred.usable() && is_wide_ball(z) && acb_is_finite(z) &&
       cache.centred.eval_deflated(v, z, g_mid, g_rad, kDoubleCentredMaxError))
     return;
-  if (p_.degree() + 1 > kMinLength && acb_is_finite(z) && eval_cells(variant, v, nullptr, nullptr, z, prec)) return;
+  if (p_.degree() + 1 > kMinLength && acb_is_finite(z) &&
+      cache.cells.eval(p_, variant, v, nullptr, nullptr, z, prec))
+    return;
   // Low degree, or far from [0, 1]: the deflated power basis (exact
   // synthetic division in Z[gamma], see deflate), centred form.
   const auto key = std::make_pair(variant, prec);
   std::shared_ptr<const BallPoly> q;
   {
-    std::lock_guard<std::mutex> lock(cache.store.mu);
+    std::lock_guard<std::mutex> lock(cache.mu);
     auto it = cache.deflated.find(key);
     if (it != cache.deflated.end()) q = it->second;
   }
   if (!q) {
     q = std::make_shared<const BallPoly>(deflate(p_, gamma, 1, prec + 16));
-    std::lock_guard<std::mutex> lock(cache.store.mu);
+    std::lock_guard<std::mutex> lock(cache.mu);
     if (cache.deflated.size() > 64) cache.deflated.clear();
     cache.deflated.emplace(key, q);
   }

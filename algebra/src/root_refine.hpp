@@ -1,7 +1,7 @@
 // Private helpers of the algebra layer (not installed): exact signs of integer
 // polynomials at rational points and certified refinement of an isolating
-// interval. Implemented in real_roots.cpp; used by algebraic.cpp and
-// deflation.cpp.
+// interval. Implemented in root_refine.cpp (descartes_test in
+// descartes.cpp); used by the root isolation, algebraic.cpp and deflation.cpp.
 #pragma once
 
 #include "uniparam/algebra/real_roots.hpp"
@@ -33,8 +33,9 @@ int exact_sign(const Poly& f, const Rational& x);
 /// sev, when non-null, evaluates lambda f (real_roots.hpp). Interval
 /// Newton steps then come first: the root lies in c - f(c) / F, with f(c)
 /// from f's power basis at a short dyadic c and F an enclosure of f' on
-/// (lo, hi) from sev at 64 bits, on a ball of radius at least 2^-23 (the
-/// evaluator's cheap coarse bounds, see local_poly.hpp). No exact sign.
+/// (lo, hi) from sev at 64 bits, on a ball of radius at least 2^-23 (a
+/// wide ball, core/ball_regions.hpp: the evaluator's cheap coarse bounds,
+/// see local_poly.hpp). No exact sign.
 /// c is the middle (one power-basis evaluation a step, a gain of ~10-20
 /// bits) while the width is above 2^-24, then the power-basis Newton guess
 /// (three evaluations, the width roughly squared). Where a step does not

@@ -10,6 +10,7 @@
 // polynomial set-up and the run-time choice of the FMA path.
 #include "uniparam/core/dd_ball.hpp"
 #include "uniparam/core/dd_inline.hpp"
+#include "uniparam/core/horner_loss.hpp"
 
 #include <arf.h>
 #include <flint/fmpz.h>
@@ -178,20 +179,7 @@ DDPoly::DDPoly(const Poly& p) {
   for (int j = 0; j < 3; ++j) single_[j] = std::all_of(lo_[j].begin(), lo_[j].end(), [](double l) { return l == 0; });
   for (int j = 0; j <= 3; ++j) abs1_[j] = horner_abs(abs_[j], 1);
   // UNCERTIFIED estimate of Horner's loss on [0, 1] (a choice of path only)
-  loss_ = 0;
-  for (int j = 0; j < 3 && ok; ++j) {
-    if (hi_[j].empty()) continue;
-    double peak = 0;
-    for (int i = 0; i <= 16; ++i) {
-      const double t = i / 16.0;
-      double h = hi_[j].back();
-      for (std::size_t k = hi_[j].size() - 1; k-- > 0;) h = h * t + hi_[j][k];
-      peak = std::max(peak, std::fabs(h));
-    }
-    double sum = 0;
-    for (double v : abs_[j]) sum += v;
-    loss_ = std::max(loss_, peak > 0 ? std::log2(sum / peak) : 1000.0);
-  }
+  loss_ = ok ? horner_loss_bits(p, 0, 1, 2) : 0;
 }
 
 namespace {

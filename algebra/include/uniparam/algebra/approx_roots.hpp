@@ -32,9 +32,9 @@ std::vector<std::complex<double>> approximate_complex_roots(const Poly& p, bool*
                                                             int max_sweeps = 60);
 
 /// UNCERTIFIED estimate of the bits Horner's rule loses on p's power basis
-/// over [0, 1]: log2 of sum |a_k| over the largest |p| on 33 points of
-/// [0, 1], in double (coefficients scaled to the largest; infinity when p
-/// vanishes at all of them). A choice of basis only.
+/// over [0, 1]: horner_loss_bits(p, 0, 1, 0) (core/horner_loss.hpp; log2
+/// of sum |a_k| over the largest |p| on 33 points of [0, 1], infinity when
+/// p vanishes at all of them). A choice of basis only.
 /// \pre p is not the zero polynomial (InvalidArgument otherwise).
 double power_basis_loss(const Poly& p);
 

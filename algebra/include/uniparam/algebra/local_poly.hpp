@@ -8,7 +8,10 @@
 // a Taylor shift of the whole polynomial (O(n^2) ball operations, about a
 // millisecond at degree 150) for every ball. A local expansion at a nearby
 // dyadic centre has coefficients of the size of p's values there, and away
-// from p's complex zeros only K << n of its terms matter. So:
+// from p's complex zeros only K << n of its terms matter. So (the cells:
+// algebra/src/local_cells.cpp, on the expansions of local_expansion.hpp;
+// this class adds the power-basis and double-precision paths and the
+// deflation by a RealAlgebraic root):
 //   * [0, 1] is covered by dyadic cells; level l has centres
 //     c = (j + 1/2) 2^-l and half-width h = 2^-(l+1), j = 0 .. 2^l - 1;
 //   * a cell holds p's Taylor coefficients at c, from an exact integer Taylor
@@ -19,7 +22,8 @@
 //     the disc |t - c| <= 2h;
 //   * a ball is evaluated in w = t - c by the powers of w and one dot product
 //     per output (O(K)); the cell depends on the ball alone: level 6 for
-//     narrow balls (quadrature nodes), for wide ones (radius >= 2^-24:
+//     narrow balls (quadrature nodes), for wide ones (is_wide_ball,
+//     core/ball_regions.hpp: radius >= 2^-24:
 //     segments, ellipses) the deepest level whose disc holds the ball, which
 //     bounds p on a disc at most about twice the ball's radius;
 //   * wide balls only bound p (their enclosures are as wide as p's variation
@@ -43,15 +47,11 @@
 
 #include "uniparam/algebra/algebraic.hpp"
 #include "uniparam/core/ball_poly.hpp"
+#include "uniparam/core/ball_regions.hpp"  // is_wide_ball
 #include "uniparam/core/cdisk.hpp"
 #include "uniparam/core/poly.hpp"
 
 namespace uniparam {
-
-/// True when z's radius (real or imaginary) is at least 2^-24: the
-/// quadrature's segments and ellipses rather than its nodes (LocalPoly's
-/// wide balls, whose enclosures only bound p; see eval).
-bool is_wide_ball(const acb_t z);
 
 /// An exact integer polynomial with a cache of local expansions (see the
 /// file comment). Copies share the cache, and every member may be called
@@ -135,9 +135,6 @@ class LocalPoly {
 
  private:
   struct Cache;
-  // Evaluation from the cells of `variant` (-1: p; i >= 0: p / (t - root i));
-  // false when no cell's disc holds z.
-  bool eval_cells(int variant, acb_t v, acb_t d1, acb_t d2, const acb_t z, long prec) const;
   Poly p_;
   BallPoly b_, b1_, b2_;  // power basis: the fallback
   std::shared_ptr<Cache> cache_;  // shared by copies; locked inside

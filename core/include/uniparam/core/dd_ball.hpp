@@ -100,10 +100,10 @@ class DDPoly {
   static bool eval_lanes(int k, const DDPoly* const* p, const int* j, DDBall* const* out, const DDBall& x);
   /// eval_lanes, out of line (the FMA path where in use, as eval).
   static bool eval_many(int k, const DDPoly* const* p, const int* j, DDBall* const* out, const DDBall& x);
-  /// UNCERTIFIED estimate, for choosing a path only: log2 of
-  /// sum |c_k| / max |p(t)| over t = 0, 1/16, ..., 1 for p, p' and p''
-  /// (the bits that Horner's rule loses on [0, 1]); large for a
-  /// polynomial that vanishes identically on that grid.
+  /// UNCERTIFIED estimate, for choosing a path only: the bits that
+  /// Horner's rule loses on [0, 1] for p, p' and p'' (horner_loss_bits(p,
+  /// 0, 1, 2), core/horner_loss.hpp); 0 for the zero polynomial and where
+  /// the coefficients do not fit double words (not usable()).
   double cancellation_bits() const { return loss_; }
 
  private:
