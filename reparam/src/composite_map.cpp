@@ -285,13 +285,7 @@ CompositeMap composite_map(const CompositeCurve& c, const std::vector<Speed>& sp
       wq[j] = rounded_mid(w[j]);
       total = total + wq[j];
     }
-    out.S_ = {Rational(0)};
-    Rational acc(0);
-    for (std::size_t j = 0; j + 1 < n; ++j) {
-      acc = acc + wq[j];
-      out.S_.push_back(acc / total);
-    }
-    out.S_.push_back(Rational(1));
+    out.S_ = cumulative_normalised(wq, total);
     Ball sum(0);
     for (std::size_t j = 0; j < n; ++j) {
       Ball e;
