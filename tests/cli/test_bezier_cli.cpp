@@ -73,7 +73,12 @@ TEST(CliBezier, ControlPointsAcceptedByEveryCommand) {
 
   auto m = run_uniparam({"moebius", "--control", "[[0,0],[0,1],[3,1]]", "--speed", "parametric", "--json"});
   ASSERT_EQ(m.exit_code, 0) << m.err;
-  EXPECT_NE(m.out.find("0.3430703308172535"), std::string::npos) << m.out;
+  // alpha = (sqrt(33) - 3)/8 (IntegralQuadraticIsExact), certified to the
+  // default 15 digits: its ball (the first of the "alpha" list) holds it.
+  std::smatch first;
+  ASSERT_TRUE(std::regex_search(m.out, first, std::regex("\"alpha\": \\[\\s*(\\{[^{}]*\\})"))) << m.out;
+  EXPECT_TRUE(encloses("\"alpha\": " + std::string(first[1]), "alpha", "0.3430703308172535824813264335273661647775",
+                       "1e-40", 15));
 
   // A cubic with a cusp at t = 1/2: x' = 3 (1 - 2t)^2, y' = 3 (1 - 2t).
   auto rad = run_uniparam({"radical", "--control", "[[0,0],[1,1],[0,1],[1,0]]", "--speed", "parametric", "--json"});

@@ -76,4 +76,21 @@ bool all_meet_digits(const std::vector<Ball>& v, long digits);
 /// (a ball containing 0 gives indeterminate quotients, never wrong ones).
 std::vector<Ball> cumulative_normalised(const std::vector<Ball>& w, const Ball& total, long prec);
 
+/// The same for exact rationals or doubles: out[0] = 0 and out[N] = 1
+/// exactly, out[i] = (w_0 + ... + w_{i-1}) / total for 0 < i < N, the sums
+/// taken left to right (T = Rational: exact; T = double: each sum and
+/// quotient rounded to nearest). Precondition: total != 0 (for Rational,
+/// Rational's division by zero reports it).
+template <class T>
+std::vector<T> cumulative_normalised(const std::vector<T>& w, const T& total) {
+  std::vector<T> out{T(0)};
+  T acc(0);
+  for (std::size_t k = 0; k + 1 < w.size(); ++k) {
+    acc = acc + w[k];
+    out.push_back(acc / total);
+  }
+  out.push_back(T(1));
+  return out;
+}
+
 }  // namespace uniparam
