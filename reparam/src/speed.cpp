@@ -12,9 +12,11 @@
 #include "uniparam/algebra/quadrature.hpp"
 #include "uniparam/algebra/real_roots.hpp"
 #include "uniparam/core/cdisk.hpp"
-#include "uniparam/core/dd_inline.hpp"
 #include "uniparam/core/error.hpp"
 #include "uniparam/core/parallel.hpp"
+#define UNIPARAM_SPEED_DD_ARITH
+#include "speed_enclosure.hpp"
+#include "speed_formula.hpp"
 
 namespace uniparam {
 
@@ -130,8 +132,6 @@ std::vector<RatFunc> direction_curve(const std::vector<Poly>& Y) {
   return out;
 }
 
-// p(z) on a complex ball z, from local expansions (LocalPoly).
-void poly_eval(acb_t out, const LocalPoly& p, const acb_t z, long prec) { p.eval(out, z, prec); }
 
 
 }  // namespace
@@ -416,127 +416,71 @@ Speed::PieceSigns Speed::piece_signs_at(const RealAlgebraic& a, const RealAlgebr
   return p;
 }
 
-void Speed::eval_derivatives(acb_ptr d1, acb_ptr d2, const acb_t z, long prec) const {
-  acb_t n, n1, n2, q, q1, q2, a, v, w;
-  for (acb_ptr x : {n, n1, n2, q, q1, q2, a, v, w}) acb_init(x);
+speed_formula::Form Speed::form() const {
+  if (kind_ == SpeedKind::Parametric) return speed_formula::Form::Parametric;
+  return comp_.size() == 2 ? speed_formula::Form::Plane : speed_formula::Form::Space;
+}
+
+void Speed::eval_derivatives(AcbBox* d1, AcbBox* d2, const acb_t z, long prec) const {
+  using namespace speed_formula;
+  const AcbArith ar{prec};
+  AcbBox n, n1, n2, q, q1, q2, a, v, w;
   std::size_t q_done = comp_.size();  // index of the Q held in q, q1, q2, v, w
   for (std::size_t i = 0; i < comp_.size(); ++i) {
     const Component& k = comp_[i];
     if (k.unit_den) {  // a polynomial component: x' = N', x'' = N''
-      k.N.eval(n, d1 + i, d2 ? d2 + i : nullptr, z, prec);
+      k.N.eval(n, d1[i], d2 ? d2[i].get() : nullptr, z, prec);
       continue;
     }
-    k.N.eval(n, n1, d2 ? n2 : nullptr, z, prec);
+    k.N.eval(n, n1, d2 ? n2.get() : nullptr, z, prec);
     if (k.q_index != q_done) {  // a rational curve's common weight: once
-      k.Q.eval(q, q1, d2 ? q2 : nullptr, z, prec);
-      acb_inv(v, q, prec);  // v = 1 / Q (one division)
-      acb_mul(w, v, v, prec);
+      k.Q.eval(q, q1, d2 ? q2.get() : nullptr, z, prec);
+      ar.inv(v, q);  // v = 1 / Q (one division)
+      ar.mul(w, v, v);
       q_done = k.q_index;
     }
-    // A = N'Q - NQ', x' = A v^2
-    acb_mul(a, n1, q, prec);
-    acb_submul(a, n, q1, prec);
-    acb_mul(d1 + i, a, w, prec);
-    if (d2) {
-      // x'' = (N''Q - NQ'') v^2 - 2 Q' A v^3
-      acb_mul(n2, n2, q, prec);
-      acb_submul(n2, n, q2, prec);
-      acb_mul(n2, n2, w, prec);
-      acb_mul(a, a, q1, prec);
-      acb_mul(a, a, w, prec);
-      acb_mul(a, a, v, prec);
-      acb_mul_2exp_si(a, a, 1);
-      acb_sub(d2 + i, n2, a, prec);
-    }
+    scaled_derivatives(ar, a, d2 ? &n2 : nullptr, n, n1, &n2, q, q1, &q2);
+    quotient_derivatives(ar, d1[i], d2 ? d2 + i : nullptr, a, d2 ? &n2 : nullptr, q1, v, w);
   }
-  for (acb_ptr x : {n, n1, n2, q, q1, q2, a, v, w}) acb_clear(x);
 }
 
-void Speed::eval_components(acb_t S, acb_t F, const acb_t z, long prec) const {
-  const slong n = static_cast<slong>(comp_.size());
+void Speed::eval_components(AcbBox& S, AcbBox& F, const acb_t z, long prec) const {
+  using namespace speed_formula;
+  const AcbArith ar{prec};
+  const std::size_t n = comp_.size();
   const bool angular = kind_ == SpeedKind::Angular;
   bool common = angular && !comp_.empty() && !comp_[0].unit_den;
   for (const Component& k : comp_) common = common && k.q_index == comp_[0].q_index;
-  acb_ptr d1 = _acb_vec_init(2 * n);
-  acb_ptr d2 = angular ? d1 + n : nullptr;
+  std::vector<AcbBox> d(angular ? 2 * n : n);
+  AcbBox* d1 = d.data();
+  AcbBox* d2 = angular ? d1 + n : nullptr;
   if (common) {
     // One denominator Q (a rational curve's weight): with A_i = N_i' Q -
-    // N_i Q' and B_i = N_i'' Q - N_i Q'' in place of x_i' and x_i'',
-    // sum A_i^2 = Q^4 sum x_i'^2 and A_i B_j - A_j B_i = Q^4 (x_i' x_j'' -
-    // x_i'' x_j') (eval_dd's formula), so S and F come scaled by Q^4 and Q^8
-    // (E by Q^4), which sigma's ratios F / S^2, E / S do not see: no
-    // division by Q, whose complex zeros (the curve's poles, not sigma's) no
-    // longer spoil wide balls.
-    acb_t nv, n1, n2, q, q1, q2;
-    for (acb_ptr x : {nv, n1, n2, q, q1, q2}) acb_init(x);
+    // N_i Q' and B_i = N_i'' Q - N_i Q'' in place of x_i' and x_i''
+    // (speed_formula.hpp), S and F come scaled by Q^4 and Q^8 (E by Q^4),
+    // which sigma's ratios F / S^2, E / S do not see: no division by Q,
+    // whose complex zeros (the curve's poles, not sigma's) no longer spoil
+    // wide balls.
+    AcbBox nv, n1, n2, q, q1, q2;
     comp_[0].Q.eval(q, q1, q2, z, prec);
-    for (slong i = 0; i < n; ++i) {
-      comp_[static_cast<std::size_t>(i)].N.eval(nv, n1, n2, z, prec);
-      acb_mul(d1 + i, n1, q, prec);
-      acb_submul(d1 + i, nv, q1, prec);
-      acb_mul(d2 + i, n2, q, prec);
-      acb_submul(d2 + i, nv, q2, prec);
+    for (std::size_t i = 0; i < n; ++i) {
+      comp_[i].N.eval(nv, n1, n2, z, prec);
+      scaled_derivatives(ar, d1[i], d2 + i, nv, n1, &n2, q, q1, &q2);
     }
-    for (acb_ptr x : {nv, n1, n2, q, q1, q2}) acb_clear(x);
   } else {
     eval_derivatives(d1, d2, z, prec);
   }
-  acb_zero(S);
-  for (slong i = 0; i < n; ++i) acb_addmul(S, d1 + i, d1 + i, prec);
-  if (d2) {
-    acb_t e;
-    acb_init(e);
-    acb_zero(F);
-    for (slong i = 0; i < n; ++i)
-      for (slong j = i + 1; j < n; ++j) {
-        acb_mul(e, d1 + i, d2 + j, prec);
-        acb_submul(e, d2 + i, d1 + j, prec);
-        if (n == 2) acb_set(F, e);
-        else acb_addmul(F, e, e, prec);
-      }
-    acb_clear(e);
-  }
-  _acb_vec_clear(d1, 2 * n);
+  sum_of_squares(ar, S, n, [d1](std::size_t i) -> const AcbBox& { return d1[i]; });
+  if (d2) cross_terms(ar, F, d1, d2, n);
 }
 
-void Speed::eval_g(acb_t out, const acb_t z, long prec, std::size_t skip) const {
-  acb_t h;
-  acb_init(h);
-  acb_set_fmpz(out, g_content_.get());
-  for (std::size_t i = 0; i < g_h_.size(); ++i) {
-    if (i == skip) continue;
-    poly_eval(h, g_h_[i], z, prec);
-    acb_pow_ui(h, h, static_cast<ulong>(g_m_[i]), prec);
-    acb_mul(out, out, h, prec);
-  }
-  acb_clear(h);
-}
-
-void Speed::eval_cofactor(acb_t out, const acb_t z, bool analytic, long prec) const {
-  acb_t s, d;
-  acb_init(s);
-  acb_init(d);
-  // D first: where its enclosure holds 0 the quotient is not finite anyway,
-  // and the K_k (degree ~4x the curve's) need not be expanded there.
-  eval_D(d, z, prec);
-  if (acb_contains_zero(d)) {
-    acb_indeterminate(out);
-    acb_clear(s);
-    acb_clear(d);
-    return;
-  }
-  // numerator: sqrt(sum K^2); a single cofactor is a nonzero integer constant.
-  if (K_b_.size() == 1) {
-    poly_eval(s, K_b_[0], z, prec);
-    if (arb_is_negative(acb_realref(s)) && arb_is_zero(acb_imagref(s))) acb_neg(s, s);
-  } else {
-    eval_sumK2(s, z, prec);
-    if (!analytic && acb_is_real(s)) arb_sqrtpos(acb_realref(s), acb_realref(s), prec);  // real segment: sum K^2 >= 0
-    else acb_sqrt_analytic(s, s, analytic, prec);
-  }
-  acb_div(out, s, d, prec);
-  acb_clear(s);
-  acb_clear(d);
+void Speed::eval_g(AcbBox& out, const acb_t z, long prec, std::size_t skip) const {
+  const AcbArith ar{prec};
+  AcbBox content;
+  acb_set_fmpz(content, g_content_.get());
+  speed_formula::factored_g(
+      ar, out, content, g_h_.size(), [&](std::size_t i, AcbBox& v) { g_h_[i].eval(v, z, prec); },
+      [&](std::size_t i) { return g_m_[i]; }, skip);
 }
 
 bool Speed::eval_double_word(acb_t out, const acb_t z, const PieceSigns& p, bool squared, long prec) const {
@@ -604,39 +548,19 @@ template <bool F>
     }
   }
   if (!DDPoly::eval_lanes<F>(k, lp, lj, lo, x)) return false;
+  using namespace speed_formula;
+  DDArith<F> ar;
   if (!direct && !dd.unit_den)
-    for (std::size_t i = 0; i < n; ++i) {
-      A[i] = ball_sub(ball_mul<F>(m[i][1], q), ball_mul<F>(m[i][0], q1));
-      if (angular) B[i] = ball_sub(ball_mul<F>(m[i][2], q), ball_mul<F>(m[i][0], q2));
-    }
-  DDBall S{0, 0, 0}, r;
-  for (std::size_t i = 0; i < n; ++i) S = ball_add(S, ball_mul<F>(A[i], A[i]));
-  if (!angular) {
-    if (squared) r = S;
-    else if (!ball_sqrt<F>(r, S)) return false;
-    if (!dd.unit_den) {
-      const DDBall l2 = ball_mul<F>(q, q);  // L^2
-      if (!ball_div<F>(r, r, squared ? ball_mul<F>(l2, l2) : l2)) return false;
-    }
-  } else if (n == 2) {
-    const DDBall C = ball_sub(ball_mul<F>(A[0], B[1]), ball_mul<F>(A[1], B[0]));
-    if (!ball_div<F>(r, C, S)) return false;
-    if (squared) r = ball_mul<F>(r, r);
-    else if (sign < 0) r = ball_neg(r);
-  } else {
-    DDBall Fs{0, 0, 0};
     for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t j = i + 1; j < n; ++j) {
-        const DDBall C = ball_sub(ball_mul<F>(A[i], B[j]), ball_mul<F>(A[j], B[i]));
-        Fs = ball_add(Fs, ball_mul<F>(C, C));
-      }
-    if (squared) {
-      if (!ball_div<F>(r, Fs, ball_mul<F>(S, S))) return false;
-    } else {
-      DDBall f;
-      if (!ball_sqrt<F>(f, Fs) || !ball_div<F>(r, f, S)) return false;
-    }
-  }
+      scaled_derivatives(ar, A[i], angular ? B + i : nullptr, m[i][0], m[i][1], &m[i][2], q, q1, &q2);
+  DDBall S, Fs{0, 0, 0}, r, l2;
+  sum_of_squares(ar, S, n, [&A](std::size_t i) -> const DDBall& { return A[i]; });
+  const Form form = !angular ? Form::Parametric : n == 2 ? Form::Plane : Form::Space;
+  if (angular) cross_terms(ar, Fs, A, B, n);
+  const bool scaled = !angular && !dd.unit_den;  // the parametric speed of M_i / L: S = L^4 sum x_i'^2
+  if (scaled) ar.mul(l2, q, q);
+  if (squared) speed_squared(ar, r, S, Fs, form, scaled ? &l2 : nullptr);
+  else speed_value(ar, r, S, Fs, form, sign, scaled ? &l2 : nullptr);
   out = r;
   return dd_is_finite(r);
 }
@@ -691,44 +615,21 @@ void Speed::eval(acb_t out, const acb_t z, const PieceSigns& p, bool analytic, l
       return;
     }
   }
-  acb_t S, F;
-  acb_init(S);
-  acb_init(F);
   // From the components first (low degree: cheap); where that is not
   // finite (space curves on wide balls: F = |p' x p''|^2 is a difference of
   // products whose enclosure may reach 0, so sqrt(F) is not certified
   // analytic; or the branch point near a zero of sigma), the factored form
   // g sqrt(sum K^2) / D below, tight but of degree ~4x higher.
+  AcbBox S, F, r;
   eval_components(S, F, z, prec);
-  if (!analytic && acb_is_real(z) && acb_is_real(F) && acb_is_real(S)) {
-    // A real segment where holomorphy is not asked (Arb's direct bound on a
-    // subinterval): sigma is real there, F = |p' x p''|^2 and S = |p'|^2 are
-    // >= 0 at every real point, so sqrt may be taken of [max(0, lo), hi]
-    // (arb_sqrtpos) instead of failing where the enclosure reaches below 0.
-    arb_ptr r = acb_realref(out);
-    if (kind_ == SpeedKind::Angular) {
-      if (comp_.size() == 2) {
-        arb_div(r, acb_realref(F), acb_realref(S), prec);
-        if (p.component < 0) arb_neg(r, r);
-      } else {
-        arb_sqrtpos(r, acb_realref(F), prec);
-        arb_div(r, r, acb_realref(S), prec);
-      }
-    } else {
-      arb_sqrtpos(r, acb_realref(S), prec);
-    }
-    arb_zero(acb_imagref(out));
-  } else if (kind_ == SpeedKind::Angular) {
-    if (comp_.size() == 2) {
-      acb_div(out, F, S, prec);  // E / S: no square root in the plane
-      if (p.component < 0) acb_neg(out, out);
-    } else {
-      acb_sqrt_analytic(F, F, analytic, prec);
-      acb_div(out, F, S, prec);
-    }
-  } else {
-    acb_sqrt_analytic(out, S, analytic, prec);
-  }
+  // A real segment where holomorphy is not asked (Arb's direct bound on a
+  // subinterval): sigma is real there, F = |p' x p''|^2 and S = |p'|^2 are
+  // >= 0 at every real point, so sqrt may be taken of [max(0, lo), hi]
+  // (arb_sqrtpos) instead of failing where the enclosure reaches below 0.
+  const bool real = !analytic && acb_is_real(z) && acb_is_real(F) && acb_is_real(S);
+  const AcbArith ar{prec, analytic, real};
+  speed_formula::speed_value(ar, r, S, F, form(), p.component, nullptr);
+  acb_swap(out, r);
   if (!acb_is_finite(out)) {
     // Near a zero of sigma the square root's branch point is in reach:
     // the factored form s g R is analytic there.
@@ -736,20 +637,30 @@ void Speed::eval(acb_t out, const acb_t z, const PieceSigns& p, bool analytic, l
   }
   // sigma is real at real points: on a real segment Re(out) holds it
   if (!analytic && acb_is_real(z)) arb_zero(acb_imagref(out));
-  acb_clear(S);
-  acb_clear(F);
 }
 
 bool Speed::eval_factored(acb_t out, const acb_t z, const PieceSigns& p, bool analytic, long prec) const {
-  acb_t g;
-  acb_init(g);
-  eval_cofactor(out, z, analytic, prec);
-  if (acb_is_finite(out)) {
-    eval_g(g, z, prec);
-    acb_mul(out, out, g, prec);
-    if (p.g < 0) acb_neg(out, out);
+  AcbBox d, s, r;
+  // D first: where its enclosure holds 0 the quotient is not finite anyway,
+  // and the K_k (degree ~4x the curve's) need not be expanded there.
+  eval_D(d, z, prec);
+  if (acb_contains_zero(d)) {
+    acb_indeterminate(out);
+    return false;
   }
-  acb_clear(g);
+  // s = sqrt(sum K^2); a single cofactor is a nonzero integer constant: |K|.
+  if (K_b_.size() == 1) {
+    K_b_[0].eval(s, z, prec);
+    if (arb_is_negative(acb_realref(s.get())) && arb_is_zero(acb_imagref(s.get()))) acb_neg(s, s);
+  } else {
+    eval_sumK2(s, z, prec);
+    // on a real segment (not analytic) sum K^2 >= 0: arb_sqrtpos
+    const AcbArith root{prec, analytic, !analytic && acb_is_real(s)};
+    root.sqrt(s, s);
+  }
+  const AcbArith ar{prec};
+  speed_formula::factored_value(ar, r, s, d, [&](AcbBox& g) { eval_g(g, z, prec); }, p.g);
+  acb_swap(out, r);
   return acb_is_finite(out);
 }
 
@@ -767,40 +678,33 @@ bool holds_singularity(const CDisk& x, bool root) {
 
 }  // namespace
 
-Speed::DiskResult Speed::factored_disks(CDisk& g, CDisk& q, CDisk& inv_d, const acb_t z, long prec) const {
-  CDisk d{0, 0, 0};
+Speed::DiskResult Speed::factored_disks(CDisk& g, CDisk& q, CDisk& d, const acb_t z, long prec) const {
+  using namespace speed_formula;
+  DiskArith ar;
+  CDisk v;
   if (kind_ == SpeedKind::Parametric) {
     d = W_b_.eval_disk(z, prec);
   } else {
-    for (const auto& y : Y_b_) {
-      const CDisk v = y.eval_disk(z, prec);
-      d = cdisk_add(d, cdisk_mul(v, v));
-    }
+    sum_of_squares(ar, d, Y_b_.size(), [&](std::size_t i) -> const CDisk& { return v = Y_b_[i].eval_disk(z, prec); });
   }
-  inv_d = cdisk_inv(d);  // first: see eval_cofactor
-  if (!cdisk_is_finite(inv_d)) return holds_singularity(d, false) ? DiskResult::Refused : DiskResult::Unknown;
-  if (K_b_.size() == 1) {
+  // first: see eval_factored
+  if (!cdisk_is_finite(cdisk_inv(d))) return holds_singularity(d, false) ? DiskResult::Refused : DiskResult::Unknown;
+  if (K_b_.size() == 1)
     q = K_b_[0].eval_disk(z, prec);
-  } else {
-    q = CDisk{0, 0, 0};
-    for (const auto& k : K_b_) {
-      const CDisk v = k.eval_disk(z, prec);
-      q = cdisk_add(q, cdisk_mul(v, v));
-    }
-  }
+  else
+    sum_of_squares(ar, q, K_b_.size(), [&](std::size_t i) -> const CDisk& { return v = K_b_[i].eval_disk(z, prec); });
   // g = content * prod h_i^m_i; fmpz_get_d rounds towards zero (< 2u relative)
   const double content = fmpz_get_d(g_content_.get());
-  g = CDisk{content, 0, cdisk_detail::up(0x1p-52 * std::fabs(content))};
-  for (std::size_t i = 0; i < g_h_.size(); ++i) {
-    const CDisk h = g_h_[i].eval_disk(z, prec);
-    for (int k = 0; k < g_m_[i]; ++k) g = cdisk_mul(g, h);
-  }
+  factored_g(
+      ar, g, CDisk{content, 0, cdisk_detail::up(0x1p-52 * std::fabs(content))}, g_h_.size(),
+      [&](std::size_t i, CDisk& h) { h = g_h_[i].eval_disk(z, prec); }, [&](std::size_t i) { return g_m_[i]; },
+      static_cast<std::size_t>(-1));
   return cdisk_is_finite(q) && cdisk_is_finite(g) ? DiskResult::Ok : DiskResult::Unknown;
 }
 
 Speed::DiskResult Speed::eval_factored_disk(acb_t out, const acb_t z, const PieceSigns& p, long prec) const {
-  CDisk g, s, inv_d;
-  const DiskResult parts = factored_disks(g, s, inv_d, z, prec);
+  CDisk g, s, d;
+  const DiskResult parts = factored_disks(g, s, d, z, prec);
   if (parts != DiskResult::Ok) return parts;
   if (K_b_.size() == 1) {  // a nonzero integer constant: its absolute value
     if (!(s.im == 0 && std::fabs(s.re) > s.rad)) return DiskResult::Unknown;
@@ -810,14 +714,16 @@ Speed::DiskResult Speed::eval_factored_disk(acb_t out, const acb_t z, const Piec
     s = cdisk_sqrt_analytic(q);
     if (!cdisk_is_finite(s)) return holds_singularity(q, true) ? DiskResult::Refused : DiskResult::Unknown;
   }
-  CDisk r = cdisk_mul(cdisk_mul(s, inv_d), g);
-  if (p.g < 0) r = cdisk_neg(r);
+  DiskArith ar;
+  CDisk r;
+  speed_formula::factored_value(ar, r, s, d, [&g](CDisk& v) { v = g; }, p.g);
   if (!cdisk_is_finite(r)) return DiskResult::Unknown;
   cdisk_get_acb(out, r);
   return DiskResult::Ok;
 }
 
 bool Speed::components_disk(CDisk& S, CDisk& F, const acb_t z, long prec) const {
+  using namespace speed_formula;
   constexpr std::size_t kMax = 8;
   const std::size_t n = comp_.size();
   const bool angular = kind_ == SpeedKind::Angular;
@@ -828,27 +734,21 @@ bool Speed::components_disk(CDisk& S, CDisk& F, const acb_t z, long prec) const 
     common = common && !k.unit_den && k.q_index == comp_[0].q_index;
   }
   if (!poly && !(common && angular)) return false;
+  DiskArith ar;
   CDisk d1[kMax], d2[kMax];
   if (poly) {  // x' = N', x'' = N''
     for (std::size_t i = 0; i < n; ++i) comp_[i].N.eval_disks(nullptr, d1 + i, angular ? d2 + i : nullptr, z, prec);
-  } else {  // A_i = N_i' Q - N_i Q' and B_i = N_i'' Q - N_i Q'' (eval_components)
+  } else {  // A_i and B_i (eval_components)
     CDisk q, q1, q2, v, v1, v2;
     comp_[0].Q.eval_disks(&q, &q1, &q2, z, prec);
     for (std::size_t i = 0; i < n; ++i) {
       comp_[i].N.eval_disks(&v, &v1, &v2, z, prec);
-      d1[i] = cdisk_add(cdisk_mul(v1, q), cdisk_neg(cdisk_mul(v, q1)));
-      d2[i] = cdisk_add(cdisk_mul(v2, q), cdisk_neg(cdisk_mul(v, q2)));
+      scaled_derivatives(ar, d1[i], d2 + i, v, v1, &v2, q, q1, &q2);
     }
   }
-  S = CDisk{0, 0, 0};
-  for (std::size_t i = 0; i < n; ++i) S = cdisk_add(S, cdisk_mul(d1[i], d1[i]));
+  sum_of_squares(ar, S, n, [&d1](std::size_t i) -> const CDisk& { return d1[i]; });
   F = CDisk{0, 0, 0};
-  if (angular)
-    for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t j = i + 1; j < n; ++j) {
-        const CDisk e = cdisk_add(cdisk_mul(d1[i], d2[j]), cdisk_neg(cdisk_mul(d2[i], d1[j])));
-        F = n == 2 ? e : cdisk_add(F, cdisk_mul(e, e));
-      }
+  if (angular) cross_terms(ar, F, d1, d2, n);
   return cdisk_is_finite(S) && cdisk_is_finite(F);
 }
 
@@ -856,17 +756,13 @@ Speed::DiskResult Speed::eval_disk(acb_t out, const acb_t z, const PieceSigns& p
   CDisk S, F;
   bool unknown = true;  // the components failed for want of range, not at a singularity
   if (components_disk(S, F, z, prec)) {
+    const speed_formula::Form f = form();
+    if (f == speed_formula::Form::Parametric) unknown = !holds_singularity(S, true);
+    else if (f == speed_formula::Form::Plane) unknown = !holds_singularity(S, false);
+    else unknown = !holds_singularity(S, false) && !holds_singularity(F, true);
+    DiskArith ar;
     CDisk r;
-    if (kind_ == SpeedKind::Parametric) {
-      r = cdisk_sqrt_analytic(S);
-      unknown = !holds_singularity(S, true);
-    } else if (comp_.size() == 2) {
-      r = cdisk_div(p.component < 0 ? cdisk_neg(F) : F, S);  // E / S
-      unknown = !holds_singularity(S, false);
-    } else {
-      r = cdisk_div(cdisk_sqrt_analytic(F), S);
-      unknown = !holds_singularity(S, false) && !holds_singularity(F, true);
-    }
+    speed_formula::speed_value(ar, r, S, F, f, p.component, nullptr);
     if (cdisk_is_finite(r)) {
       cdisk_get_acb(out, r);
       return DiskResult::Ok;
@@ -878,15 +774,12 @@ Speed::DiskResult Speed::eval_disk(acb_t out, const acb_t z, const PieceSigns& p
 }
 
 Speed::DiskResult Speed::eval_squared_disk(acb_t out, const acb_t z, long prec) const {
-  CDisk S, F;
+  DiskArith ar;
+  CDisk S, F, r;
   bool unknown = true;  // as in eval_disk
   if (components_disk(S, F, z, prec)) {
-    CDisk r = S;
-    if (kind_ == SpeedKind::Angular) {
-      const CDisk inv_s = cdisk_inv(S);
-      r = cdisk_mul(cdisk_mul(comp_.size() == 2 ? cdisk_mul(F, F) : F, inv_s), inv_s);
-      unknown = !holds_singularity(S, false);
-    }
+    speed_formula::speed_squared(ar, r, S, F, form(), nullptr);
+    if (kind_ == SpeedKind::Angular) unknown = !holds_singularity(S, false);
     if (cdisk_is_finite(r)) {
       cdisk_get_acb(out, r);
       if (arb_is_zero(acb_imagref(z))) arb_zero(acb_imagref(out));  // sigma^2 is real on a real segment
@@ -895,12 +788,12 @@ Speed::DiskResult Speed::eval_squared_disk(acb_t out, const acb_t z, long prec) 
   }
   // the factored form g^2 sum K^2 / D^2 (p'(z) = 0 in reach: see eval_squared)
   if (!disk_form_) return DiskResult::Unknown;
-  CDisk g, q, inv_d;
-  const DiskResult parts = factored_disks(g, q, inv_d, z, prec);
+  CDisk g, q, d, ratio;
+  const DiskResult parts = factored_disks(g, q, d, z, prec);
   if (parts != DiskResult::Ok) return parts == DiskResult::Refused && unknown ? DiskResult::Unknown : parts;
   if (K_b_.size() == 1) q = cdisk_mul(q, q);
-  const CDisk gd = cdisk_mul(g, inv_d);
-  const CDisk r = cdisk_mul(q, cdisk_mul(gd, gd));
+  speed_formula::factored_ratio_squared(ar, ratio, q, d);
+  speed_formula::factored_squared(ar, r, ratio, g);
   if (!cdisk_is_finite(r)) return DiskResult::Unknown;
   cdisk_get_acb(out, r);
   if (arb_is_zero(acb_imagref(z))) arb_zero(acb_imagref(out));
@@ -919,30 +812,19 @@ void Speed::eval_squared(acb_t out, const acb_t z, long prec, bool double_word) 
       return;
     }
   }
-  acb_t S, F;
-  acb_init(S);
-  acb_init(F);
+  AcbBox S, F, r;
   eval_components(S, F, z, prec);
-  if (kind_ == SpeedKind::Angular) {
-    if (comp_.size() == 2) acb_mul(F, F, F, prec);
-    acb_div(out, F, S, prec);
-    acb_div(out, out, S, prec);
-    if (!acb_is_finite(out)) {
-      // p'(z) = 0 in reach (a cusp): F / S^2 is 0/0 there, while the
-      // factored form g^2 sum K^2 / D^2 has the common factor cancelled.
-      acb_t g;
-      acb_init(g);
-      eval_g(g, z, prec);
-      eval_sumK2_over_D2(out, z, prec);
-      acb_mul(out, out, g, prec);
-      acb_mul(out, out, g, prec);
-      acb_clear(g);
-    }
-  } else {
-    acb_set(out, S);
+  const AcbArith ar{prec};
+  speed_formula::speed_squared(ar, r, S, F, form(), nullptr);
+  if (kind_ == SpeedKind::Angular && !acb_is_finite(r)) {
+    // p'(z) = 0 in reach (a cusp): F / S^2 is 0/0 there, while the
+    // factored form g^2 sum K^2 / D^2 has the common factor cancelled.
+    AcbBox g, ratio;
+    eval_g(g, z, prec);
+    eval_sumK2_over_D2(ratio, z, prec);
+    speed_formula::factored_squared(ar, r, ratio, g);
   }
-  acb_clear(S);
-  acb_clear(F);
+  acb_swap(out, r);
 }
 
 double Speed::squared_double(double t) const {
@@ -974,18 +856,15 @@ double Speed::squared_double(double t) const {
 
 namespace {
 
-// s = sum p_i^2, s1 = (sum p_i^2)' = 2 sum p_i p_i' and, when s2 is
+// sum_of_squares_d2: s = sum p_i^2, s1 = (sum p_i^2)' = 2 sum p_i p_i' and, when s2 is
 // non-null, s2 = (sum p_i^2)'' = 2 sum (p_i'^2 + p_i p_i'').
-void sum_of_squares(acb_t s, acb_t s1, acb_t s2, const std::vector<LocalPoly>& ps, const acb_t z, long prec) {
-  acb_t a, a1, a2;
-  acb_init(a);
-  acb_init(a1);
-  acb_init(a2);
+void sum_of_squares_d2(acb_t s, acb_t s1, acb_t s2, const std::vector<LocalPoly>& ps, const acb_t z, long prec) {
+  AcbBox a, a1, a2;
   acb_zero(s);
   acb_zero(s1);
   if (s2) acb_zero(s2);
   for (const auto& p : ps) {
-    p.eval(a, a1, s2 ? a2 : nullptr, z, prec);
+    p.eval(a, a1, s2 ? a2.get() : nullptr, z, prec);
     acb_addmul(s, a, a, prec);
     acb_addmul(s1, a, a1, prec);
     if (s2) {
@@ -995,9 +874,6 @@ void sum_of_squares(acb_t s, acb_t s1, acb_t s2, const std::vector<LocalPoly>& p
   }
   acb_mul_2exp_si(s1, s1, 1);
   if (s2) acb_mul_2exp_si(s2, s2, 1);
-  acb_clear(a);
-  acb_clear(a1);
-  acb_clear(a2);
 }
 
 }  // namespace
@@ -1008,17 +884,11 @@ void Speed::eval_critical(acb_t v, acb_t d, const acb_t z, long prec) const {
     if (d) acb_zero(d);
     return;
   }
-  acb_t g[3], q[3], e[3], t;
-  for (int i = 0; i < 3; ++i) {
-    acb_init(g[i]);
-    acb_init(q[i]);
-    acb_init(e[i]);
-  }
-  acb_init(t);
-  g_b_.eval(g[0], g[1], d ? g[2] : nullptr, z, prec);
-  sum_of_squares(q[0], q[1], d ? q[2] : nullptr, K_b_, z, prec);  // Q = sum K^2
-  if (kind_ == SpeedKind::Parametric) W_b_.eval(e[0], e[1], d ? e[2] : nullptr, z, prec);  // D = W
-  else sum_of_squares(e[0], e[1], d ? e[2] : nullptr, Y_b_, z, prec);                     // D = sum Y^2
+  AcbBox g[3], q[3], e[3], t, u;
+  g_b_.eval(g[0], g[1], d ? g[2].get() : nullptr, z, prec);
+  sum_of_squares_d2(q[0], q[1], d ? q[2].get() : nullptr, K_b_, z, prec);  // Q = sum K^2
+  if (kind_ == SpeedKind::Parametric) W_b_.eval(e[0], e[1], d ? e[2].get() : nullptr, z, prec);  // D = W
+  else sum_of_squares_d2(e[0], e[1], d ? e[2].get() : nullptr, Y_b_, z, prec);                     // D = sum Y^2
   // P = (2 g' Q + g Q') D - 2 g Q D'
   acb_mul(t, g[1], q[0], prec);
   acb_mul_2exp_si(t, t, 1);
@@ -1032,8 +902,6 @@ void Speed::eval_critical(acb_t v, acb_t d, const acb_t z, long prec) const {
     acb_mul(t, g[2], q[0], prec);
     acb_mul_2exp_si(t, t, 1);
     acb_addmul(t, g[0], q[2], prec);
-    acb_t u;
-    acb_init(u);
     acb_mul(u, g[1], q[1], prec);
     acb_mul_ui(u, u, 3, prec);
     acb_add(t, t, u, prec);
@@ -1043,55 +911,41 @@ void Speed::eval_critical(acb_t v, acb_t d, const acb_t z, long prec) const {
     acb_mul(t, g[0], q[0], prec);
     acb_mul_2exp_si(t, t, 1);
     acb_submul(d, t, e[2], prec);  // - 2 g Q D''
-    acb_clear(u);
   }
-  for (int i = 0; i < 3; ++i) {
-    acb_clear(g[i]);
-    acb_clear(q[i]);
-    acb_clear(e[i]);
-  }
-  acb_clear(t);
 }
 
-void Speed::eval_sumK2(acb_t out, const acb_t z, long prec) const {
-  acb_t v;
-  acb_init(v);
-  acb_zero(out);
-  for (const auto& k : K_b_) {
-    poly_eval(v, k, z, prec);
-    acb_addmul(out, v, v, prec);
-  }
-  acb_clear(v);
+void Speed::eval_sumK2(AcbBox& out, const acb_t z, long prec) const {
+  const AcbArith ar{prec};
+  AcbBox v;
+  speed_formula::sum_of_squares(ar, out, K_b_.size(), [&](std::size_t i) -> const AcbBox& {
+    K_b_[i].eval(v, z, prec);
+    return v;
+  });
 }
 
-void Speed::eval_D(acb_t out, const acb_t z, long prec) const {
+void Speed::eval_D(AcbBox& out, const acb_t z, long prec) const {
   if (kind_ == SpeedKind::Parametric) {
-    poly_eval(out, W_b_, z, prec);
+    W_b_.eval(out, z, prec);
     return;
   }
-  acb_t v;
-  acb_init(v);
-  acb_zero(out);
-  for (const auto& y : Y_b_) {  // D = sum Y_i^2, from the factors Y_i
-    poly_eval(v, y, z, prec);
-    acb_addmul(out, v, v, prec);
-  }
-  acb_clear(v);
+  const AcbArith ar{prec};
+  AcbBox v;
+  speed_formula::sum_of_squares(ar, out, Y_b_.size(), [&](std::size_t i) -> const AcbBox& {  // D = sum Y_i^2
+    Y_b_[i].eval(v, z, prec);
+    return v;
+  });
 }
 
-void Speed::eval_sumK2_over_D2(acb_t out, const acb_t z, long prec) const {
-  acb_t d;
-  acb_init(d);
-  eval_D(d, z, prec);  // first: see eval_cofactor
+void Speed::eval_sumK2_over_D2(AcbBox& out, const acb_t z, long prec) const {
+  AcbBox d, q;
+  eval_D(d, z, prec);  // first: see eval_factored
   if (acb_contains_zero(d)) {
     acb_indeterminate(out);
-    acb_clear(d);
     return;
   }
-  eval_sumK2(out, z, prec);
-  acb_div(out, out, d, prec);
-  acb_div(out, out, d, prec);
-  acb_clear(d);
+  eval_sumK2(q, z, prec);
+  const AcbArith ar{prec};
+  speed_formula::factored_ratio_squared(ar, out, q, d);
 }
 
 void Speed::eval_squared_over_zero(acb_t out, const acb_t z, const SpeedZero& zero, int side, int power, long prec,
@@ -1102,9 +956,7 @@ void Speed::eval_squared_over_zero(acb_t out, const acb_t z, const SpeedZero& ze
   if (power < 0 || power > 2 * mu) throw InvalidArgument("eval_squared_over_zero: power out of range");
   if (zero.index >= zeros_.size() || zeros_[zero.index].factor != j)
     throw InvalidArgument("eval_squared_over_zero: not a zero of this speed");
-  acb_t w, h;
-  acb_init(w);
-  acb_init(h);
+  AcbBox w, h, r;
   // w = side (z - gamma)
   const Ball gb = zero.t.to_ball(prec + 16);
   acb_sub_arb(w, z, gb.get(), prec);
@@ -1115,7 +967,7 @@ void Speed::eval_squared_over_zero(acb_t out, const acb_t z, const SpeedZero& ze
   mag_init(lo);
   mag_init(rad);
   acb_get_mag_lower(lo, w);
-  mag_hypot(rad, arb_radref(acb_realref(w)), arb_radref(acb_imagref(w)));
+  mag_hypot(rad, arb_radref(acb_realref(w.get())), arb_radref(acb_imagref(w.get())));
   mag_mul_2exp_si(rad, rad, 3);
   const bool far = mag_cmp(lo, rad) > 0;
   mag_clear(lo);
@@ -1133,11 +985,9 @@ void Speed::eval_squared_over_zero(acb_t out, const acb_t z, const SpeedZero& ze
     eval_g(h, z, prec, j);  // c g_1(z): g without the factor vanishing at gamma
     acb_mul(w, w, h, prec);
     acb_mul(w, w, h, prec);
-    eval_sumK2_over_D2(out, z, prec);
-    acb_mul(out, out, w, prec);
+    eval_sumK2_over_D2(r, z, prec);
+    acb_mul(out, r, w, prec);
   }
-  acb_clear(w);
-  acb_clear(h);
 }
 
 }  // namespace uniparam
