@@ -9,6 +9,7 @@
 #include <memory>
 #include <mutex>
 
+#include "curve_model.hpp"
 #include "speed_detail.hpp"
 #include "uniparam/algebra/real_roots.hpp"
 #include "uniparam/core/error.hpp"
@@ -25,6 +26,9 @@ SpeedKind parse_speed_kind(const std::string& s) {
 }
 
 namespace {
+
+// The highest degree of a Bezier curve evaluated from its Bernstein form.
+constexpr long kBernsteinMaxDegree = 64;
 
 Poly gcd_all(const std::vector<Poly>& ps) {
   Poly g;
@@ -124,6 +128,18 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
     }
     comp_.push_back(std::move(k));
   }
+  // The evaluation tiers' curve model: a Bezier curve's own components
+  // (not the direction curve) from their Bernstein coefficients, up to
+  // kBernsteinMaxDegree (de Casteljau costs O(n^2) operations); else the
+  // power basis.
+  const BernsteinForm* bern = reduced.empty() ? c.bernstein() : nullptr;
+  if (bern && !bern->den.empty() && static_cast<long>(bern->den.size()) - 1 <= kBernsteinMaxDegree) {
+    model_ = bernstein_curve_model(*bern);
+  } else {
+    std::vector<PowerComponent> pc;
+    for (const Component& k : comp_) pc.push_back(PowerComponent{k.N, k.Q, k.unit_den, k.q_index});
+    model_ = power_curve_model(std::move(pc));
+  }
   // The double-word path for the nodes (eval_double_word), where it applies.
   dd_ = detail::make_speed_dd(comps, kind);
   // Two independent halves, side by side (the construction is serial
@@ -194,9 +210,6 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
   for (const auto* v : {&Y_b_, &K_b_, &g_h_})
     for (const LocalPoly& q : *v) disk_form_ = disk_form_ && q.has_disk_form();
   if (kind == SpeedKind::Parametric) disk_form_ = disk_form_ && W_b_.has_disk_form();
-  components_disk_form_ = !comp_.empty();
-  for (const Component& k : comp_)
-    components_disk_form_ = components_disk_form_ && k.N.has_disk_form() && (k.unit_den || k.Q.has_disk_form());
 }
 
 const RatFunc& Speed::squared() const {

@@ -4,6 +4,7 @@
 // uncertified).
 #include <vector>
 
+#include "curve_model.hpp"
 #include "speed_enclosure.hpp"
 #include "uniparam/reparam/speed.hpp"
 
@@ -11,15 +12,16 @@ namespace uniparam {
 
 double Speed::squared_double(double t) const {
   if (zero_) return 0;
-  const std::size_t n = comp_.size();
+  const CurveModel& m = *model_;
+  const std::size_t n = m.size();
   double buf[16];  // the optimisers call this ~10^5 times: no allocation up to 8 components
   std::vector<double> heap(n > 8 ? 2 * n : 0);
   double* d1 = n > 8 ? heap.data() : buf;
   double* d2 = d1 + n;
   for (std::size_t i = 0; i < n; ++i) {
     double nv, n1, n2, q, q1, q2;
-    comp_[i].N.eval_double(t, &nv, &n1, &n2);
-    comp_[i].Q.eval_double(t, &q, &q1, &q2);
+    m.eval_num_double(i, t, &nv, &n1, &n2);
+    m.eval_den_double(i, t, &q, &q1, &q2);
     const double a = n1 * q - nv * q1, qq = q * q;
     d1[i] = a / qq;
     d2[i] = (n2 * q - nv * q2) / qq - 2 * q1 * a / (qq * q);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "curve_model.hpp"
 #include "speed_enclosure.hpp"
 #include "speed_formula.hpp"
 #include "uniparam/reparam/speed.hpp"
@@ -72,24 +73,25 @@ Speed::DiskResult Speed::eval_factored_disk(acb_t out, const acb_t z, const Piec
 bool Speed::components_disk(CDisk& S, CDisk& F, const acb_t z, long prec) const {
   using namespace speed_formula;
   constexpr std::size_t kMax = 8;
-  const std::size_t n = comp_.size();
+  const CurveModel& m = *model_;
+  const std::size_t n = m.size();
   const bool angular = kind_ == SpeedKind::Angular;
-  if (!components_disk_form_ || n > kMax) return false;
+  if (!m.has_disks() || n == 0 || n > kMax) return false;
   bool poly = true, common = true;
-  for (const Component& k : comp_) {
-    poly = poly && k.unit_den;
-    common = common && !k.unit_den && k.q_index == comp_[0].q_index;
+  for (std::size_t i = 0; i < n; ++i) {
+    poly = poly && m.unit_den(i);
+    common = common && !m.unit_den(i) && m.den_index(i) == m.den_index(0);
   }
   if (!poly && !(common && angular)) return false;
   DiskArith ar;
   CDisk d1[kMax], d2[kMax];
   if (poly) {  // x' = N', x'' = N''
-    for (std::size_t i = 0; i < n; ++i) comp_[i].N.eval_disks(nullptr, d1 + i, angular ? d2 + i : nullptr, z, prec);
+    for (std::size_t i = 0; i < n; ++i) m.eval_num_disks(i, nullptr, d1 + i, angular ? d2 + i : nullptr, z, prec);
   } else {  // A_i and B_i (eval_components)
     CDisk q, q1, q2, v, v1, v2;
-    comp_[0].Q.eval_disks(&q, &q1, &q2, z, prec);
+    m.eval_den_disks(0, &q, &q1, &q2, z, prec);
     for (std::size_t i = 0; i < n; ++i) {
-      comp_[i].N.eval_disks(&v, &v1, &v2, z, prec);
+      m.eval_num_disks(i, &v, &v1, &v2, z, prec);
       scaled_derivatives(ar, d1[i], d2 + i, v, v1, &v2, q, q1, &q2);
     }
   }

@@ -3,6 +3,7 @@
 // factored form where that is not finite; the arithmetic of
 // speed_formula.hpp on AcbArith (RAII temporaries: an exception, e.g. a
 // time budget from RealAlgebraic::to_ball, releases them).
+#include "curve_model.hpp"
 #include "speed_enclosure.hpp"
 #include "speed_formula.hpp"
 #include "uniparam/core/error.hpp"
@@ -19,19 +20,19 @@ void Speed::eval_derivatives(AcbBox* d1, AcbBox* d2, const acb_t z, long prec) c
   using namespace speed_formula;
   const AcbArith ar{prec};
   AcbBox n, n1, n2, q, q1, q2, a, v, w;
-  std::size_t q_done = comp_.size();  // index of the Q held in q, q1, q2, v, w
-  for (std::size_t i = 0; i < comp_.size(); ++i) {
-    const Component& k = comp_[i];
-    if (k.unit_den) {  // a polynomial component: x' = N', x'' = N''
-      k.N.eval(n, d1[i], d2 ? d2[i].get() : nullptr, z, prec);
+  const CurveModel& m = *model_;
+  std::size_t q_done = m.size();  // index of the Q held in q, q1, q2, v, w
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    if (m.unit_den(i)) {  // a polynomial component: x' = N', x'' = N''
+      m.eval_num(i, n, d1[i], d2 ? d2[i].get() : nullptr, z, prec);
       continue;
     }
-    k.N.eval(n, n1, d2 ? n2.get() : nullptr, z, prec);
-    if (k.q_index != q_done) {  // a rational curve's common weight: once
-      k.Q.eval(q, q1, d2 ? q2.get() : nullptr, z, prec);
+    m.eval_num(i, n, n1, d2 ? n2.get() : nullptr, z, prec);
+    if (m.den_index(i) != q_done) {  // a rational curve's common weight: once
+      m.eval_den(i, q, q1, d2 ? q2.get() : nullptr, z, prec);
       ar.inv(v, q);  // v = 1 / Q (one division)
       ar.mul(w, v, v);
-      q_done = k.q_index;
+      q_done = m.den_index(i);
     }
     scaled_derivatives(ar, a, d2 ? &n2 : nullptr, n, n1, &n2, q, q1, &q2);
     quotient_derivatives(ar, d1[i], d2 ? d2 + i : nullptr, a, d2 ? &n2 : nullptr, q1, v, w);
@@ -41,10 +42,11 @@ void Speed::eval_derivatives(AcbBox* d1, AcbBox* d2, const acb_t z, long prec) c
 void Speed::eval_components(AcbBox& S, AcbBox& F, const acb_t z, long prec) const {
   using namespace speed_formula;
   const AcbArith ar{prec};
-  const std::size_t n = comp_.size();
+  const CurveModel& m = *model_;
+  const std::size_t n = m.size();
   const bool angular = kind_ == SpeedKind::Angular;
-  bool common = angular && !comp_.empty() && !comp_[0].unit_den;
-  for (const Component& k : comp_) common = common && k.q_index == comp_[0].q_index;
+  bool common = angular && n > 0 && !m.unit_den(0);
+  for (std::size_t i = 0; i < n; ++i) common = common && m.den_index(i) == m.den_index(0);
   std::vector<AcbBox> d(angular ? 2 * n : n);
   AcbBox* d1 = d.data();
   AcbBox* d2 = angular ? d1 + n : nullptr;
@@ -56,9 +58,9 @@ void Speed::eval_components(AcbBox& S, AcbBox& F, const acb_t z, long prec) cons
     // whose complex zeros (the curve's poles, not sigma's) no longer spoil
     // wide balls.
     AcbBox nv, n1, n2, q, q1, q2;
-    comp_[0].Q.eval(q, q1, q2, z, prec);
+    m.eval_den(0, q, q1, q2, z, prec);
     for (std::size_t i = 0; i < n; ++i) {
-      comp_[i].N.eval(nv, n1, n2, z, prec);
+      m.eval_num(i, nv, n1, n2, z, prec);
       scaled_derivatives(ar, d1[i], d2 + i, nv, n1, &n2, q, q1, &q2);
     }
   } else {

@@ -26,7 +26,8 @@ namespace uniparam {
 namespace detail {
 struct SpeedDD;  // Speed::eval_dd's double-word components (speed.cpp)
 }  // namespace detail
-class AcbBox;  // an RAII acb_t (speed_enclosure.hpp)
+class AcbBox;      // an RAII acb_t (speed_enclosure.hpp)
+class CurveModel;  // how the evaluation curve evaluates (curve_model.hpp)
 namespace speed_formula {
 enum class Form;  // the speed's shape (speed_formula.hpp)
 }  // namespace speed_formula
@@ -275,7 +276,10 @@ class Speed {
   std::vector<LocalPoly> Y_b_;  // angular: D = sum Y^2; parametric: empty
   LocalPoly W_b_;               // parametric: D = W
   bool disk_form_ = false;      // every factor of eval_factored has LocalPoly::has_disk_form
-  bool components_disk_form_ = false;  // every N and Q of comp_ has it
+  // the evaluation curve's components for the evaluation tiers (the
+  // Bernstein basis for a Bezier curve's own components, else comp_'s
+  // power basis); shared by copies
+  std::shared_ptr<const CurveModel> model_;
 };
 
 }  // namespace uniparam

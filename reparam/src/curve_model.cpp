@@ -1,0 +1,160 @@
+// curve_model.cpp -- the power-basis and Bernstein-basis curve models
+// (curve_model.hpp).
+#include "curve_model.hpp"
+
+#include <utility>
+
+#include "speed_enclosure.hpp"
+
+namespace uniparam {
+
+namespace {
+
+class PowerModel final : public CurveModel {
+ public:
+  explicit PowerModel(std::vector<PowerComponent> c) : c_(std::move(c)) {
+    disks_ = true;
+    for (const PowerComponent& k : c_) disks_ = disks_ && k.N.has_disk_form() && (k.unit_den || k.Q.has_disk_form());
+  }
+  std::size_t size() const override { return c_.size(); }
+  bool unit_den(std::size_t i) const override { return c_[i].unit_den; }
+  std::size_t den_index(std::size_t i) const override { return c_[i].q_index; }
+  void eval_num(std::size_t i, acb_ptr v, acb_ptr d1, acb_ptr d2, const acb_t z, long prec) const override {
+    c_[i].N.eval(v, d1, d2, z, prec);
+  }
+  void eval_den(std::size_t i, acb_ptr v, acb_ptr d1, acb_ptr d2, const acb_t z, long prec) const override {
+    c_[i].Q.eval(v, d1, d2, z, prec);
+  }
+  bool has_disks() const override { return disks_; }
+  void eval_num_disks(std::size_t i, CDisk* v, CDisk* d1, CDisk* d2, const acb_t z, long prec) const override {
+    c_[i].N.eval_disks(v, d1, d2, z, prec);
+  }
+  void eval_den_disks(std::size_t i, CDisk* v, CDisk* d1, CDisk* d2, const acb_t z, long prec) const override {
+    c_[i].Q.eval_disks(v, d1, d2, z, prec);
+  }
+  void eval_num_double(std::size_t i, double t, double* v, double* d1, double* d2) const override {
+    c_[i].N.eval_double(t, v, d1, d2);
+  }
+  void eval_den_double(std::size_t i, double t, double* v, double* d1, double* d2) const override {
+    c_[i].Q.eval_double(t, v, d1, d2);
+  }
+
+ private:
+  std::vector<PowerComponent> c_;
+  bool disks_ = false;
+};
+
+// One polynomial sum_k c_k B_k^n in the Bernstein basis: c[j] holds the
+// coefficients of its j-th derivative, (n)_j Delta^j c (degree n - j; empty
+// for j > n), j <= 3 (the third only bounds the second on wide balls).
+struct BernsteinPoly {
+  std::vector<Integer> c[4];
+  std::vector<double> d[3];  // c[0..2] in double (UNCERTIFIED evaluation)
+  explicit BernsteinPoly(const std::vector<Integer>& coeffs) {
+    c[0] = coeffs;
+    for (int j = 0; j < 3; ++j) {
+      const long n = static_cast<long>(c[j].size()) - 1;  // degree of c[j]
+      for (long k = 0; k < n; ++k) c[j + 1].push_back((c[j][static_cast<std::size_t>(k) + 1] - c[j][static_cast<std::size_t>(k)]) * Integer(n));
+    }
+    for (int j = 0; j < 3; ++j)
+      for (const Integer& x : c[j]) d[j].push_back(fmpz_get_d(x.get()));
+  }
+};
+
+// out = sum_k c_k B_k^(len-1)(z) by de Casteljau's algorithm (omz = 1 - z);
+// 0 for no coefficients.
+void casteljau(acb_ptr out, const std::vector<Integer>& c, const acb_t z, const acb_t omz, long prec) {
+  const std::size_t len = c.size();
+  if (len == 0) {
+    acb_zero(out);
+    return;
+  }
+  AcbVec b(len);
+  for (std::size_t k = 0; k < len; ++k) acb_set_fmpz(b + k, c[k].get());
+  for (std::size_t r = 1; r < len; ++r)
+    for (std::size_t k = 0; k + r < len; ++k) {
+      acb_mul(b + k, b + k, omz, prec);
+      acb_addmul(b + k, z, b + (k + 1), prec);
+    }
+  acb_set(out, b + 0);
+}
+
+double casteljau_double(const std::vector<double>& c, double t) {
+  if (c.empty()) return 0;
+  std::vector<double> b(c);
+  for (std::size_t r = 1; r < b.size(); ++r)
+    for (std::size_t k = 0; k + r < b.size(); ++k) b[k] = (1 - t) * b[k] + t * b[k + 1];
+  return b[0];
+}
+
+// v, d1, d2 (nullable) = p, p', p'' at z: directly on a narrow ball; on a
+// wide one p^(j)(m) + (z - m) p^(j+1)(z) about the midpoint m (the
+// mean-value form: de Casteljau's convex combinations widen a wide
+// complex ball's enclosure by up to (|z| + |1 - z|)^n).
+void eval_bernstein(const BernsteinPoly& p, acb_ptr v, acb_ptr d1, acb_ptr d2, const acb_t z, long prec) {
+  acb_ptr out[3] = {v, d1, d2};
+  AcbBox omz, m, omm, w, t;
+  acb_one(omz);
+  acb_sub(omz, omz, z, prec);
+  if (!is_wide_ball(z)) {
+    for (int j = 0; j < 3; ++j)
+      if (out[j]) casteljau(out[j], p.c[j], z, omz, prec);
+    return;
+  }
+  acb_get_mid(m, z);
+  acb_one(omm);
+  acb_sub(omm, omm, m, prec);
+  acb_sub(w, z, m, prec);
+  for (int j = 0; j < 3; ++j) {
+    if (!out[j]) continue;
+    casteljau(t, p.c[j + 1], z, omz, prec);
+    casteljau(out[j], p.c[j], m, omm, prec);
+    acb_addmul(out[j], w, t, prec);
+  }
+}
+
+class BernsteinModel final : public CurveModel {
+ public:
+  explicit BernsteinModel(const BernsteinForm& b) : q_(b.den) {
+    for (const auto& row : b.num) n_.emplace_back(row);
+  }
+  std::size_t size() const override { return n_.size(); }
+  bool unit_den(std::size_t) const override { return false; }
+  std::size_t den_index(std::size_t) const override { return 0; }
+  void eval_num(std::size_t i, acb_ptr v, acb_ptr d1, acb_ptr d2, const acb_t z, long prec) const override {
+    eval_bernstein(n_[i], v, d1, d2, z, prec);
+  }
+  void eval_den(std::size_t, acb_ptr v, acb_ptr d1, acb_ptr d2, const acb_t z, long prec) const override {
+    eval_bernstein(q_, v, d1, d2, z, prec);
+  }
+  bool has_disks() const override { return false; }
+  void eval_num_disks(std::size_t, CDisk*, CDisk*, CDisk*, const acb_t, long) const override {}
+  void eval_den_disks(std::size_t, CDisk*, CDisk*, CDisk*, const acb_t, long) const override {}
+  void eval_num_double(std::size_t i, double t, double* v, double* d1, double* d2) const override {
+    eval_double(n_[i], t, v, d1, d2);
+  }
+  void eval_den_double(std::size_t, double t, double* v, double* d1, double* d2) const override {
+    eval_double(q_, t, v, d1, d2);
+  }
+
+ private:
+  static void eval_double(const BernsteinPoly& p, double t, double* v, double* d1, double* d2) {
+    double* out[3] = {v, d1, d2};
+    for (int j = 0; j < 3; ++j)
+      if (out[j]) *out[j] = casteljau_double(p.d[j], t);
+  }
+  std::vector<BernsteinPoly> n_;
+  BernsteinPoly q_;
+};
+
+}  // namespace
+
+std::shared_ptr<const CurveModel> power_curve_model(std::vector<PowerComponent> comps) {
+  return std::make_shared<const PowerModel>(std::move(comps));
+}
+
+std::shared_ptr<const CurveModel> bernstein_curve_model(const BernsteinForm& b) {
+  return std::make_shared<const BernsteinModel>(b);
+}
+
+}  // namespace uniparam
