@@ -11,6 +11,7 @@
 
 #include "curve_model.hpp"
 #include "speed_detail.hpp"
+#include "speed_model.hpp"
 #include "uniparam/algebra/real_roots.hpp"
 #include "uniparam/core/error.hpp"
 #include "uniparam/core/parallel.hpp"
@@ -96,8 +97,9 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
   // positive scale: direction_curve): the same speed with the factor
   // cancelled. The components of p itself would give 0/0 at every real root
   // of gx, and x'y'' - x''y' vanishes there while omega does not.
+  const SpeedModel& sm = speed_model(kind);
   std::vector<RatFunc> reduced;
-  if (kind == SpeedKind::Angular) {
+  if (sm.direction_only()) {
     Poly gx = gcd_all(X);
     for (const auto& x : X) Y.push_back(divexact(x, gx));
     if (gx.degree() > 0) reduced = direction_curve(Y);
@@ -106,7 +108,7 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
   // The exact x', x'' fix the sign of a plane curve's angular speed
   // (piece_signs); elsewhere they are not needed (and cost two exact
   // quotient rules on high-degree rational functions).
-  const bool exact_derivatives = kind == SpeedKind::Angular && comps.size() == 2;
+  const bool exact_derivatives = sm.form(comps.size()) == speed_formula::Form::Plane;
   for (const auto& x : comps) {
     Component k;
     Poly n = x.num(), q = x.den();
@@ -151,16 +153,11 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
   std::vector<Poly> N;
   parallel_for(2, std::min<std::size_t>(worker_count(), 2), [&](std::size_t, std::size_t task) {
     if (task == 0) {
-      if (kind == SpeedKind::Angular) {
-        D_ = Poly(0);
-        for (const auto& y : Y) D_ = D_ + y * y;
-        // No check needed: the Y_i = X_i / gcd(X) are coprime, so they have
-        // no common complex zero and D = sum Y_i^2 > 0 on the whole real
-        // line. (Its isolation on [0, 1] cost ~1% of dense-plane d=150
-        // uniformity's instructions.)
-        return;
-      }
-      D_ = c.derivative_denominator();
+      D_ = sm.denominator(c, Y);
+      // (The angular D = sum Y_i^2 needs no check: it is positive on the
+      // whole real line; its isolation on [0, 1] cost ~1% of dense-plane
+      // d=150 uniformity's instructions.)
+      if (!sm.denominator_may_vanish()) return;
       // D must not vanish on [0, 1] (the speed would be infinite there).
       auto r = isolate_real_roots(D_, Rational(0), Rational(1));
       if (!r.empty()) {
@@ -170,16 +167,7 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
       }
       return;
     }
-    if (kind == SpeedKind::Angular) {
-      for (std::size_t i = 0; i < Y.size(); ++i)
-        for (std::size_t j = i + 1; j < Y.size(); ++j) {
-          Poly e = Y[i].derivative() * Y[j] - Y[i] * Y[j].derivative();
-          if (!e.is_zero()) N.push_back(std::move(e));
-        }
-    } else {
-      for (const auto& x : X)
-        if (!x.is_zero()) N.push_back(x);
-    }
+    N = sm.numerators(X, Y);
     if (N.empty()) return;  // angular speed of a straight line
     g_ = gcd_all(N).primitive();
     for (const auto& n : N) K_.push_back(divexact(n, g_));
@@ -192,10 +180,9 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
         zeros_.push_back(SpeedZero{RealAlgebraic(r), f.multiplicity, g_h_.size() - 1});
     }
   });
-  if (kind == SpeedKind::Angular)
-    for (const auto& y : Y) Y_b_.emplace_back(y);
-  else
-    W_b_ = LocalPoly(D_);
+  // D from the squares it is the sum of (angular: Y_i), else itself
+  for (const auto& y : sm.denominator_squares(Y)) Y_b_.emplace_back(y);
+  if (Y_b_.empty()) W_b_ = LocalPoly(D_);
   lazy_ = std::make_shared<Lazy>();
   if (N.empty()) {  // the second task stopped at once
     zero_ = true;
@@ -209,7 +196,7 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
   disk_form_ = true;
   for (const auto* v : {&Y_b_, &K_b_, &g_h_})
     for (const LocalPoly& q : *v) disk_form_ = disk_form_ && q.has_disk_form();
-  if (kind == SpeedKind::Parametric) disk_form_ = disk_form_ && W_b_.has_disk_form();
+  if (Y_b_.empty()) disk_form_ = disk_form_ && W_b_.has_disk_form();
 }
 
 const RatFunc& Speed::squared() const {

@@ -71,7 +71,7 @@ void Speed::eval_critical(acb_t v, acb_t d, const acb_t z, long prec) const {
   AcbBox g[3], q[3], e[3], t, u;
   g_b_.eval(g[0], g[1], d ? g[2].get() : nullptr, z, prec);
   sum_of_squares_d2(q[0], q[1], d ? q[2].get() : nullptr, K_b_, z, prec);  // Q = sum K^2
-  if (kind_ == SpeedKind::Parametric) W_b_.eval(e[0], e[1], d ? e[2].get() : nullptr, z, prec);  // D = W
+  if (Y_b_.empty()) W_b_.eval(e[0], e[1], d ? e[2].get() : nullptr, z, prec);  // D = W
   else sum_of_squares_d2(e[0], e[1], d ? e[2].get() : nullptr, Y_b_, z, prec);                     // D = sum Y^2
   // P = (2 g' Q + g Q') D - 2 g Q D'
   acb_mul(t, g[1], q[0], prec);

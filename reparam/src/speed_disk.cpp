@@ -30,7 +30,7 @@ Speed::DiskResult Speed::factored_disks(CDisk& g, CDisk& q, CDisk& d, const acb_
   using namespace speed_formula;
   DiskArith ar;
   CDisk v;
-  if (kind_ == SpeedKind::Parametric) {
+  if (Y_b_.empty()) {  // D = W
     d = W_b_.eval_disk(z, prec);
   } else {
     sum_of_squares(ar, d, Y_b_.size(), [&](std::size_t i) -> const CDisk& { return v = Y_b_[i].eval_disk(z, prec); });

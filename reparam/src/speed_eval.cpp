@@ -6,15 +6,13 @@
 #include "curve_model.hpp"
 #include "speed_enclosure.hpp"
 #include "speed_formula.hpp"
+#include "speed_model.hpp"
 #include "uniparam/core/error.hpp"
 #include "uniparam/reparam/speed.hpp"
 
 namespace uniparam {
 
-speed_formula::Form Speed::form() const {
-  if (kind_ == SpeedKind::Parametric) return speed_formula::Form::Parametric;
-  return comp_.size() == 2 ? speed_formula::Form::Plane : speed_formula::Form::Space;
-}
+speed_formula::Form Speed::form() const { return speed_model(kind_).form(comp_.size()); }
 
 void Speed::eval_derivatives(AcbBox* d1, AcbBox* d2, const acb_t z, long prec) const {
   using namespace speed_formula;
@@ -197,7 +195,7 @@ void Speed::eval_sumK2(AcbBox& out, const acb_t z, long prec) const {
 }
 
 void Speed::eval_D(AcbBox& out, const acb_t z, long prec) const {
-  if (kind_ == SpeedKind::Parametric) {
+  if (Y_b_.empty()) {  // D = W
     W_b_.eval(out, z, prec);
     return;
   }

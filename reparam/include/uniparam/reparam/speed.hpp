@@ -273,8 +273,8 @@ class Speed {
   std::vector<LocalPoly> g_h_;  // squarefree factors of g
   std::vector<int> g_m_;
   std::vector<LocalPoly> K_b_;
-  std::vector<LocalPoly> Y_b_;  // angular: D = sum Y^2; parametric: empty
-  LocalPoly W_b_;               // parametric: D = W
+  std::vector<LocalPoly> Y_b_;  // D = sum Y^2 (SpeedModel::denominator_squares; angular)
+  LocalPoly W_b_;               // D itself where Y_b_ is empty (parametric: D = W)
   bool disk_form_ = false;      // every factor of eval_factored has LocalPoly::has_disk_form
   // the evaluation curve's components for the evaluation tiers (the
   // Bernstein basis for a Bezier curve's own components, else comp_'s
