@@ -24,7 +24,7 @@
 namespace uniparam {
 
 namespace detail {
-struct SpeedDD;  // Speed::eval_dd's double-word components (speed.cpp)
+struct SpeedDD;  // Speed::eval_dd's double-word components (speed_detail.hpp)
 }  // namespace detail
 class AcbBox;      // an RAII acb_t (speed_enclosure.hpp)
 class CurveModel;  // how the evaluation curve evaluates (curve_model.hpp)
@@ -167,7 +167,7 @@ class Speed {
   /// and their derivatives by Horner's rule in double-word ball arithmetic
   /// (core/dd_ball.hpp, inlined from core/dd_inline.hpp), ~100 bits,
   /// several times cheaper than Arb's balls at low degree; L cancels from
-  /// the angular speed (speed.cpp, speed_dd).
+  /// the angular speed (speed_dd.cpp; the arithmetic of speed_formula.hpp).
   /// \return true and out = a real ball that contains sigma(t) (sigma(t)^2)
   ///         for every t in z, with a relative radius of at most
   ///         2^-(prec - kNodeFastSlackBits) (quadrature.hpp's
@@ -264,7 +264,7 @@ class Speed {
     std::size_t q_index = 0;        // first component with this Q (evaluated once per ball)
   };
   std::vector<Component> comp_;
-  // eval_dd's components (speed.cpp), shared by copies; null where that
+  // eval_dd's components (speed_dd.cpp), shared by copies; null where that
   // path does not apply to this curve
   std::shared_ptr<const detail::SpeedDD> dd_;
   // ball versions for evaluation
