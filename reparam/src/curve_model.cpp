@@ -49,15 +49,27 @@ class PowerModel final : public CurveModel {
 // for j > n), j <= 3 (the third only bounds the second on wide balls).
 struct BernsteinPoly {
   std::vector<Integer> c[4];
+  std::vector<Integer> h[4];  // c[j]'s coefficients times binom(n - j, k) (bernstein_horner)
   std::vector<double> d[3];  // c[0..2] in double (UNCERTIFIED evaluation)
+  bool constant = true;      // all coefficients equal: p = c_0 (an integral curve's Q)
   explicit BernsteinPoly(const std::vector<Integer>& coeffs) {
     c[0] = coeffs;
+    for (const Integer& x : coeffs) constant = constant && x == coeffs.front();
     for (int j = 0; j < 3; ++j) {
       const long n = static_cast<long>(c[j].size()) - 1;  // degree of c[j]
       for (long k = 0; k < n; ++k) c[j + 1].push_back((c[j][static_cast<std::size_t>(k) + 1] - c[j][static_cast<std::size_t>(k)]) * Integer(n));
     }
-    for (int j = 0; j < 3; ++j)
-      for (const Integer& x : c[j]) d[j].push_back(fmpz_get_d(x.get()));
+    for (int j = 0; j < 4; ++j) {
+      if (j < 3)
+        for (const Integer& x : c[j]) d[j].push_back(fmpz_get_d(x.get()));
+      const long n = static_cast<long>(c[j].size()) - 1;
+      Integer b(1);  // binom(n, k)
+      for (long k = 0; k <= n; ++k) {
+        h[j].push_back(c[j][static_cast<std::size_t>(k)] * b);
+        fmpz_mul_si(b.get(), b.get(), n - k);
+        fmpz_divexact_si(b.get(), b.get(), k + 1);
+      }
+    }
   }
 };
 
@@ -79,6 +91,30 @@ void casteljau(acb_ptr out, const std::vector<Integer>& c, const acb_t z, const 
   acb_set(out, b + 0);
 }
 
+// out = sum_k h_k t^k (1 - t)^(len-1-k) (h_k = c_k binom(n, k): the
+// Bernstein sum) by Horner's rule in O(n): in s = z / (1 - z) times
+// (1 - z)^n where Re(mid z) <= 1/2, else in s = (1 - z) / z times z^n. Each
+// term is a Bernstein term c_k B_k(t), so no more is lost than the sum of
+// |c_k| B_k(t) allows (no power basis's alternating coefficients).
+void bernstein_horner(acb_ptr out, const std::vector<Integer>& h, const acb_t z, const acb_t omz, long prec) {
+  const std::size_t len = h.size();
+  if (len == 0) {
+    acb_zero(out);
+    return;
+  }
+  const bool left = arf_cmp_2exp_si(arb_midref(acb_realref(z)), -1) <= 0;
+  AcbBox s, acc, p;
+  if (left) acb_div(s, z, omz, prec);
+  else acb_div(s, omz, z, prec);
+  acb_set_fmpz(acc, h[left ? len - 1 : 0].get());
+  for (std::size_t j = 1; j < len; ++j) {
+    acb_mul(acc, acc, s, prec);
+    acb_add_fmpz(acc, acc, h[left ? len - 1 - j : j].get(), prec);
+  }
+  acb_pow_ui(p, left ? omz : z, len - 1, prec);
+  acb_mul(out, acc, p, prec);
+}
+
 double casteljau_double(const std::vector<double>& c, double t) {
   if (c.empty()) return 0;
   std::vector<double> b(c);
@@ -87,18 +123,24 @@ double casteljau_double(const std::vector<double>& c, double t) {
   return b[0];
 }
 
-// v, d1, d2 (nullable) = p, p', p'' at z: directly on a narrow ball; on a
-// wide one p^(j)(m) + (z - m) p^(j+1)(z) about the midpoint m (the
-// mean-value form: de Casteljau's convex combinations widen a wide
-// complex ball's enclosure by up to (|z| + |1 - z|)^n).
+// v, d1, d2 (nullable) = p, p', p'' at z: directly on a narrow ball
+// (bernstein_horner); on a wide one p^(j)(m) + (z - m) p^(j+1)(z) about the
+// midpoint m (the mean-value form: the enclosure of p^(j+1) on the wide
+// ball, which may be much wider than the range, only multiplies z - m).
 void eval_bernstein(const BernsteinPoly& p, acb_ptr v, acb_ptr d1, acb_ptr d2, const acb_t z, long prec) {
   acb_ptr out[3] = {v, d1, d2};
+  if (p.constant) {
+    acb_set_fmpz(v, p.c[0].front().get());
+    if (d1) acb_zero(d1);
+    if (d2) acb_zero(d2);
+    return;
+  }
   AcbBox omz, m, omm, w, t;
   acb_one(omz);
   acb_sub(omz, omz, z, prec);
   if (!is_wide_ball(z)) {
     for (int j = 0; j < 3; ++j)
-      if (out[j]) casteljau(out[j], p.c[j], z, omz, prec);
+      if (out[j]) bernstein_horner(out[j], p.h[j], z, omz, prec);
     return;
   }
   acb_get_mid(m, z);
@@ -107,8 +149,11 @@ void eval_bernstein(const BernsteinPoly& p, acb_ptr v, acb_ptr d1, acb_ptr d2, c
   acb_sub(w, z, m, prec);
   for (int j = 0; j < 3; ++j) {
     if (!out[j]) continue;
-    casteljau(t, p.c[j + 1], z, omz, prec);
-    casteljau(out[j], p.c[j], m, omm, prec);
+    // p^(j+1) on the wide ball: Horner's O(n) where finite (its divisor
+    // z or 1 - z away from 0), else de Casteljau's O(n^2)
+    bernstein_horner(t, p.h[j + 1], z, omz, prec);
+    if (!acb_is_finite(t)) casteljau(t, p.c[j + 1], z, omz, prec);
+    bernstein_horner(out[j], p.h[j], m, omm, prec);
     acb_addmul(out[j], w, t, prec);
   }
 }

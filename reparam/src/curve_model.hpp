@@ -60,10 +60,11 @@ struct PowerComponent {
 std::shared_ptr<const CurveModel> power_curve_model(std::vector<PowerComponent> comps);
 
 /// The Bernstein basis of degree n: N_i = sum_k num[i][k] B_k^n(t), one Q =
-/// sum_k den[k] B_k^n(t) for every component (not unit_den). Evaluated by
-/// de Casteljau's algorithm on the coefficients (and their differences for
-/// the derivatives); on a wide ball (is_wide_ball) in the mean-value form
-/// p(m) + (z - m) p'(z) about the midpoint m. \pre every row of num and den
+/// sum_k den[k] B_k^n(t) for every component (not unit_den). Evaluated from
+/// the coefficients (and their differences for the derivatives) by Horner's
+/// rule in t / (1 - t) or (1 - t) / t, O(n); on a wide ball (is_wide_ball)
+/// in the mean-value form p(m) + (z - m) p'(z) about the midpoint m, p' on
+/// the ball by de Casteljau's algorithm where Horner's divisor holds 0. \pre every row of num and den
 /// of one length n + 1 >= 2.
 std::shared_ptr<const CurveModel> bernstein_curve_model(const BernsteinForm& b);
 

@@ -132,8 +132,8 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
   }
   // The evaluation tiers' curve model: a Bezier curve's own components
   // (not the direction curve) from their Bernstein coefficients, up to
-  // kBernsteinMaxDegree (de Casteljau costs O(n^2) operations); else the
-  // power basis.
+  // kBernsteinMaxDegree (a wide ball may take de Casteljau's O(n^2)
+  // operations: curve_model.cpp); else the power basis.
   const BernsteinForm* bern = reduced.empty() ? c.bernstein() : nullptr;
   if (bern && !bern->den.empty() && static_cast<long>(bern->den.size()) - 1 <= kBernsteinMaxDegree) {
     model_ = bernstein_curve_model(*bern);
