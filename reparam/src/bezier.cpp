@@ -185,12 +185,17 @@ Curve BezierCurve::to_curve() const {
   for (std::size_t i = 0; i < n1; ++i) den[i] = (v[i] * Lq).num();
   const Poly D = bernstein_to_power(den);
   std::vector<RatFunc> comps;
+  BernsteinForm b;
   for (std::size_t k = 0; k < d; ++k) {
     std::vector<Integer> c(n1);
     for (std::size_t i = 0; i < n1; ++i) c[i] = (v[i] * points_[i][k] * Lq).num();
     comps.emplace_back(bernstein_to_power(c), D);
+    b.num.push_back(std::move(c));
   }
-  return Curve(std::move(comps));
+  b.den = std::move(den);
+  // The speed evaluates the curve from these coefficients (no power basis's
+  // alternating coefficients); the exact algebra uses comps.
+  return Curve(std::move(comps), std::move(b));
 }
 
 std::string BezierCurve::str() const {

@@ -54,6 +54,10 @@ Curve Curve::parse(const std::string& text, const ParseLimits& limits) {
   return Curve(parse_tuple(text, limits));
 }
 
+Curve::Curve(std::vector<RatFunc> components, BernsteinForm b) : Curve(std::move(components)) {
+  bernstein_ = std::make_shared<const BernsteinForm>(std::move(b));
+}
+
 long Curve::degree() const {
   long d = 0;
   for (const auto& c : components_) d = std::max({d, c.num().degree(), c.den().degree()});

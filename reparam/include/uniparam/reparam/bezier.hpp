@@ -56,7 +56,9 @@ class BezierCurve {
 
   /// The same curve in the power basis, exactly: components N_k / D with
   /// N_k = sum_i binom(n, i) t^i (1 - t)^(n - i) v_i p_ik (D = sum of the same
-  /// with p_ik = 1), canonicalised.
+  /// with p_ik = 1), canonicalised. The curve also keeps the Bernstein
+  /// coefficients v_i p_ik, v_i (scaled to integers; Curve::bernstein), from
+  /// which Speed evaluates it (no power basis's alternating coefficients).
   /// \throws DomainError when the curve is constant (all control points equal).
   Curve to_curve() const;
 

@@ -1,6 +1,7 @@
 // uniparam/reparam/curve.hpp -- rational curves p : [0, 1] -> R^n, n >= 2.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,15 @@
 #include "uniparam/core/ratfunc.hpp"
 
 namespace uniparam {
+
+/// A (rational) Bezier curve's exact Bernstein coefficients of one degree
+/// n: component i is sum_k num[i][k] B_k^n(t) / sum_k den[k] B_k^n(t)
+/// (den[k] all equal for an integral curve). The speed evaluates such a
+/// curve from these coefficients (speed tiers, reparam/src/curve_model.hpp).
+struct BernsteinForm {
+  std::vector<std::vector<Integer>> num;
+  std::vector<Integer> den;
+};
 
 /// A rational curve with rational coefficients on the parameter interval
 /// [0, 1], checked at construction to be usable:
@@ -24,6 +34,13 @@ class Curve {
   /// \throws InvalidArgument (fewer than two components), DomainError
   ///         (constant curve; pole in [0, 1], named as an algebraic number).
   explicit Curve(std::vector<RatFunc> components);
+  /// The curve with the given components that also keeps their Bernstein
+  /// form b. \pre components[i] == (sum_k b.num[i][k] B_k^n) / (sum_k
+  /// b.den[k] B_k^n) exactly, every row of one length n + 1 >= 2 (not
+  /// checked: BezierCurve::to_curve builds both). \throws as above.
+  Curve(std::vector<RatFunc> components, BernsteinForm b);
+  /// The Bernstein form given at construction, or null.
+  const BernsteinForm* bernstein() const { return bernstein_.get(); }
   /// Parses "(x(t), y(t), ...)" (see parser.hpp) and checks as above.
   static Curve parse(const std::string& text, const ParseLimits& limits = {});
 
@@ -42,6 +59,7 @@ class Curve {
 
  private:
   std::vector<RatFunc> components_;
+  std::shared_ptr<const BernsteinForm> bernstein_;  // shared by copies
   std::vector<Poly> X_;
   Poly W_;
 };

@@ -24,8 +24,13 @@
 namespace uniparam {
 
 namespace detail {
-struct SpeedDD;  // Speed::eval_dd's double-word components (speed.cpp)
+struct SpeedDD;  // Speed::eval_dd's double-word components (speed_detail.hpp)
 }  // namespace detail
+class AcbBox;      // an RAII acb_t (speed_enclosure.hpp)
+class CurveModel;  // how the evaluation curve evaluates (curve_model.hpp)
+namespace speed_formula {
+enum class Form;  // the speed's shape (speed_formula.hpp)
+}  // namespace speed_formula
 
 enum class SpeedKind { Angular, Parametric };
 /// "angular" / "parametric".
@@ -162,7 +167,7 @@ class Speed {
   /// and their derivatives by Horner's rule in double-word ball arithmetic
   /// (core/dd_ball.hpp, inlined from core/dd_inline.hpp), ~100 bits,
   /// several times cheaper than Arb's balls at low degree; L cancels from
-  /// the angular speed (speed.cpp, speed_dd).
+  /// the angular speed (speed_dd.cpp; the arithmetic of speed_formula.hpp).
   /// \return true and out = a real ball that contains sigma(t) (sigma(t)^2)
   ///         for every t in z, with a relative radius of at most
   ///         2^-(prec - kNodeFastSlackBits) (quadrature.hpp's
@@ -211,13 +216,13 @@ class Speed {
   SquarefreeFactorization g_sqf_;
   std::vector<Poly> K_;       // cofactors, gcd 1
   Poly D_;                    // exact D (for root checks and sign)
-  void eval_sumK2_over_D2(acb_t out, const acb_t z, long prec) const;
-  void eval_sumK2(acb_t out, const acb_t z, long prec) const;  // sum K_k(z)^2
-  void eval_D(acb_t out, const acb_t z, long prec) const;      // D(z), from Y_i or W
-  // the factored form: g(z) from its squarefree factors (leaving out factor
-  // `skip`, if given), R = sqrt(sum K^2) / D
-  void eval_g(acb_t out, const acb_t z, long prec, std::size_t skip = static_cast<std::size_t>(-1)) const;
-  void eval_cofactor(acb_t out, const acb_t z, bool analytic, long prec) const;
+  void eval_sumK2_over_D2(AcbBox& out, const acb_t z, long prec) const;
+  void eval_sumK2(AcbBox& out, const acb_t z, long prec) const;  // sum K_k(z)^2
+  void eval_D(AcbBox& out, const acb_t z, long prec) const;      // D(z), from Y_i or W
+  // g(z) from its squarefree factors (leaving out factor `skip`, if given)
+  void eval_g(AcbBox& out, const acb_t z, long prec, std::size_t skip = static_cast<std::size_t>(-1)) const;
+  // Parametric, Plane (angular, 2 components) or Space (speed_formula.hpp)
+  speed_formula::Form form() const;
   // sigma = s g R (the sign s from p); false (out not finite) where D's
   // enclosure holds 0 or the square root is not certified analytic
   bool eval_factored(acb_t out, const acb_t z, const PieceSigns& p, bool analytic, long prec) const;
@@ -232,8 +237,9 @@ class Speed {
   enum class DiskResult { Ok, Refused, Unknown };
   // eval_factored (analytic) in discs: g sqrt(sum K^2) / D
   DiskResult eval_factored_disk(acb_t out, const acb_t z, const PieceSigns& p, long prec) const;
-  // the factored form's parts: g, sum K^2 (a single cofactor: K itself), 1 / D
-  DiskResult factored_disks(CDisk& g, CDisk& q, CDisk& inv_d, const acb_t z, long prec) const;
+  // the factored form's parts: g, sum K^2 (a single cofactor: K itself), D
+  // (Refused or Unknown where 1 / D is not finite)
+  DiskResult factored_disks(CDisk& g, CDisk& q, CDisk& d, const acb_t z, long prec) const;
   // eval_components' S and F in discs; false for components that are not
   // all polynomials or (angular speed) over one common denominator, that
   // lack their centred forms in double (their discs would only be Arb's
@@ -244,13 +250,13 @@ class Speed {
   DiskResult eval_disk(acb_t out, const acb_t z, const PieceSigns& p, long prec) const;
   DiskResult eval_squared_disk(acb_t out, const acb_t z, long prec) const;
   // x_i'(z) (and x_i''(z) when d2 is non-null) from the components
-  void eval_derivatives(acb_ptr d1, acb_ptr d2, const acb_t z, long prec) const;
+  void eval_derivatives(AcbBox* d1, AcbBox* d2, const acb_t z, long prec) const;
   // sum x_i'^2 and, for the angular speed, F = sum_{i<j} (x_i' x_j'' - x_i'' x_j')^2
   // (plane: F is returned unsquared as E = x_1' x_2'' - x_1'' x_2'); for the
   // angular speed of a curve with one denominator Q, both times Q^4 and Q^8
   // (E times Q^4), without dividing by Q: the ratios sigma is made of are
   // the same
-  void eval_components(acb_t S, acb_t F, const acb_t z, long prec) const;
+  void eval_components(AcbBox& S, AcbBox& F, const acb_t z, long prec) const;
   struct Component {
     LocalPoly N, Q;                 // numerator, denominator (with p', p'')
     RatFunc d1, d2;                 // exact x', x'' (plane angular only: for signs)
@@ -258,7 +264,7 @@ class Speed {
     std::size_t q_index = 0;        // first component with this Q (evaluated once per ball)
   };
   std::vector<Component> comp_;
-  // eval_dd's components (speed.cpp), shared by copies; null where that
+  // eval_dd's components (speed_dd.cpp), shared by copies; null where that
   // path does not apply to this curve
   std::shared_ptr<const detail::SpeedDD> dd_;
   // ball versions for evaluation
@@ -267,10 +273,13 @@ class Speed {
   std::vector<LocalPoly> g_h_;  // squarefree factors of g
   std::vector<int> g_m_;
   std::vector<LocalPoly> K_b_;
-  std::vector<LocalPoly> Y_b_;  // angular: D = sum Y^2; parametric: empty
-  LocalPoly W_b_;               // parametric: D = W
+  std::vector<LocalPoly> Y_b_;  // D = sum Y^2 (SpeedModel::denominator_squares; angular)
+  LocalPoly W_b_;               // D itself where Y_b_ is empty (parametric: D = W)
   bool disk_form_ = false;      // every factor of eval_factored has LocalPoly::has_disk_form
-  bool components_disk_form_ = false;  // every N and Q of comp_ has it
+  // the evaluation curve's components for the evaluation tiers (the
+  // Bernstein basis for a Bezier curve's own components, else comp_'s
+  // power basis); shared by copies
+  std::shared_ptr<const CurveModel> model_;
 };
 
 }  // namespace uniparam
