@@ -1,0 +1,79 @@
+// reparam/src/arc_model.hpp -- INTERNAL: certified Taylor models of
+// G(u) = int sigma on short intervals of one speed's parameter, for the
+// locator (locate.cpp; docs/locate.md, "Taylor models").
+//
+// On an interval [a, b] of the parameter free of zeros of sigma in its
+// interior, sigma is the restriction of the analytic function
+//     f(z) = s * g(z) * sqrt(Q(z)) / D(z),   Q = sum K_k^2,  s = +-1
+// (Speed's factored form), holomorphic on the disc |z - c| <= rho around
+// the centre c where Q avoids (-inf, 0] and D does not vanish. With M a
+// bound of |f| on that disc, Cauchy's estimates give, for |x| <= h <= rho,
+//     |f(c + x) - T_N(x)| <= e = M q^(N+1) / (1 - q),  q = h / rho,
+// T_N the Taylor polynomial of degree N (its coefficients as balls, from
+// Arb's power series arithmetic on g, Q and D shifted to c). So with
+// P(x) = int_0^x T_N,
+//     int_{c+x1}^{c+x2} sigma  in  P(x2) - P(x1) +- |x2 - x1| e
+// for every -h <= x1, x2 <= h: one model gives G on the whole interval.
+#pragma once
+
+#include <arb_poly.h>
+
+#include <vector>
+
+#include "uniparam/core/ball.hpp"
+#include "uniparam/core/number.hpp"
+#include "uniparam/reparam/speed.hpp"
+
+namespace uniparam {
+
+/// One certified model of int sigma on [a, b] (see above).
+class ArcCell {
+ public:
+  ArcCell();
+  ~ArcCell();
+  ArcCell(const ArcCell&);
+  ArcCell& operator=(const ArcCell&);
+
+  Rational a, b;     ///< the interval, a < b
+  Rational c;        ///< its centre (dyadic), a < c < b
+  Ball xa, xb;       ///< a - c and b - c (exact)
+  Ball e;            ///< the bound e of |sigma(c + x) - T_N(x)| on [xa, xb]
+  Ball integral;     ///< contains int_a^b sigma
+  arb_poly_t T;      ///< T_N (balls)
+  arb_poly_t P;      ///< int_0^x T_N (balls)
+  std::vector<double> Td, Pd;  ///< the midpoints of T and P, in double (Newton's guesses only)
+  Ball Pxa;          ///< P(xa)
+
+  /// A ball containing int_a^{c + x} sigma for the ball x within [xa, xb].
+  Ball from_a(const Ball& x, long prec) const;
+  /// A ball containing sigma on c + x for the ball x within [xa, xb].
+  Ball sigma(const Ball& x, long prec) const;
+};
+
+/// Builds ArcCells for one speed (its polynomials converted once).
+class ArcModeller {
+ public:
+  /// \pre s not identically zero.
+  explicit ArcModeller(const Speed& s);
+  ~ArcModeller();
+  ArcModeller(const ArcModeller&) = delete;
+  ArcModeller& operator=(const ArcModeller&) = delete;
+
+  /// A model of int sigma on [a, b] (0 <= a < b <= 1; the open interval
+  /// (a, b) holds no zero of sigma: the caller checks) whose integral over
+  /// [a, b] has a relative radius of at most about 2^-bits, with Taylor
+  /// degree at most max_degree. \return false (out unspecified) when the
+  /// hypotheses cannot be certified on [a, b] (a singularity of sigma's
+  /// continuation too close, sigma's sign at the centre undecided) or the
+  /// accuracy needs a higher degree: the caller tries a shorter interval.
+  bool build(const Rational& a, const Rational& b, long bits, ArcCell& out) const;
+
+  static constexpr long max_degree = 48;
+
+ private:
+  const Speed& s_;
+  arb_poly_t g_, Q_, D_;  // exact (integer coefficients)
+  bool d_const_;
+};
+
+}  // namespace uniparam
