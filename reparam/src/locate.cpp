@@ -57,6 +57,25 @@ Rational two_pow(long e) {  // 2^e, e may be negative
   return r;
 }
 
+// floor(x 2^e) / 2^e and ceil(x 2^e) / 2^e.
+Rational floor_dyadic(const Rational& x, long e) {
+  fmpz_t n;
+  fmpz_init(n);
+  fmpq_t y;
+  fmpq_init(y);
+  fmpq_mul_2exp(y, x.get(), static_cast<ulong>(e));
+  fmpz_fdiv_q(n, fmpq_numref(y), fmpq_denref(y));
+  fmpq_set_fmpz_frac(y, n, fmpq_denref(y));
+  fmpz_one(fmpq_denref(y));
+  fmpz_set(fmpq_numref(y), n);
+  fmpq_div_2exp(y, y, static_cast<ulong>(e));
+  Rational r(y);
+  fmpq_clear(y);
+  fmpz_clear(n);
+  return r;
+}
+Rational ceil_dyadic(const Rational& x, long e) { return -floor_dyadic(-x, e); }
+
 // The last decided probe: x, G(x) - T and sigma's estimate there.
 struct Seed {
   bool valid = false;
@@ -292,10 +311,15 @@ class Cover {
           pts.push_back(z.t.rational());
           continue;
         }
+        // [lo, hi] around the zero, dyadic with 32 fractional bits (the
+        // isolating interval may have been refined far, to huge rationals;
+        // an integral over a gap of width 2^-200 around a zero would be
+        // too small to certify to a relative accuracy)
         RealAlgebraic r = z.t;
         r.refine(30);
-        const Rational lo = r.lo().sign() < 0 ? Rational(0) : r.lo();
-        const Rational hi = Rational(1) < r.hi() ? Rational(1) : r.hi();
+        Rational lo = floor_dyadic(r.lo(), 32), hi = ceil_dyadic(r.hi(), 32);
+        if (lo.sign() < 0) lo = Rational(0);
+        if (Rational(1) < hi) hi = Rational(1);
         gaps.emplace_back(lo, hi);
         pts.push_back(lo);
         pts.push_back(hi);
@@ -634,21 +658,26 @@ void exact_samples_on(const Track& tr, long K, const Options& opt, Ball& mu, con
     // start this point; hi = 1 holds as G(1) = mu > k mu / (K - 1).
     LocatedPoint pt;
     b.hi = Rational(1);
-    for (;;) {
+    for (bool first = true;; first = false) {
       check_time_budget();
       const long prec = 2 * bits + 64;
       Ball T;
       arb_mul_si(T.get(), mu.get(), k, prec);
       arb_div_si(T.get(), T.get(), K - 1, prec);
-      if (use_cover && cover.locate(tr, T, opt, pt, b)) break;
+      if (first && use_cover && cover.locate(tr, T, opt, pt, b)) break;
       if (finish_point(tr, b, T, bits, opt, pt)) break;
       // More bits: mu and G(lo) again at the higher precision (the bracket
-      // holds at any), without the cover (built at the lower one).
-      use_cover = false;
+      // holds at any), and the cover again at it for the next points (this
+      // one goes on with the chain: the cover's brackets carry G at the
+      // lower precision).
       bits = next_bits(bits);
       compute_mu();
       b.Glo = b.lo.is_zero() ? Ball(0) : tr.integral(Rational(0), b.lo, bits);
       b.hi = Rational(1);
+      if (use_cover) {
+        cover = Cover();
+        use_cover = cover.build(tr, bits);
+      }
     }
     sink(k, pt);
   }
