@@ -52,6 +52,13 @@ Rational dyadic_near(const Rational& q) {
 
 double mid_d(const arb_t x) { return arf_get_d(arb_midref(x), ARF_RND_NEAR); }
 
+bool to_dd(std::vector<DDBall>& out, const arb_poly_t p) {
+  out.assign(static_cast<std::size_t>(std::max<slong>(arb_poly_length(p), 1)), DDBall{});
+  for (slong j = 0; j < arb_poly_length(p); ++j)
+    if (!dd_set_arb(out[static_cast<std::size_t>(j)], p->coeffs + j)) return false;
+  return true;
+}
+
 void coeff_doubles(std::vector<double>& out, const arb_poly_t p) {
   out.resize(static_cast<std::size_t>(std::max<slong>(arb_poly_length(p), 1)));
   std::fill(out.begin(), out.end(), 0.0);
@@ -72,7 +79,7 @@ ArcCell::~ArcCell() {
 
 ArcCell::ArcCell(const ArcCell& o)
     : a(o.a), b(o.b), c(o.c), xa(o.xa), xb(o.xb), e(o.e), integral(o.integral), Td(o.Td), Pd(o.Pd),
-      Pxa(o.Pxa) {
+      Pxa(o.Pxa), Pdd(o.Pdd), L(o.L), Terr(o.Terr), use_dd(o.use_dd), wp(o.wp) {
   arb_poly_init(T);
   arb_poly_init(P);
   arb_poly_set(T, o.T);
@@ -91,6 +98,11 @@ ArcCell& ArcCell::operator=(const ArcCell& o) {
   Td = o.Td;
   Pd = o.Pd;
   Pxa = o.Pxa;
+  Terr = o.Terr;
+  use_dd = o.use_dd;
+  wp = o.wp;
+  Pdd = o.Pdd;
+  L = o.L;
   arb_poly_set(T, o.T);
   arb_poly_set(P, o.P);
   return *this;
@@ -112,35 +124,84 @@ Ball ArcCell::from_a(const Ball& x, long prec) const {
   return v;
 }
 
-Ball ArcCell::sigma(const Ball& x, long prec) const {
-  Ball v;
-  arb_poly_evaluate(v.get(), T, x.get(), prec);
-  mag_t m;
-  mag_init(m);
-  arb_get_mag(m, e.get());
-  arb_add_error_mag(v.get(), m);
-  mag_clear(m);
+namespace {
+
+DDBall horner_dd(const std::vector<DDBall>& p, double x) {
+  const DDBall xd = dd_from_double(x);
+  DDBall v = p.back();
+  for (std::size_t j = p.size() - 1; j-- > 0;) v = dd_add(dd_mul(v, xd), p[j]);
   return v;
 }
+
+double horner(const std::vector<double>& p, double x) {
+  double v = 0;
+  for (std::size_t j = p.size(); j-- > 0;) v = v * x + p[j];
+  return v;
+}
+
+double up(double x) { return std::nextafter(x, INFINITY); }
+
+}  // namespace
+
+bool ArcCell::at_double(double x, Ball& from_a_x, double& s, double& r) const {
+  const long prec = wp;
+  if (use_dd) {
+    const DDBall p = horner_dd(Pdd, x);
+    if (!dd_is_finite(p)) return false;
+    dd_get_arb(from_a_x.get(), p);
+  } else {
+    Ball xb;
+    arb_set_d(xb.get(), x);
+    arb_poly_evaluate(from_a_x.get(), P, xb.get(), std::max(prec, 128L));
+  }
+  arb_sub(from_a_x.get(), from_a_x.get(), Pxa.get(), std::max(prec, 128L));
+  Ball d;
+  arb_set_d(d.get(), x);
+  arb_sub(d.get(), d.get(), xa.get(), 128);
+  arb_abs(d.get(), d.get());
+  arb_mul(d.get(), d.get(), e.get(), 64);
+  mag_t m;
+  mag_init(m);
+  arb_get_mag(m, d.get());
+  arb_add_error_mag(from_a_x.get(), m);
+  arb_get_mag(m, e.get());
+  s = horner(Td, x);
+  r = up(up(Terr + mag_get_d(m)));
+  mag_clear(m);
+  return std::isfinite(s) && std::isfinite(r);
+}
+
+namespace {
+
+Poly times(const Poly& a, long k) { return a * Poly(k); }
+
+}  // namespace
 
 ArcModeller::ArcModeller(const Speed& s) : s_(s) {
   arb_poly_init(g_);
   arb_poly_init(Q_);
   arb_poly_init(D_);
+  arb_poly_init(A_);
+  arb_poly_init(B_);
   Poly q(0);
   for (const Poly& k : s.cofactors()) q = q + k * k;
+  const Poly& D = s.denominator();
+  const Poly A = times(q * D, 2), B = q.derivative() * D - times(q * D.derivative(), 2);
   // Integer coefficients: exact at any precision that holds them.
-  const long prec = 64 + std::max({s.g().max_bits(), q.max_bits(), s.denominator().max_bits()});
+  const long prec = 64 + std::max({s.g().max_bits(), q.max_bits(), D.max_bits(), A.max_bits(), B.max_bits()});
   arb_poly_set_fmpz_poly(g_, s.g().get(), prec);
   arb_poly_set_fmpz_poly(Q_, q.get(), prec);
-  arb_poly_set_fmpz_poly(D_, s.denominator().get(), prec);
-  d_const_ = s.denominator().degree() <= 0;
+  arb_poly_set_fmpz_poly(D_, D.get(), prec);
+  arb_poly_set_fmpz_poly(A_, A.get(), prec);
+  arb_poly_set_fmpz_poly(B_, B.get(), prec);
 }
 
 ArcModeller::~ArcModeller() {
   arb_poly_clear(g_);
   arb_poly_clear(Q_);
   arb_poly_clear(D_);
+  arb_poly_clear(A_);
+  arb_poly_clear(B_);
 }
 
 bool ArcModeller::build(const Rational& a, const Rational& b, long bits, ArcCell& out) const {
@@ -249,14 +310,51 @@ bool ArcModeller::build(const Rational& a, const Rational& b, long bits, ArcCell
   }
   if (best_n >= 0 && best_n <= max_degree) {
     const slong len = best_n + 1;
-    arb_poly_t sq;
-    arb_poly_init(sq);
-    arb_poly_sqrt_series(sq, Qs, len, wp);
-    arb_poly_mullow(out.T, sq, gs, len, wp);
-    if (d_const_) arb_poly_scalar_div(out.T, out.T, D0.get(), wp);
-    else arb_poly_div_series(out.T, out.T, Ds, len, wp);
+    // h = sqrt(Q) / D from A h' = B h: the coefficient of x^n gives
+    //   a_0 (n + 1) h_{n+1} = sum_i b_i h_{n-i} - sum_{i>=1} a_i (n + 1 - i) h_{n+1-i}
+    // (A and B shifted to c; a_0 = 2 Q0 D0 != 0). Then T = s g h.
+    arb_poly_t As, Bs, hs;
+    arb_poly_init(As);
+    arb_poly_init(Bs);
+    arb_poly_init(hs);
+    arb_poly_taylor_shift(As, A_, cb.get(), wp);
+    arb_poly_taylor_shift(Bs, B_, cb.get(), wp);
+    arb_poly_fit_length(hs, len);
+    {
+      // kh[k] = k h_k, so that both sums are dot products
+      arb_ptr hc = hs->coeffs;
+      arb_ptr kh = _arb_vec_init(len);
+      arb_sqrt(hc, Q0.get(), wp);
+      arb_div(hc, hc, D0.get(), wp);
+      const slong la = arb_poly_length(As), lb = arb_poly_length(Bs);
+      arb_t acc, inv, b_sum;
+      arb_init(acc);
+      arb_init(inv);
+      arb_init(b_sum);
+      arb_inv(inv, As->coeffs, wp);
+      for (slong n = 0; n + 1 < len; ++n) {
+        const slong nb = std::min(lb, n + 1), na = std::min(la, n + 2);
+        // sum_{i < nb} b_i h_{n-i}
+        arb_dot(b_sum, nullptr, 0, Bs->coeffs, 1, hc + n, -1, nb, wp);
+        // - sum_{1 <= i < na} a_i (n + 1 - i) h_{n+1-i}
+        if (na > 1) arb_dot(acc, b_sum, 1, As->coeffs + 1, 1, kh + n, -1, na - 1, wp);
+        else arb_set(acc, b_sum);
+        arb_mul(acc, acc, inv, wp);
+        arb_div_ui(hc + n + 1, acc, static_cast<ulong>(n + 1), wp);
+        arb_mul_ui(kh + n + 1, hc + n + 1, static_cast<ulong>(n + 1), wp);
+      }
+      arb_clear(acc);
+      arb_clear(inv);
+      arb_clear(b_sum);
+      _arb_vec_clear(kh, len);
+    }
+    _arb_poly_set_length(hs, len);
+    _arb_poly_normalise(hs);
+    arb_poly_mullow(out.T, hs, gs, len, wp);
     if (sign < 0) arb_poly_neg(out.T, out.T);
-    arb_poly_clear(sq);
+    arb_poly_clear(As);
+    arb_poly_clear(Bs);
+    arb_poly_clear(hs);
     arb_poly_integral(out.P, out.T, wp);
     // e = M q^(N+1) / (1 - q), q = 1 / lambda (dyadic lambdas: exact)
     Ball lam, q, e;
@@ -278,12 +376,76 @@ bool ArcModeller::build(const Rational& a, const Rational& b, long bits, ArcCell
     out.c = c;
     out.xa = xa;
     out.xb = xb;
-    arb_poly_evaluate(out.Pxa.get(), out.P, xa.get(), wp);
-    out.integral = out.from_a(xb, wp);
     coeff_doubles(out.Td, out.T);
     coeff_doubles(out.Pd, out.P);
+    ok = to_dd(out.Pdd, out.P);
+    {
+      // L >= sum_{j>=1} j |t_j| h^(j-1); S1 >= sum |t_j| h^j, Sr >= sum
+      // rad(t_j) h^j. Horner's rule in double on Td (n + 1 <= 100 terms)
+      // errs by at most 2(n + 1) u sum |Td_j| |x|^j (Higham, eq. 5.3)
+      // plus the rounding of the midpoints to Td (u S1) and their radii:
+      // below Sr + 1e-13 S1.
+      mag_t Lm, S1, Sr, t, hp;
+      mag_init(Lm);
+      mag_init(S1);
+      mag_init(Sr);
+      mag_init(t);
+      mag_init(hp);
+      mag_one(hp);
+      for (slong j = 0; j < arb_poly_length(out.T); ++j) {
+        arb_get_mag(t, out.T->coeffs + j);
+        mag_mul(t, t, hp);
+        mag_add(S1, S1, t);
+        mag_mul(t, arb_radref(out.T->coeffs + j), hp);
+        mag_add(Sr, Sr, t);
+        if (j + 1 < arb_poly_length(out.T)) {
+          arb_get_mag(t, out.T->coeffs + j + 1);
+          mag_mul_ui(t, t, static_cast<ulong>(j + 1));
+          mag_mul(t, t, hp);
+          mag_add(Lm, Lm, t);
+        }
+        mag_mul(hp, hp, h);
+      }
+      out.L = mag_get_d(Lm);
+      out.Terr = up(mag_get_d(Sr) + up(1e-13 * mag_get_d(S1)));
+      ok = ok && len <= 100;
+      mag_clear(Lm);
+      mag_clear(S1);
+      mag_clear(Sr);
+      mag_clear(t);
+      mag_clear(hp);
+    }
+    // P(xa) and the integral P(xb) - P(xa) +- (xb - xa) e, by double-word
+    // Horner where xa and xb are doubles
+    {
+      const double xad = arf_get_d(arb_midref(xa.get()), ARF_RND_NEAR);
+      const double xbd = arf_get_d(arb_midref(xb.get()), ARF_RND_NEAR);
+      out.use_dd = bits <= ArcCell::kDDBits;
+      out.wp = wp;
+      if (ok && out.use_dd && arb_is_exact(xa.get()) && arb_is_exact(xb.get()) && arf_equal_d(arb_midref(xa.get()), xad) &&
+          arf_equal_d(arb_midref(xb.get()), xbd)) {
+        const DDBall pa = horner_dd(out.Pdd, xad), pb = horner_dd(out.Pdd, xbd);
+        ok = dd_is_finite(pa) && dd_is_finite(pb);
+        if (ok) {
+          dd_get_arb(out.Pxa.get(), pa);
+          dd_get_arb(out.integral.get(), pb);
+          arb_sub(out.integral.get(), out.integral.get(), out.Pxa.get(), wp);
+          Ball w;
+          arb_sub(w.get(), xb.get(), xa.get(), wp);
+          arb_mul(w.get(), w.get(), out.e.get(), wp);
+          mag_t m;
+          mag_init(m);
+          arb_get_mag(m, w.get());
+          arb_add_error_mag(out.integral.get(), m);
+          mag_clear(m);
+        }
+      } else {
+        arb_poly_evaluate(out.Pxa.get(), out.P, xa.get(), wp);
+        out.integral = out.from_a(xb, wp);
+      }
+    }
     // relative radius of the integral at most 2^-bits
-    ok = arb_is_positive(out.integral.get()) && arb_is_finite(out.integral.get());
+    ok = ok && std::isfinite(out.L) && arb_is_positive(out.integral.get()) && arb_is_finite(out.integral.get());
     if (ok) {
       arf_t lo, rad;
       arf_init(lo);

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "uniparam/core/ball.hpp"
+#include "uniparam/core/dd_ball.hpp"
 #include "uniparam/core/number.hpp"
 #include "uniparam/reparam/speed.hpp"
 
@@ -43,11 +44,21 @@ class ArcCell {
   arb_poly_t P;      ///< int_0^x T_N (balls)
   std::vector<double> Td, Pd;  ///< the midpoints of T and P, in double (Newton's guesses only)
   Ball Pxa;          ///< P(xa)
+  std::vector<DDBall> Pdd;  ///< P's coefficients as double-word balls (containing Arb's)
+  double L = 0;      ///< an upper bound of |T_N'| on [xa, xb] (rounded up)
+  double Terr = 0;   ///< |T_N(x) - Horner's rule on Td in double at x| <= Terr on [xa, xb]
+  bool use_dd = false;  ///< P evaluated in double-word balls (their ~100 bits suffice for the accuracy asked)
+  /// The accuracies (bits) up to which double-word balls serve.
+  static constexpr long kDDBits = 80;
+  long wp = 128;     ///< the working precision of the model's balls
 
   /// A ball containing int_a^{c + x} sigma for the ball x within [xa, xb].
   Ball from_a(const Ball& x, long prec) const;
-  /// A ball containing sigma on c + x for the ball x within [xa, xb].
-  Ball sigma(const Ball& x, long prec) const;
+  /// from_a at a double x in [xa, xb], by Horner's rule in double-word
+  /// balls (~100 bits; the coefficients' and the rounding's errors
+  /// included), and an enclosure [s - r, s + r] of sigma(c + x) from
+  /// Horner's rule in double on Td. False when a result is not finite.
+  bool at_double(double x, Ball& from_a_x, double& s, double& r) const;
 };
 
 /// Builds ArcCells for one speed (its polynomials converted once).
@@ -73,7 +84,9 @@ class ArcModeller {
  private:
   const Speed& s_;
   arb_poly_t g_, Q_, D_;  // exact (integer coefficients)
-  bool d_const_;
+  // h = sqrt(Q) / D solves A h' = B h, A = 2 Q D, B = Q' D - 2 Q D'
+  // (exact): its Taylor coefficients by the recurrence of that equation
+  arb_poly_t A_, B_;
 };
 
 }  // namespace uniparam

@@ -76,6 +76,29 @@ Rational floor_dyadic(const Rational& x, long e) {
 }
 Rational ceil_dyadic(const Rational& x, long e) { return -floor_dyadic(-x, e); }
 
+// b.meets_digits(digits), first by a cheap sufficient test (rad <=
+// 2^-e <= 10^-digits, so rad <= 10^-digits max(1, |mid|)).
+bool meets(const Ball& b, long digits) {
+  if (!b.is_finite()) return false;
+  const long e = static_cast<long>(std::ceil(static_cast<double>(digits) * 3.3219280948873623)) + 1;
+  if (mag_cmp_2exp_si(arb_radref(b.get()), -e) <= 0) return true;
+  return b.meets_digits(digits);
+}
+
+// N within [x - rho, x + rho] (x = x0's exact double midpoint), or
+// within *X when given (a clipped interval).
+bool inside(const Ball& N, const Ball& x0, double rho, const Ball* X) {
+  if (X) return arb_contains(X->get(), N.get());
+  if (!N.is_finite()) return false;
+  arf_t d;
+  arf_init(d);
+  arf_sub(d, arb_midref(N.get()), arb_midref(x0.get()), 53, ARF_RND_UP);  // |d| rounded up
+  const double dist = std::fabs(arf_get_d(d, ARF_RND_UP));
+  arf_clear(d);
+  const double reach = std::nextafter(dist + mag_get_d(arb_radref(N.get())), INFINITY);
+  return reach <= rho;
+}
+
 // The last decided probe: x, G(x) - T and sigma's estimate there.
 struct Seed {
   bool valid = false;
@@ -402,15 +425,20 @@ class Cover {
     if (!std::isfinite(x)) return false;
     // One interval Newton step on X = [x - rho, x + rho] (within the cell):
     // N = x - F(x) / F'(X) inside X proves the root t - c in N (G is
-    // increasing on the cell, the root is unique).
-    Ball x0;
-    arb_set_d(x0.get(), x);
-    Ball F = cl.from_a(x0, wp);
+    // increasing on the cell, the root is unique). F'(X) = sigma(X) is
+    // within sigma(x) +- rho L.
+    Ball F;
+    double sx, sr;
+    if (!cl.at_double(x, F, sx, sr)) return false;
     arb_sub(F.get(), F.get(), rhs.get(), wp);
     double rho = 2 * (std::fabs(arf_get_d(arb_midref(F.get()), ARF_RND_UP)) + mag_get_d(arb_radref(F.get()))) /
-                 std::max(horner(cl.Td, x), 1e-300);
+                 std::max(sx, 1e-300);
     rho = std::max(rho, 1e-30 * (xb - xa));
+    Ball x0;
+    arb_set_d(x0.get(), x);
     for (int attempt = 0; attempt < 4; ++attempt, rho *= 16) {
+      // X within [xa, xb]: the model's bounds hold there only.
+      const bool clipped = !(xa <= x - rho && x + rho <= xb);
       Ball X;
       {
         arf_t lo, hi, t;
@@ -425,17 +453,32 @@ class Cover {
         arf_clear(hi);
         arf_clear(t);
       }
-      // X within [xa, xb]: the model's bounds hold there only.
-      Ball lo_d, hi_d;
-      arb_sub(lo_d.get(), X.get(), cl.xa.get(), wp);
-      arb_sub(hi_d.get(), cl.xb.get(), X.get(), wp);
-      if (!(arb_is_nonnegative(lo_d.get()) && arb_is_nonnegative(hi_d.get()))) return false;
-      const Ball dF = cl.sigma(X, 64);
+      if (clipped) {
+        Ball cellb, lo_d, hi_d;
+        arb_union(cellb.get(), cl.xa.get(), cl.xb.get(), wp);
+        if (!arb_intersection(X.get(), X.get(), cellb.get(), wp)) return false;
+        arb_sub(lo_d.get(), X.get(), cl.xa.get(), wp);
+        arb_sub(hi_d.get(), cl.xb.get(), X.get(), wp);
+        if (!(arb_is_nonnegative(lo_d.get()) && arb_is_nonnegative(hi_d.get()))) return false;
+      }
+      // sigma on X: within sx +- (sr + 2 rho L) (|x' - x| <= 2 rho on X,
+      // whose ends were rounded outward)
+      const double dr = std::nextafter(std::nextafter(sr + std::nextafter(2 * rho * cl.L, INFINITY), INFINITY), INFINITY);
+      if (!(sx - dr > 0) || !std::isfinite(dr)) continue;
+      Ball dF;
+      arb_set_d(dF.get(), sx);
+      {
+        mag_t m;
+        mag_init(m);
+        mag_set_d(m, dr);
+        arb_add_error_mag(dF.get(), m);
+        mag_clear(m);
+      }
       if (!dF.certainly_positive()) continue;
       Ball N;
       arb_div(N.get(), F.get(), dF.get(), wp);
       arb_sub(N.get(), x0.get(), N.get(), wp);
-      if (!arb_contains(X.get(), N.get())) continue;
+      if (!inside(N, x0, rho, clipped ? &X : nullptr)) continue;
       // t = lo_j + d (c + N)
       Ball t(cl.c, wp);
       arb_add(t.get(), t.get(), N.get(), wp);
@@ -447,10 +490,11 @@ class Cover {
         const Ball of(r.off, prec);
         arb_add(t.get(), t.get(), of.get(), prec);
       }
-      if (!t.meets_digits(opt.digits + 1)) return false;
+      if (!meets(t, opt.digits + 1)) return false;
       pt.t = t;
-      pt.point = tr.eval(t, prec);
-      if (!points_meet(pt.point, opt.digits)) return false;
+      pt.point = tr.eval(t, wp);
+      for (const Ball& v : pt.point)
+        if (!meets(v, opt.digits + 1)) return false;
       br.hi = Rational(1);
       return true;
     }
