@@ -59,11 +59,6 @@ bool to_dd(std::vector<DDBall>& out, const arb_poly_t p) {
   return true;
 }
 
-void coeff_doubles(std::vector<double>& out, const arb_poly_t p) {
-  out.resize(static_cast<std::size_t>(std::max<slong>(arb_poly_length(p), 1)));
-  std::fill(out.begin(), out.end(), 0.0);
-  for (slong j = 0; j < arb_poly_length(p); ++j) out[static_cast<std::size_t>(j)] = mid_d(p->coeffs + j);
-}
 
 }  // namespace
 
@@ -139,7 +134,9 @@ double horner(const std::vector<double>& p, double x) {
   return v;
 }
 
-double up(double x) { return std::nextafter(x, INFINITY); }
+// An upper bound of the exact value whose rounding to nearest is x >= 0
+// (normal or zero): x (1 + 2^-52) >= x + ulp(x), rounded up past it.
+double up(double x) { return x * (1 + 0x1p-52) + 0x1p-1000; }
 
 }  // namespace
 
@@ -313,19 +310,60 @@ bool ArcModeller::build(const Rational& a, const Rational& b, long bits, ArcCell
     // h = sqrt(Q) / D from A h' = B h: the coefficient of x^n gives
     //   a_0 (n + 1) h_{n+1} = sum_i b_i h_{n-i} - sum_{i>=1} a_i (n + 1 - i) h_{n+1-i}
     // (A and B shifted to c; a_0 = 2 Q0 D0 != 0). Then T = s g h.
-    arb_poly_t As, Bs, hs;
+    // In double-word balls where their ~100 bits suffice and the ends are
+    // doubles (xa and xb exact in double), else in Arb's balls at wp.
+    const double xad = arf_get_d(arb_midref(xa.get()), ARF_RND_NEAR);
+    const double xbd = arf_get_d(arb_midref(xb.get()), ARF_RND_NEAR);
+    out.use_dd = bits <= ArcCell::kDDBits && arb_is_exact(xa.get()) && arb_is_exact(xb.get()) &&
+                 arf_equal_d(arb_midref(xa.get()), xad) && arf_equal_d(arb_midref(xb.get()), xbd);
+    out.wp = wp;
+    arb_poly_t As, Bs;
     arb_poly_init(As);
     arb_poly_init(Bs);
-    arb_poly_init(hs);
     arb_poly_taylor_shift(As, A_, cb.get(), wp);
     arb_poly_taylor_shift(Bs, B_, cb.get(), wp);
-    arb_poly_fit_length(hs, len);
-    {
+    Ball h0;
+    arb_sqrt(h0.get(), Q0.get(), wp);
+    arb_div(h0.get(), h0.get(), D0.get(), wp);
+    std::vector<DDBall> Tv;  // T's coefficients (exactly T's in the double-word path; containing them else)
+    ok = true;
+    if (out.use_dd) {
+      std::vector<DDBall> a, bb, g, h(static_cast<std::size_t>(len)), kh(static_cast<std::size_t>(len));
+      ok = to_dd(a, As) && to_dd(bb, Bs) && to_dd(g, gs) && dd_set_arb(h[0], h0.get());
+      DDBall inv;
+      ok = ok && dd_div(inv, dd_from_double(1), a[0]);
+      const std::size_t la = static_cast<std::size_t>(arb_poly_length(As)),
+                        lb = static_cast<std::size_t>(arb_poly_length(Bs));
+      for (std::size_t n = 0; ok && n + 1 < static_cast<std::size_t>(len); ++n) {
+        DDBall acc{};
+        for (std::size_t i = 0; i < lb && i <= n; ++i) acc = dd_add(acc, dd_mul(bb[i], h[n - i]));
+        for (std::size_t i = 1; i < la && i <= n + 1; ++i) acc = dd_sub(acc, dd_mul(a[i], kh[n + 1 - i]));
+        DDBall q;
+        ok = dd_div(q, dd_mul(acc, inv), dd_from_double(static_cast<double>(n + 1)));
+        h[n + 1] = q;
+        kh[n + 1] = dd_mul(q, dd_from_double(static_cast<double>(n + 1)));
+      }
+      const std::size_t lg = static_cast<std::size_t>(arb_poly_length(gs));
+      Tv.assign(static_cast<std::size_t>(len), DDBall{});
+      for (std::size_t n = 0; ok && n < Tv.size(); ++n) {
+        DDBall acc{};
+        for (std::size_t i = 0; i < lg && i <= n; ++i) acc = dd_add(acc, dd_mul(g[i], h[n - i]));
+        Tv[n] = sign < 0 ? dd_neg(acc) : acc;
+      }
+      out.Pdd.assign(Tv.size() + 1, DDBall{});
+      for (std::size_t j = 0; ok && j < Tv.size(); ++j)
+        ok = dd_div(out.Pdd[j + 1], Tv[j], dd_from_double(static_cast<double>(j + 1)));
+      for (const DDBall& v : Tv) ok = ok && dd_is_finite(v);
+      arb_poly_zero(out.T);
+      arb_poly_zero(out.P);
+    } else {
+      arb_poly_t hs;
+      arb_poly_init(hs);
+      arb_poly_fit_length(hs, len);
       // kh[k] = k h_k, so that both sums are dot products
       arb_ptr hc = hs->coeffs;
       arb_ptr kh = _arb_vec_init(len);
-      arb_sqrt(hc, Q0.get(), wp);
-      arb_div(hc, hc, D0.get(), wp);
+      arb_set(hc, h0.get());
       const slong la = arb_poly_length(As), lb = arb_poly_length(Bs);
       arb_t acc, inv, b_sum;
       arb_init(acc);
@@ -347,15 +385,17 @@ bool ArcModeller::build(const Rational& a, const Rational& b, long bits, ArcCell
       arb_clear(inv);
       arb_clear(b_sum);
       _arb_vec_clear(kh, len);
+      _arb_poly_set_length(hs, len);
+      _arb_poly_normalise(hs);
+      arb_poly_mullow(out.T, hs, gs, len, wp);
+      if (sign < 0) arb_poly_neg(out.T, out.T);
+      arb_poly_clear(hs);
+      arb_poly_integral(out.P, out.T, wp);
+      ok = to_dd(Tv, out.T) && to_dd(out.Pdd, out.P);
+      Tv.resize(static_cast<std::size_t>(len), DDBall{});
     }
-    _arb_poly_set_length(hs, len);
-    _arb_poly_normalise(hs);
-    arb_poly_mullow(out.T, hs, gs, len, wp);
-    if (sign < 0) arb_poly_neg(out.T, out.T);
     arb_poly_clear(As);
     arb_poly_clear(Bs);
-    arb_poly_clear(hs);
-    arb_poly_integral(out.P, out.T, wp);
     // e = M q^(N+1) / (1 - q), q = 1 / lambda (dyadic lambdas: exact)
     Ball lam, q, e;
     arb_set_d(lam.get(), best_lambda);
@@ -376,73 +416,51 @@ bool ArcModeller::build(const Rational& a, const Rational& b, long bits, ArcCell
     out.c = c;
     out.xa = xa;
     out.xb = xb;
-    coeff_doubles(out.Td, out.T);
-    coeff_doubles(out.Pd, out.P);
-    ok = to_dd(out.Pdd, out.P);
-    {
-      // L >= sum_{j>=1} j |t_j| h^(j-1); S1 >= sum |t_j| h^j, Sr >= sum
-      // rad(t_j) h^j. Horner's rule in double on Td (n + 1 <= 100 terms)
-      // errs by at most 2(n + 1) u sum |Td_j| |x|^j (Higham, eq. 5.3)
-      // plus the rounding of the midpoints to Td (u S1) and their radii:
-      // below Sr + 1e-13 S1.
-      mag_t Lm, S1, Sr, t, hp;
-      mag_init(Lm);
-      mag_init(S1);
-      mag_init(Sr);
-      mag_init(t);
-      mag_init(hp);
-      mag_one(hp);
-      for (slong j = 0; j < arb_poly_length(out.T); ++j) {
-        arb_get_mag(t, out.T->coeffs + j);
-        mag_mul(t, t, hp);
-        mag_add(S1, S1, t);
-        mag_mul(t, arb_radref(out.T->coeffs + j), hp);
-        mag_add(Sr, Sr, t);
-        if (j + 1 < arb_poly_length(out.T)) {
-          arb_get_mag(t, out.T->coeffs + j + 1);
-          mag_mul_ui(t, t, static_cast<ulong>(j + 1));
-          mag_mul(t, t, hp);
-          mag_add(Lm, Lm, t);
-        }
-        mag_mul(hp, hp, h);
+    out.Td.resize(Tv.size());
+    for (std::size_t j = 0; j < Tv.size(); ++j) out.Td[j] = Tv[j].hi;
+    out.Pd.resize(out.Pdd.size());
+    for (std::size_t j = 0; j < out.Pdd.size(); ++j) out.Pd[j] = out.Pdd[j].hi;
+    if (ok) {
+      // L >= sum_{j>=1} j |t_j| h^(j-1); S1 >= sum |t_j| h^j; Sr >= sum
+      // |t_j - Td_j| h^j (|lo| + rad of the double-word balls). Horner's
+      // rule in double on Td (at most 100 terms) errs by at most
+      // 2 (n + 1) u sum |Td_j| |x|^j (Higham, eq. 5.3): below 1e-13 S1.
+      // Sums of non-negative doubles, each operation rounded up.
+      const double hd = mag_get_d(h);  // >= h
+      double Lsum = 0, S1 = 0, Sr = 0, hp = 1, hprev = 0;
+      for (std::size_t j = 0; j < Tv.size(); ++j) {
+        const double ab = up(up(std::fabs(Tv[j].hi) + std::fabs(Tv[j].lo)) + Tv[j].rad);
+        const double off = up(std::fabs(Tv[j].lo) + Tv[j].rad);
+        S1 = up(S1 + up(ab * hp));
+        Sr = up(Sr + up(off * hp));
+        if (j >= 1) Lsum = up(Lsum + up(up(static_cast<double>(j) * ab) * hprev));  // hprev = h^(j-1)
+        hprev = hp;
+        hp = up(hp * hd);
       }
-      out.L = mag_get_d(Lm);
-      out.Terr = up(mag_get_d(Sr) + up(1e-13 * mag_get_d(S1)));
-      ok = ok && len <= 100;
-      mag_clear(Lm);
-      mag_clear(S1);
-      mag_clear(Sr);
-      mag_clear(t);
-      mag_clear(hp);
+      out.L = Lsum;
+      out.Terr = up(Sr + up(1e-13 * S1));
+      ok = std::isfinite(out.L) && std::isfinite(out.Terr) && len <= 100;
     }
-    // P(xa) and the integral P(xb) - P(xa) +- (xb - xa) e, by double-word
-    // Horner where xa and xb are doubles
-    {
-      const double xad = arf_get_d(arb_midref(xa.get()), ARF_RND_NEAR);
-      const double xbd = arf_get_d(arb_midref(xb.get()), ARF_RND_NEAR);
-      out.use_dd = bits <= ArcCell::kDDBits;
-      out.wp = wp;
-      if (ok && out.use_dd && arb_is_exact(xa.get()) && arb_is_exact(xb.get()) && arf_equal_d(arb_midref(xa.get()), xad) &&
-          arf_equal_d(arb_midref(xb.get()), xbd)) {
-        const DDBall pa = horner_dd(out.Pdd, xad), pb = horner_dd(out.Pdd, xbd);
-        ok = dd_is_finite(pa) && dd_is_finite(pb);
-        if (ok) {
-          dd_get_arb(out.Pxa.get(), pa);
-          dd_get_arb(out.integral.get(), pb);
-          arb_sub(out.integral.get(), out.integral.get(), out.Pxa.get(), wp);
-          Ball w;
-          arb_sub(w.get(), xb.get(), xa.get(), wp);
-          arb_mul(w.get(), w.get(), out.e.get(), wp);
-          mag_t m;
-          mag_init(m);
-          arb_get_mag(m, w.get());
-          arb_add_error_mag(out.integral.get(), m);
-          mag_clear(m);
-        }
-      } else {
-        arb_poly_evaluate(out.Pxa.get(), out.P, xa.get(), wp);
-        out.integral = out.from_a(xb, wp);
+    // P(xa) and the integral P(xb) - P(xa) +- (xb - xa) e
+    if (ok && out.use_dd) {
+      const DDBall pa = horner_dd(out.Pdd, xad), pb = horner_dd(out.Pdd, xbd);
+      ok = dd_is_finite(pa) && dd_is_finite(pb);
+      if (ok) {
+        dd_get_arb(out.Pxa.get(), pa);
+        dd_get_arb(out.integral.get(), pb);
+        arb_sub(out.integral.get(), out.integral.get(), out.Pxa.get(), wp);
+        Ball w;
+        arb_sub(w.get(), xb.get(), xa.get(), wp);
+        arb_mul(w.get(), w.get(), out.e.get(), wp);
+        mag_t m;
+        mag_init(m);
+        arb_get_mag(m, w.get());
+        arb_add_error_mag(out.integral.get(), m);
+        mag_clear(m);
       }
+    } else if (ok) {
+      arb_poly_evaluate(out.Pxa.get(), out.P, xa.get(), wp);
+      out.integral = out.from_a(xb, wp);
     }
     // relative radius of the integral at most 2^-bits
     ok = ok && std::isfinite(out.L) && arb_is_positive(out.integral.get()) && arb_is_finite(out.integral.get());
