@@ -180,12 +180,20 @@ ArcModeller::ArcModeller(const Speed& s) : s_(s) {
   arb_poly_init(D_);
   arb_poly_init(A_);
   arb_poly_init(B_);
+  long kdeg = 0;
+  for (const Poly& k : s.cofactors()) kdeg = std::max(kdeg, k.degree());
+  const Poly& D = s.denominator();
+  too_large_ = 2 * kdeg + std::max(0L, D.degree()) > kMaxDegreeA;
+  if (too_large_) return;
   Poly q(0);
   for (const Poly& k : s.cofactors()) q = q + k * k;
-  const Poly& D = s.denominator();
   const Poly A = times(q * D, 2), B = q.derivative() * D - times(q * D.derivative(), 2);
   // Integer coefficients: exact at any precision that holds them.
-  const long prec = 64 + std::max({s.g().max_bits(), q.max_bits(), D.max_bits(), A.max_bits(), B.max_bits()});
+  const long maxbits = std::max({s.g().max_bits(), q.max_bits(), D.max_bits(), A.max_bits(), B.max_bits()});
+  const long prec = 64 + maxbits;
+  // Shifted to a centre c (64 bits), the coefficients may cancel by up to
+  // their size and c's powers: shifts at that much more than wp.
+  extra_bits_ = maxbits + 64 + 2 * std::max({s.g().degree(), A.degree(), B.degree(), 1L});
   arb_poly_set_fmpz_poly(g_, s.g().get(), prec);
   arb_poly_set_fmpz_poly(Q_, q.get(), prec);
   arb_poly_set_fmpz_poly(D_, D.get(), prec);
@@ -203,7 +211,8 @@ ArcModeller::~ArcModeller() {
 
 bool ArcModeller::build(const Rational& a, const Rational& b, long bits, ArcCell& out) const {
   if (!(a < b)) return false;
-  const long wp = bits + 40;
+  if (too_large_) return false;
+  const long wp = bits + 40, sp = wp + extra_bits_;
   const Rational c = dyadic_near((a + b) / Rational(2));
   if (!(a < c && c < b)) return false;
   const Ball cb = ball_of(c, wp);
@@ -229,9 +238,9 @@ bool ArcModeller::build(const Rational& a, const Rational& b, long bits, ArcCell
   arb_poly_init(gs);
   arb_poly_init(Qs);
   arb_poly_init(Ds);
-  arb_poly_taylor_shift(gs, g_, cb.get(), wp);
-  arb_poly_taylor_shift(Qs, Q_, cb.get(), wp);
-  arb_poly_taylor_shift(Ds, D_, cb.get(), wp);
+  arb_poly_taylor_shift(gs, g_, cb.get(), sp);
+  arb_poly_taylor_shift(Qs, Q_, cb.get(), sp);
+  arb_poly_taylor_shift(Ds, D_, cb.get(), sp);
   bool ok = false;
   Ball g0, Q0, D0, sig0;
   arb_poly_get_coeff_arb(g0.get(), gs, 0);
@@ -320,8 +329,8 @@ bool ArcModeller::build(const Rational& a, const Rational& b, long bits, ArcCell
     arb_poly_t As, Bs;
     arb_poly_init(As);
     arb_poly_init(Bs);
-    arb_poly_taylor_shift(As, A_, cb.get(), wp);
-    arb_poly_taylor_shift(Bs, B_, cb.get(), wp);
+    arb_poly_taylor_shift(As, A_, cb.get(), sp);
+    arb_poly_taylor_shift(Bs, B_, cb.get(), sp);
     Ball h0;
     arb_sqrt(h0.get(), Q0.get(), wp);
     arb_div(h0.get(), h0.get(), D0.get(), wp);

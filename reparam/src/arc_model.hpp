@@ -81,12 +81,21 @@ class ArcModeller {
 
   static constexpr long max_degree = 48;
 
+  /// False when the speed's polynomials are too large for models to pay
+  /// off (A = 2 Q D above degree 64: every cell would shift polynomials of
+  /// that degree, more work than a certified integral): the caller uses
+  /// certified integrals instead.
+  bool worthwhile() const { return !too_large_; }
+  static constexpr long kMaxDegreeA = 64;
+
  private:
   const Speed& s_;
   arb_poly_t g_, Q_, D_;  // exact (integer coefficients)
   // h = sqrt(Q) / D solves A h' = B h, A = 2 Q D, B = Q' D - 2 Q D'
   // (exact): its Taylor coefficients by the recurrence of that equation
   arb_poly_t A_, B_;
+  long extra_bits_ = 0;     // the shifts' precision above wp
+  bool too_large_ = false;  // not worthwhile()
 };
 
 }  // namespace uniparam

@@ -300,15 +300,24 @@ bool finish_point(const Track& tr, Bracket& b, const Ball& T, long bits, const O
 // to about 2^-bits of the sum, as the chain of integrals does).
 class Cover {
  public:
-  // Builds the regions at integral accuracy `bits`. False when the track
-  // has no segments (nothing built).
+  // Builds the regions at integral accuracy `bits`. False (the cover is
+  // not to be used) when the track has no segments, no segment's speed is
+  // worth modelling (ArcModeller::worthwhile) or no model certifies.
   bool build(const Track& tr, long bits) {
     const std::vector<Track::Segment> segs = tr.segments();
     if (segs.empty()) return false;
+    std::vector<std::unique_ptr<ArcModeller>> mods;
+    bool any = false;
+    for (const Track::Segment& sg : segs) {
+      mods.push_back(sg.speed->identically_zero() ? nullptr : std::make_unique<ArcModeller>(*sg.speed));
+      any = any || (mods.back() && mods.back()->worthwhile());
+    }
+    if (!any) return false;
     bits_ = bits;
     const long prec = 2 * bits + 64;
     Ball G(0);
-    for (const Track::Segment& sg : segs) {
+    for (std::size_t si = 0; si < segs.size(); ++si) {
+      const Track::Segment& sg = segs[si];
       const Rational d = sg.hi - sg.lo;
       auto global = [&](const Rational& u) { return sg.lo + d * u; };
       auto add_gap = [&](const Rational& a, const Rational& b) {
@@ -349,7 +358,11 @@ class Cover {
       }
       std::sort(pts.begin(), pts.end());
       pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
-      ArcModeller mod(*sg.speed);
+      const ArcModeller& mod = *mods[si];
+      if (!mod.worthwhile()) {
+        add_gap(Rational(0), Rational(1));
+        continue;
+      }
       std::size_t gap_from = 0;
       bool in_gap = false;
       for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
@@ -371,6 +384,9 @@ class Cover {
       }
     }
     mu_ = G;
+    bool models = false;
+    for (const Region& r : regions_) models = models || r.model;
+    if (!models) return false;
     return true;
   }
 
@@ -501,7 +517,7 @@ class Cover {
     return false;
   }
 
-  std::size_t regions() const { return regions_.size(); }
+  long bits() const { return bits_; }
 
  private:
   struct Region {
@@ -514,8 +530,9 @@ class Cover {
 
   // Cells over [A, B] of segment sg's parameter (no zero of sigma inside):
   // as long as possible (doubling after a success, halving after a
-  // failure); where cells would have to become very short, or too many,
-  // the rest is a gap.
+  // failure); where cells would have to become very short, or too many
+  // (512), or too many attempts fail (more than 12 + twice the cells), the
+  // rest is a gap.
   template <class AddGap>
   void stretch(const Track&, const ArcModeller& mod, const Track::Segment& sg, const Rational& A,
                const Rational& B, Ball& G, AddGap& add_gap) {
@@ -523,11 +540,11 @@ class Cover {
     const Rational d = sg.hi - sg.lo;
     const Rational min_w = (B - A) * two_pow(-30);
     Rational u = A, w = B - A;
-    int cells = 0;
+    int cells = 0, failures = 0;
     while (u < B) {
       if (B - u < w) w = B - u;
       Region r;
-      if (cells < 512 && mod.build(u, u + w, bits_, r.cell)) {
+      if (cells < 512 && failures < 64 && mod.build(u, u + w, bits_, r.cell)) {
         r.lo = sg.lo + d * u;
         r.hi = sg.lo + d * (u + w);
         r.G0 = G;
@@ -541,7 +558,7 @@ class Cover {
         ++cells;
         continue;
       }
-      if (cells >= 512 || w <= min_w) {
+      if (cells >= 512 || ++failures > 12 + 2 * cells || w <= min_w) {
         add_gap(u, B);
         return;
       }
@@ -692,11 +709,12 @@ void exact_samples_on(const Track& tr, long K, const Options& opt, Ball& mu, con
   // target too close to a region's end, a model not accurate enough) by the
   // chain of certified integrals below, from the bracket the cover gives.
   Cover cover;
-  bool use_cover = cover.build(tr, bits) && cover.mu().meets_digits(opt.digits + 1);
+  const bool use_cover = cover.build(tr, bits) && cover.mu().meets_digits(opt.digits + 1);
   if (use_cover) mu = cover.mu();
   else compute_mu();
   sink(0, exact_point(tr, 0));
   Bracket b{Rational(0), Rational(1), Ball(0)};
+  long glo_bits = bits;  // b.Glo's accuracy (the cover's brackets carry the cover's)
   for (long k = 1; k + 1 < K; ++k) {
     // t_k > t_{k-1} >= lo: the previous bracket's lower end and G there
     // start this point; hi = 1 holds as G(1) = mu > k mu / (K - 1).
@@ -708,20 +726,31 @@ void exact_samples_on(const Track& tr, long K, const Options& opt, Ball& mu, con
       Ball T;
       arb_mul_si(T.get(), mu.get(), k, prec);
       arb_div_si(T.get(), T.get(), K - 1, prec);
-      if (first && use_cover && cover.locate(tr, T, opt, pt, b)) break;
+      if (first && use_cover) {
+        Bracket cb;
+        const bool found = cover.locate(tr, T, opt, pt, cb);
+        // the larger of the two lower ends (both <= t_k)
+        if (b.lo < cb.lo) {
+          b.lo = cb.lo;
+          b.Glo = cb.Glo;
+          glo_bits = cover.bits();
+        }
+        if (found) break;
+        b.hi = cb.hi;
+      }
+      if (glo_bits < bits) {  // G(lo) again at the chain's precision
+        b.Glo = b.lo.is_zero() ? Ball(0) : tr.integral(Rational(0), b.lo, bits);
+        glo_bits = bits;
+      }
       if (finish_point(tr, b, T, bits, opt, pt)) break;
       // More bits: mu and G(lo) again at the higher precision (the bracket
-      // holds at any), and the cover again at it for the next points (this
-      // one goes on with the chain: the cover's brackets carry G at the
-      // lower precision).
+      // holds at any). The cover stays: its points are certified whatever
+      // the chain's precision (and checked against the digits asked).
       bits = next_bits(bits);
       compute_mu();
       b.Glo = b.lo.is_zero() ? Ball(0) : tr.integral(Rational(0), b.lo, bits);
+      glo_bits = bits;
       b.hi = Rational(1);
-      if (use_cover) {
-        cover = Cover();
-        use_cover = cover.build(tr, bits);
-      }
     }
     sink(k, pt);
   }
