@@ -65,9 +65,8 @@ Rational floor_dyadic(const Rational& x, long e) {
   fmpq_init(y);
   fmpq_mul_2exp(y, x.get(), static_cast<ulong>(e));
   fmpz_fdiv_q(n, fmpq_numref(y), fmpq_denref(y));
-  fmpq_set_fmpz_frac(y, n, fmpq_denref(y));
-  fmpz_one(fmpq_denref(y));
   fmpz_set(fmpq_numref(y), n);
+  fmpz_one(fmpq_denref(y));
   fmpq_div_2exp(y, y, static_cast<ulong>(e));
   Rational r(y);
   fmpq_clear(y);
@@ -333,6 +332,11 @@ class Cover {
         add_gap(Rational(0), Rational(1));
         continue;
       }
+      const ArcModeller& mod = *mods[si];
+      if (!mod.worthwhile()) {
+        add_gap(Rational(0), Rational(1));
+        continue;
+      }
       // The stretches between zeros of sigma: a rational zero is a cell
       // boundary (the continuation of sigma is analytic across it, only
       // its sign flips there), an irrational one lies in a short gap.
@@ -358,11 +362,6 @@ class Cover {
       }
       std::sort(pts.begin(), pts.end());
       pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
-      const ArcModeller& mod = *mods[si];
-      if (!mod.worthwhile()) {
-        add_gap(Rational(0), Rational(1));
-        continue;
-      }
       std::size_t gap_from = 0;
       bool in_gap = false;
       for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
