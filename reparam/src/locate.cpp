@@ -541,6 +541,7 @@ class Cover {
     Rational u = A, w = B - A;
     int cells = 0, failures = 0;
     while (u < B) {
+      check_time_budget();
       if (B - u < w) w = B - u;
       Region r;
       if (cells < 512 && failures < 64 && mod.build(u, u + w, bits_, r.cell)) {
