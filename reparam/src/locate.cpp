@@ -438,6 +438,14 @@ class Cover {
       if (std::fabs(dx) <= 1e-17 * (std::fabs(x) + (xb - xa))) break;
     }
     if (!std::isfinite(x)) return false;
+    Ball x0;
+    arb_set_d(x0.get(), x);
+    {  // x within the cell (xa, xb may be inexact balls): the model holds there only
+      Ball lo_d, hi_d;
+      arb_sub(lo_d.get(), x0.get(), cl.xa.get(), wp);
+      arb_sub(hi_d.get(), cl.xb.get(), x0.get(), wp);
+      if (!(arb_is_nonnegative(lo_d.get()) && arb_is_nonnegative(hi_d.get()))) return false;
+    }
     // One interval Newton step on X = [x - rho, x + rho] (within the cell):
     // N = x - F(x) / F'(X) inside X proves the root t - c in N (G is
     // increasing on the cell, the root is unique). F'(X) = sigma(X) is
@@ -449,11 +457,9 @@ class Cover {
     double rho = 2 * (std::fabs(arf_get_d(arb_midref(F.get()), ARF_RND_UP)) + mag_get_d(arb_radref(F.get()))) /
                  std::max(sx, 1e-300);
     rho = std::max(rho, 1e-30 * (xb - xa));
-    Ball x0;
-    arb_set_d(x0.get(), x);
     for (int attempt = 0; attempt < 4; ++attempt, rho *= 16) {
-      // X within [xa, xb]: the model's bounds hold there only.
-      const bool clipped = !(xa <= x - rho && x + rho <= xb);
+      // X within [xa, xb]: the model's bounds hold there only (checked on
+      // the balls; where X sticks out, it is clipped to the cell).
       Ball X;
       {
         arf_t lo, hi, t;
@@ -468,13 +474,21 @@ class Cover {
         arf_clear(hi);
         arf_clear(t);
       }
-      if (clipped) {
-        Ball cellb, lo_d, hi_d;
-        arb_union(cellb.get(), cl.xa.get(), cl.xb.get(), wp);
-        if (!arb_intersection(X.get(), X.get(), cellb.get(), wp)) return false;
+      bool clipped = false;
+      {
+        Ball lo_d, hi_d;
         arb_sub(lo_d.get(), X.get(), cl.xa.get(), wp);
         arb_sub(hi_d.get(), cl.xb.get(), X.get(), wp);
-        if (!(arb_is_nonnegative(lo_d.get()) && arb_is_nonnegative(hi_d.get()))) return false;
+        if (!(arb_is_nonnegative(lo_d.get()) && arb_is_nonnegative(hi_d.get()))) {
+          clipped = true;
+          Ball cellb;
+          arb_union(cellb.get(), cl.xa.get(), cl.xb.get(), wp);
+          if (!arb_intersection(X.get(), X.get(), cellb.get(), wp)) return false;
+          arb_sub(lo_d.get(), X.get(), cl.xa.get(), wp);
+          arb_sub(hi_d.get(), cl.xb.get(), X.get(), wp);
+          if (!(arb_is_nonnegative(lo_d.get()) && arb_is_nonnegative(hi_d.get()))) return false;
+          if (!arb_contains(X.get(), x0.get())) return false;  // the step's point is in X
+        }
       }
       // sigma on X: within sx +- (sr + 2 rho L) (|x' - x| <= 2 rho on X,
       // whose ends were rounded outward)
