@@ -23,7 +23,9 @@
 // cases use powers of two), so both libraries see the same curve.
 // Time per point = wall time of the whole call (from the control points:
 // curve, speed, mu and all K points for uniparam; Geom2d_BezierCurve, its
-// adaptor and the abscissa computation for OCCT) / K.
+// adaptor and the abscissa computation for OCCT) / K, and the process's CPU
+// time over the same call / K (all threads; less sensitive than the wall
+// time to other work on a shared machine).
 #include <Geom2dAdaptor_Curve.hxx>
 #include <Geom2d_BezierCurve.hxx>
 #include <GCPnts_UniformAbscissa.hxx>
@@ -37,6 +39,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <fstream>
 #include <functional>
 #include <iostream>
@@ -54,6 +57,13 @@ using Points = std::vector<std::vector<Rational>>;
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// CPU time of the whole process (all threads), in seconds.
+double cpu_seconds() {
+  timespec ts;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
 
 double median(std::vector<double> v) {
   if (v.empty()) return NAN;
@@ -111,6 +121,7 @@ struct Outcome {
   double cert_err = NAN;   // uniparam only: largest over its balls
   bool contains_ref = true;
   double us_per_point = NAN;
+  double cpu_us_per_point = NAN;  // process CPU time (all threads)
 };
 
 struct Method {
@@ -148,17 +159,20 @@ CaseResult run_case(const Points& pts, long K, const std::vector<double>& tols, 
   Options opt;
   opt.digits = 15;
   std::vector<LocatedPoint> pts15;
-  std::vector<double> times;
+  std::vector<double> times, cpu;
   for (int run = 0; run < timed_runs; ++run) {
     pts15.clear();
     const auto t0 = Clock::now();
+    const double c0 = cpu_seconds();
     const Curve cc = BezierCurve(pts).to_curve();
     const Speed ss(cc, SpeedKind::Parametric);
     Ball mu;
     exact_samples_each(cc, ss, K, opt, mu, [&](long, const LocatedPoint& p) { pts15.push_back(p); });
     times.push_back(seconds_since(t0) / static_cast<double>(K));
+    cpu.push_back((cpu_seconds() - c0) / static_cast<double>(K));
   }
   r.uni.us_per_point = median(times) * 1e6;
+  r.uni.cpu_us_per_point = median(cpu) * 1e6;
   r.uni.points = static_cast<long>(pts15.size());
   std::vector<Ball> mids, balls;
   for (const auto& p : pts15) {
@@ -180,13 +194,17 @@ CaseResult run_case(const Points& pts, long K, const std::vector<double>& tols, 
     std::vector<double> u;
     std::string failed;
     times.clear();
+    cpu.clear();
     for (int run = 0; run < timed_runs; ++run) {
       failed.clear();
       const auto t0 = Clock::now();
+      const double c0 = cpu_seconds();
       u = occt_params(pts, K, tol, &failed);
       times.push_back(seconds_since(t0) / static_cast<double>(K));
+      cpu.push_back((cpu_seconds() - c0) / static_cast<double>(K));
     }
     o.us_per_point = median(times) * 1e6;
+    o.cpu_us_per_point = median(cpu) * 1e6;
     o.points = static_cast<long>(u.size());
     if (!failed.empty()) {
       o.note = "fails (" + failed + ")";
@@ -284,18 +302,19 @@ int main(int argc, char** argv) {
   const std::vector<double> tols = {-1, 1e-15};
   const auto R = [](long a, long b = 1) { return Rational(a, b); };
 
-  std::cout << "| curve | K | OCCT " << tol_name(tols[0]) << ": points | digits | µs/point | OCCT "
-            << tol_name(tols[1]) << ": points | digits | µs/point | uniparam 15 digits: points | digits | "
-            << "certified digits | contains 30-digit ref | µs/point |\n";
+  std::cout << "| curve | K | OCCT " << tol_name(tols[0]) << ": points | digits | µs/point wall / CPU | OCCT "
+            << tol_name(tols[1]) << ": points | digits | µs/point wall / CPU | uniparam 15 digits: points | digits | "
+            << "certified digits | contains 30-digit ref | µs/point wall / CPU |\n";
   std::cout << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   auto row = [&](const std::string& name, long K, const CaseResult& r) {
     std::cout << "| " << name << " | " << K;
     for (const Outcome& o : r.occt)
       std::cout << " | " << (o.note.empty() ? std::to_string(o.points) : o.note) << " | "
-                << fmt(digits_of(o.worst_err), "%.1f") << " | " << fmt(o.us_per_point, "%.3g");
+                << fmt(digits_of(o.worst_err), "%.1f") << " | " << fmt(o.us_per_point, "%.3g") << " / "
+                << fmt(o.cpu_us_per_point, "%.3g");
     std::cout << " | " << r.uni.points << " | " << fmt(digits_of(r.uni.worst_err), "%.1f") << " | "
               << fmt(digits_of(r.uni.cert_err), "%.1f") << " | " << (r.uni.contains_ref ? "yes" : "NO") << " | "
-              << fmt(r.uni.us_per_point, "%.3g") << " |" << std::endl;
+              << fmt(r.uni.us_per_point, "%.3g") << " / " << fmt(r.uni.cpu_us_per_point, "%.3g") << " |" << std::endl;
   };
 
   if (fonts) {
@@ -309,8 +328,8 @@ int main(int argc, char** argv) {
       const std::size_t nt = tols.size();
       std::vector<long> bad(nt, 0);
       std::vector<double> worst(nt, 0), worst_uni{0, 0};
-      std::vector<std::vector<double>> times(nt);
-      std::vector<double> uni_times;
+      std::vector<std::vector<double>> times(nt), cpus(nt);
+      std::vector<double> uni_times, uni_cpus;
       long uni_bad = 0, uni_nocontain = 0;
       for (const Points& p : sel) {
         const CaseResult r = run_case(p, K, tols, 1);
@@ -318,22 +337,25 @@ int main(int argc, char** argv) {
           if (!r.occt[j].note.empty()) ++bad[j];
           else worst[j] = std::max(worst[j], r.occt[j].worst_err);
           times[j].push_back(r.occt[j].us_per_point);
+          cpus[j].push_back(r.occt[j].cpu_us_per_point);
         }
         if (r.uni.points != K) ++uni_bad;
         if (!r.uni.contains_ref) ++uni_nocontain;
         worst_uni[0] = std::max(worst_uni[0], r.uni.worst_err);
         worst_uni[1] = std::max(worst_uni[1], r.uni.cert_err);
         uni_times.push_back(r.uni.us_per_point);
+        uni_cpus.push_back(r.uni.cpu_us_per_point);
       }
       const std::string n = std::to_string(sel.size());
       std::cout << "| font quadratics (" << n << " of " << all.size() << ") | " << K;
       for (std::size_t j = 0; j < nt; ++j)
         std::cout << " | " << (bad[j] ? std::to_string(bad[j]) + " of " + n + " wrong or failed" : "all " + std::to_string(K))
-                  << " | " << fmt(digits_of(worst[j]), "%.1f") << " | " << fmt(median(times[j]), "%.3g");
+                  << " | " << fmt(digits_of(worst[j]), "%.1f") << " | " << fmt(median(times[j]), "%.3g") << " / "
+                  << fmt(median(cpus[j]), "%.3g");
       std::cout << " | " << (uni_bad ? std::to_string(uni_bad) + " wrong" : "all " + std::to_string(K)) << " | "
                 << fmt(digits_of(worst_uni[0]), "%.1f") << " | " << fmt(digits_of(worst_uni[1]), "%.1f") << " | "
                 << (uni_nocontain ? std::to_string(uni_nocontain) + " NO" : "yes") << " | "
-                << fmt(median(uni_times), "%.3g") << " |" << std::endl;
+                << fmt(median(uni_times), "%.3g") << " / " << fmt(median(uni_cpus), "%.3g") << " |" << std::endl;
     }
   }
 

@@ -60,6 +60,11 @@ class CompositeTrack final : public Track {
     return uniparam::sigma_estimate(s_[j], (x - k[j]) / d) / dd;
   }
   std::vector<Ball> eval(const Ball& t, long prec) const override { return c_.eval(t, prec); }
+  std::vector<Segment> segments() const override {
+    std::vector<Segment> out;
+    for (std::size_t j = 0; j < c_.size(); ++j) out.push_back(Segment{c_.knots()[j], c_.knots()[j + 1], &s_[j]});
+    return out;
+  }
 
  private:
   const CompositeCurve& c_;

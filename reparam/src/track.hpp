@@ -31,13 +31,26 @@ class Track {
   virtual double sigma_estimate(const Rational& x) const = 0;
   /// Enclosures of p's components at the ball t in [0, 1].
   virtual std::vector<Ball> eval(const Ball& t, long prec) const = 0;
+
+  /// A part [lo, hi] of the track's parameter on which G is the integral
+  /// of one speed: G(lo + (hi - lo) u) = G(lo) + int_0^u sigma_speed for u
+  /// in [0, 1].
+  struct Segment {
+    Rational lo, hi;
+    const Speed* speed;
+  };
+  /// The segments, in order, covering [0, 1] (their speeds outlive the
+  /// track); empty when G is known through integral() only. The locator
+  /// builds Taylor models of G from them (arc_model.hpp); integral() must
+  /// agree with them.
+  virtual std::vector<Segment> segments() const { return {}; }
 };
 
 /// An uncertified estimate of sigma(x): the square root of sigma(x)^2's
 /// midpoint at 64 bits; 0 where that is not a positive finite double.
 double sigma_estimate(const Speed& s, const Rational& x);
 
-/// The track of a composite curve (composite.cpp). \pre c and speeds outlive it.
+/// The track of a composite curve (composite_locate.cpp). \pre c and speeds outlive it.
 std::shared_ptr<const Track> composite_track(const CompositeCurve& c, const std::vector<Speed>& speeds, long max_prec);
 
 /// locate() and exact_samples_each() on a track (same contracts).

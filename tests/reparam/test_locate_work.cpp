@@ -36,8 +36,10 @@ class CountingTrack final : public Track {
   const Speed& s_;
 };
 
-// Integrals per interior point of K exact samples at 15 digits, checking on
-// the way that the counted track gives the library's own balls.
+// Integrals per interior point of K exact samples at 15 digits on the chain
+// of certified integrals (a track without segments: no Taylor models),
+// checking on the way that its balls overlap the library's (both contain
+// the exact parameters).
 double integrals_per_point(const std::string& curve, long K) {
   const Curve c = Curve::parse(curve);
   const Speed s(c, SpeedKind::Parametric);
@@ -50,7 +52,7 @@ double integrals_per_point(const std::string& curve, long K) {
   const ExactSamples lib = exact_samples(c, s, K, opt);
   EXPECT_EQ(ts.size(), static_cast<std::size_t>(K));
   for (std::size_t k = 0; k < ts.size() && k < lib.points.size(); ++k)
-    EXPECT_TRUE(arb_equal(ts[k].get(), lib.points[k].t.get())) << curve << " point " << k;
+    EXPECT_TRUE(arb_overlaps(ts[k].get(), lib.points[k].t.get())) << curve << " point " << k;
   return static_cast<double>(tr.count) / static_cast<double>(K - 2);
 }
 

@@ -72,12 +72,20 @@ using LocatedSink = std::function<void(long k, const LocatedPoint&)>;
 
 /// The K points of ExactSamples, located one after the other and handed to
 /// `sink` as soon as each is certified (nothing kept: memory does not grow
-/// with K). Point k starts from point k-1's bracket and integrates sigma
-/// only between them, so K points cost O(K) integrals over short pieces,
-/// not K integrals from 0. Where a point needs more working precision than
-/// the chain has, mu and G at the bracket are recomputed at the higher one
-/// (the points already handed over stay valid). `mu` receives mu (to
-/// opt.digits) before the first point.
+/// with K). First G is covered by certified Taylor models on cells of the
+/// parameter (docs/locate.md, "Taylor models": sigma's Taylor polynomial
+/// at each cell's centre with a Cauchy bound of the remainder, integrated),
+/// which give mu and, by one interval Newton step in the cell holding the
+/// target, most points without any certified integral. Where no model
+/// certifies (an irrational zero of sigma, a singularity of sigma's
+/// continuation too close, a speed of high degree) or a point misses its
+/// model's accuracy, the point is narrowed by certified integrals from the
+/// previous point's bracket (or the cover's, whichever is ahead), so K
+/// points cost O(K) integrals over short pieces at most, never K integrals
+/// from 0. Where a point needs more working precision than the chain has,
+/// mu and G at the bracket are recomputed at the higher one (the points
+/// already handed over stay valid). `mu` receives mu (to opt.digits)
+/// before the first point.
 /// \pre 2 <= K <= 1000000 (checked: InvalidArgument); `s` the speed of `c`.
 /// \post each t and point component contains the true value and meets
 ///       opt.digits (as locate()); mu meets opt.digits.
