@@ -1,6 +1,6 @@
 // Cusps: curves whose p' numerators share a factor with a real root c in
 // [0, 1] (p'(c) = 0 at a rational c, inside or at an end). The angular speed
-// omega is finite there after cancellation (MATH.md section 1), and every
+// omega is finite there after cancellation (docs/math.md §1), and every
 // sign, value, zero and integral inside a piece must come from the cancelled
 // speed. Oracles: closed forms evaluated with Arb ((u^k, u^(k+1)) with
 // u = t - c has omega = k (k+1) / (k^2 + (k+1)^2 u^2), so mu = atan((k+1)

@@ -84,7 +84,7 @@ TEST(Scaling, HugeCoefficientParabolaMatchesClosedForms) {
 // Must show: the rational quadratic with control points (1,0), (1,1), (0,1)
 // and weights 1, 4/5 lambda, lambda^2 (the Moebius reparameterisation of the
 // conic with weights 1, 4/5, 1) has int |p'|^2 = lambda I0 + J + I2 / lambda
-// exactly (MATH.md (1.2) with 1/m' = (lambda (1 - s) + s)^2 / lambda), and
+// exactly (docs/math.md (1.2) with 1/m' = (lambda (1 - s) + s)^2 / lambda), and
 // the same arc length mu for every lambda. I0, J, I2 come from lambda = 1,
 // 10, 100 (balance() leaves those alone: the ordinary path); lambda = 10^41
 // (weights 1, 8e40, 1e82) must agree with the extrapolation, as must the

@@ -1,6 +1,6 @@
 // uniparam/reparam/scaling.hpp -- an exact change of parameter that balances
 // a rational curve whose weights grow geometrically, for the integrals of
-// the uniformity (MATH.md section 1, (1.1) and (1.2)).
+// the uniformity (docs/math.md §1, (1.1) and (1.2)).
 #pragma once
 
 #include <optional>
