@@ -17,6 +17,7 @@
 
 #include "uniparam/algebra/quadrature.hpp"
 #include "uniparam/core/ball.hpp"
+#include "uniparam/core/ball_regions.hpp"
 #include "uniparam/core/budget.hpp"
 #include "uniparam/core/dd_ball.hpp"
 
@@ -61,11 +62,6 @@ struct Context {
   std::vector<DDBall> dd_out;                                ///< node_fast's outputs
 };
 
-inline /// True for the balls of the error bounds (a subinterval's segment or
-/// ellipse), as opposed to the Gauss-Legendre nodes: radius >= 2^-30.
-bool is_wide(const acb_t z) {
-  return mag_cmp_2exp_si(arb_radref(acb_realref(z)), -30) >= 0 || mag_cmp_2exp_si(arb_radref(acb_imagref(z)), -30) >= 0;
-}
 
 /// out[0 .. count) = f(z). No exception leaves: the first one is stored, and
 /// from then on every call answers exact 0s without calling f, so that
@@ -79,7 +75,7 @@ inline void call(Context& ctx, acb_ptr out, const acb_t z, bool analytic, long p
       check_time_budget();  // --timeout, noticed within one evaluation
       // A wide ball's enclosure is as wide as f's variation on it: the bits
       // of the goal buy nothing there (only those lost to cancellation do).
-      (*ctx.f)(out, z, analytic, is_wide(z) ? std::min(prec, ctx.wide_prec) : prec);
+      (*ctx.f)(out, z, analytic, is_region_ball(z) ? std::min(prec, ctx.wide_prec) : prec);
       return;
     } catch (...) {
       ctx.error = std::current_exception();

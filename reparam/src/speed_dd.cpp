@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "speed_detail.hpp"
+#include "uniparam/core/ball_regions.hpp"
 #include "uniparam/algebra/quadrature.hpp"
 #include "uniparam/reparam/speed.hpp"
 #define UNIPARAM_SPEED_DD_ARITH
@@ -83,7 +84,7 @@ std::shared_ptr<const SpeedDD> make_speed_dd(const std::vector<RatFunc>& comps, 
 
 bool Speed::eval_double_word(acb_t out, const acb_t z, const PieceSigns& p, bool squared, long prec) const {
   if (!dd_ || zero_ || prec > kDDMaxPrec || !arb_is_zero(acb_imagref(z)) ||
-      mag_cmp_2exp_si(arb_radref(acb_realref(z)), -30) >= 0)
+      mag_cmp_2exp_si(arb_radref(acb_realref(z)), kRegionBallLog2) >= 0)
     return false;
   DDBall x, r;
   if (!dd_set_arb(x, acb_realref(z)) || !eval_dd(r, x, p, squared, prec)) return false;
@@ -167,7 +168,7 @@ UNIPARAM_DD_FMA bool speed_dd_fma(DDBall& out, const detail::SpeedDD& dd, bool a
 }  // namespace
 
 bool Speed::eval_dd(DDBall& out, const DDBall& x, const PieceSigns& p, bool squared, long prec) const {
-  if (!dd_ || zero_ || prec > kDDMaxPrec || !dd_is_finite(x) || !(x.rad < 0x1p-30)) return false;
+  if (!dd_ || zero_ || prec > kDDMaxPrec || !dd_is_finite(x) || !(x.rad < std::ldexp(1.0, kRegionBallLog2))) return false;
   const bool angular = kind_ == SpeedKind::Angular;
   DDBall r;
   const bool ok = dd_fma_in_use() ? speed_dd_fma(r, *dd_, angular, p.component, squared, x)
