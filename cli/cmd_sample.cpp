@@ -29,14 +29,21 @@ std::vector<OptionSpec> method_options(bool with_none) {
   };
 }
 
-std::string read_method_name(const Args& a, bool with_none) {
-  const std::string m = a.get("method", "radical");
+void check_method_name(const std::string& m, bool pieces, bool target, bool max_pieces, bool with_none,
+                       const std::string& flag) {
   if (m != "radical" && m != "c0" && m != "c1" && !(with_none && m == "none"))
     throw InvalidArgument("unknown method '" + m + "' (expected radical, c0, c1" +
                           std::string(with_none ? " or none)" : ")"));
-  if (a.has("pieces") && m != "c0") throw InvalidArgument("--pieces applies to --method c0 only");
-  if (a.has("target") && m != "c1") throw InvalidArgument("--target applies to --method c1 only");
-  if (a.has("max-pieces") && m != "c1") throw InvalidArgument("--max-pieces applies to --method c1 only");
+  const std::string max_pieces_name = flag == "--" ? "max-pieces" : "max_pieces";
+  if (pieces && m != "c0") throw InvalidArgument(flag + "pieces applies to " + flag + "method c0 only");
+  if (target && m != "c1") throw InvalidArgument(flag + "target applies to " + flag + "method c1 only");
+  if (max_pieces && m != "c1")
+    throw InvalidArgument(flag + max_pieces_name + " applies to " + flag + "method c1 only");
+}
+
+std::string read_method_name(const Args& a, bool with_none) {
+  const std::string m = a.get("method", "radical");
+  check_method_name(m, a.has("pieces"), a.has("target"), a.has("max-pieces"), with_none, "--");
   return m;
 }
 

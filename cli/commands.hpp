@@ -91,10 +91,15 @@ Ball row_deviation(ArcFraction& frac, const SamplePoint& p, long digits, Ball& w
 /// --method, --pieces, --target (cmd_sample.cpp); `with_none` adds
 /// --method none (the original curve).
 std::vector<OptionSpec> method_options(bool with_none);
-/// The name given by --method ("radical", "c0", "c1", or "none" when
-/// `with_none`; default "radical"), after checking that --pieces, --target and
-/// --max-pieces come only with the method they belong to.
+/// Checks a map's method name m ("radical", "c0", "c1", or "none" when
+/// `with_none`) and that the options pieces, target and max-pieces (given or
+/// not) come only with the method they belong to; `flag` prefixes the option
+/// names in messages ("--" for the CLI; "" and underscores for Python).
 /// \throws InvalidArgument for an unknown method or a misplaced option.
+void check_method_name(const std::string& m, bool pieces, bool target, bool max_pieces, bool with_none,
+                       const std::string& flag);
+/// The name given by --method (default "radical"), checked by
+/// check_method_name with the CLI's option names.
 std::string read_method_name(const Args& a, bool with_none);
 /// The reparameterization of c selected by --method, computed with `opt`.
 Reparameterization read_method(const Args& a, const Curve& c, SpeedKind kind, const Options& opt, bool with_none);

@@ -110,12 +110,7 @@ Reparameterization method_of(const std::string& method, const Curve& cv, SpeedKi
                              std::optional<long> pieces, const std::optional<std::string>& target,
                              std::optional<long> max_pieces, bool with_none) {
   const std::string& m = method;
-  if (m != "radical" && m != "c0" && m != "c1" && !(with_none && m == "none"))
-    throw InvalidArgument("unknown method '" + m + "' (expected radical, c0, c1" +
-                          std::string(with_none ? " or none)" : ")"));
-  if (pieces && m != "c0") throw InvalidArgument("pieces applies to method c0 only");
-  if (target && m != "c1") throw InvalidArgument("target applies to method c1 only");
-  if (max_pieces && m != "c1") throw InvalidArgument("max_pieces applies to method c1 only");
+  cli::check_method_name(m, pieces.has_value(), target.has_value(), max_pieces.has_value(), with_none, "");
   if (m == "radical") return Reparameterization(radical(cv, kind, opt));
   if (m == "c0") return Reparameterization(reparam_c0(cv, kind, in_range("pieces", pieces.value_or(3), 1, 1000), opt));
   if (m == "c1") {
@@ -185,12 +180,7 @@ std::string missed(const MoebiusResult& r, long max_pieces, long digits) {
 CompositeMethod composite_method_of(const std::string& m, const CompositeCurve& cc, std::optional<long> pieces,
                                     const std::optional<std::string>& target, std::optional<long> max_pieces,
                                     bool with_none) {
-  if (m != "radical" && m != "c0" && m != "c1" && !(with_none && m == "none"))
-    throw InvalidArgument("unknown method '" + m + "' (expected radical, c0, c1" +
-                          std::string(with_none ? " or none)" : ")"));
-  if (pieces && m != "c0") throw InvalidArgument("pieces applies to method c0 only");
-  if (target && m != "c1") throw InvalidArgument("target applies to method c1 only");
-  if (max_pieces && m != "c1") throw InvalidArgument("max_pieces applies to method c1 only");
+  cli::check_method_name(m, pieces.has_value(), target.has_value(), max_pieces.has_value(), with_none, "");
   CompositeMethod cm;
   if (m == "radical") cm.kind = CompositeMethod::Kind::Radical;
   if (m == "c0") {
