@@ -126,6 +126,8 @@ Ball moebius_eval_speed(const MoebiusResult& r, const Speed& sp, const Ball& s, 
 }
 
 std::vector<Ball> moebius_eval_point(const Curve& c, const MoebiusResult& r, const Ball& s, long prec) {
+  // p(r(s)) = q(r_q(s)) for a balanced map, without m's extreme parameters
+  if (r.balanced) return moebius_eval_point(r.balanced->q, *r.on_balanced, s, prec);
   const Ball t = moebius_eval_r(r, s, prec);
   return c.eval(t, prec);
 }

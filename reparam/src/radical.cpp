@@ -397,6 +397,8 @@ Ball radical_eval_speed(const RadicalResult& r, const Speed& s, const Ball& z, l
 }
 
 std::vector<Ball> radical_eval_point(const Curve& c, const RadicalResult& r, const Ball& z, long prec) {
+  // p(r(z)) = q(r_q(z)) for a balanced map, without m's extreme parameters
+  if (r.balanced) return radical_eval_point(r.balanced->q, *r.on_balanced, z, prec);
   const Ball t = radical_eval_r(r, z, prec);
   return c.eval(t, prec);
 }

@@ -235,7 +235,8 @@ Ball moebius_eval_dr(const MoebiusResult& r, const Ball& s, long prec);
 /// Enclosure of sigma_{p o r}(s) = sigma_p(r(s)) r'(s); `sp` must be the speed
 /// r was computed for.
 Ball moebius_eval_speed(const MoebiusResult& r, const Speed& sp, const Ball& s, long prec);
-/// Enclosures of the components of p(r(s)) (c must be the curve of r).
+/// Enclosures of the components of p(r(s)) (c must be the curve of r); for
+/// a balanced r, evaluated as q(r_q(s)), the same point.
 std::vector<Ball> moebius_eval_point(const Curve& c, const MoebiusResult& r, const Ball& s, long prec);
 
 }  // namespace uniparam

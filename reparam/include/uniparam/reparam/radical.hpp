@@ -77,12 +77,16 @@ Ball radical_eval_r(const RadicalResult& r, const Ball& z, long prec);
 Ball radical_eval_speed(const RadicalResult& r, const Speed& s, const Ball& z, long prec);
 
 /// Enclosures of the components of p(r(z)), the reparameterized curve's
-/// point at z in [0, 1] (c must be the curve r was computed for).
+/// point at z in [0, 1] (c must be the curve r was computed for); for a
+/// balanced r, evaluated as q(r_q(z)), the same point.
 std::vector<Ball> radical_eval_point(const Curve& c, const RadicalResult& r, const Ball& z, long prec);
 
 /// Independent check of the whole chain: mu^2 / int_0^1 sigma_{p o r}(z)^2 dz,
 /// integrating the reparameterized speed built from the pieces of r directly
-/// in z (certified quadrature, `digits` digits).
+/// in z (certified quadrature, `digits` digits). For a balanced r the
+/// integrand evaluates p's speed through the pieces' outer Moebius maps,
+/// whose poles lie within about a / b of the pieces: the quadrature then
+/// needs about balance_bits bisections and may be slow.
 Ball radical_direct_uniformity(const RadicalResult& r, const Speed& s, long digits, long max_prec);
 
 }  // namespace uniparam
