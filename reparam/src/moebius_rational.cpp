@@ -89,7 +89,9 @@ MoebiusResult make_rational(const Curve& c, const MoebiusResult& in, long ration
     throw InvalidArgument("the rational rounding must keep 1 to 100 digits, got " + std::to_string(rational_digits));
   validate(opt);
   if (in.balanced) {
-    const MoebiusResult rq = make_rational(in.balanced->q, *in.on_balanced, rational_digits, opt);
+    // one more digit on q: composing with m at most doubles alpha's error
+    // relative to min(alpha, 1 - alpha), and keeps k_0's relative error
+    const MoebiusResult rq = make_rational(in.balanced->q, *in.on_balanced, std::min(rational_digits + 1, 100L), opt);
     return detail::compose_balanced(in.balanced, rq, in.u_before, opt.digits);
   }
   const Speed s(c, in.kind);

@@ -196,9 +196,10 @@ MoebiusResult reparam_c1_traced(const Curve& c, SpeedKind kind, const Rational& 
 /// exactly from the C1 condition on the rational T and S, so r' is
 /// continuous exactly. For a balanced result (r.balanced) all this happens
 /// on r.on_balanced and q, and the rounded map is composed with m exactly:
-/// T_exact = m(T_q rounded), alpha_exact from the rounded alpha_q (the
-/// windows hold in q's parameter; composing with m keeps the map exact and
-/// C1 where r_q is).
+/// T_exact = m(T_q rounded), alpha_exact from alpha_q rounded with one more
+/// digit (the T and S windows hold in q's parameter; composing with m keeps
+/// the map exact, C1 where r_q is, and alpha within tol * min(alpha,
+/// 1 - alpha), within twice that for rational_digits = 100).
 /// \pre r was computed for c; 1 <= rational_digits <= 100 (InvalidArgument).
 /// \post rational == true; T_exact, S_exact, alpha_exact are the map's data;
 ///       T, S, alpha, integrals and u_after describe that exact map (u_after
