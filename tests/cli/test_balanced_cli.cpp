@@ -94,7 +94,8 @@ TEST(BalancedCli, SamplesLieOnTheCircleAndNurbsIsWritten) {
         int rows = 0;
         while (std::getline(in, line)) {
           double v[5];
-          ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf", &v[0], &v[1], &v[2], &v[3], &v[4]), 5) << line;
+          // the speed is empty at a joint where the map is only C0
+          ASSERT_GE(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf", &v[0], &v[1], &v[2], &v[3], &v[4]), 4) << line;
           EXPECT_NEAR(v[2] * v[2] + v[3] * v[3], 1.0, 1e-12) << line;
           EXPECT_TRUE(v[1] >= 0 && v[1] <= 1) << line;
           ++rows;
