@@ -96,6 +96,7 @@ Json radical_json(const Curve& c, const RadicalResult& r, long digits, Format fm
     p.set("s_interval", Json::string(formulas[i].s_interval));
     p.set("z_interval", Json::string(formulas[i].z_interval));
     p.set("radical_index", Json::number(static_cast<long>(r.root_index(i))));
+    if (!r.outer_k.empty()) p.set("outer_k", json_ball(r.outer_k[i], pd));
     p.set("phi", Json::string(formulas[i].phi));
     p.set("m", Json::string(formulas[i].m));
     p.set("r", Json::string(formulas[i].r));

@@ -97,6 +97,11 @@ std::vector<PieceFormulas> radical_formulas(const Curve& c, const RadicalResult&
       if (side == ZeroSide::Left) y = F.root(x, k);
       else if (side == ZeroSide::Right) y = "1 - " + F.root("1 - (" + x + ")", k);
       else y = x;
+      // the balancing map on the piece: y -> k y / (k y + 1 - y)
+      if (!r.outer_k.empty()) {
+        const std::string ky = F.times(r.outer_k[i], "(" + y + ")");
+        y = F.frac(ky, ky + " + 1 - (" + y + ")");
+      }
       return F.offset(ti, F.times(dt, "(" + y + ")"));
     };
     pf.phi = apply_psi(st);

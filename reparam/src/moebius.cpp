@@ -1,5 +1,7 @@
 #include "uniparam/reparam/moebius.hpp"
 
+#include <memory>
+#include <optional>
 #include <string>
 
 #include "uniparam/core/ball_poly.hpp"
@@ -124,6 +126,8 @@ Ball moebius_eval_speed(const MoebiusResult& r, const Speed& sp, const Ball& s, 
 }
 
 std::vector<Ball> moebius_eval_point(const Curve& c, const MoebiusResult& r, const Ball& s, long prec) {
+  // p(r(s)) = q(r_q(s)) for a balanced map, without m's extreme parameters
+  if (r.balanced) return moebius_eval_point(r.balanced->q, *r.on_balanced, s, prec);
   const Ball t = moebius_eval_r(r, s, prec);
   return c.eval(t, prec);
 }
@@ -133,10 +137,78 @@ MoebiusResult moebius_c0(const Curve& c, SpeedKind kind, const std::vector<RealA
   validate(opt);
   check_degree(c, opt);
   const Speed s(c, kind);
+  if (const auto bal = detail::balanced_for(c, s)) {
+    // The breakpoints in q's parameter, s = m^-1(t) (exact), once T is valid.
+    detail::moebius_breakpoints(s, T);
+    std::vector<RealAlgebraic> Tq;
+    for (const RealAlgebraic& t : T) Tq.push_back(balance_unmap(*bal, t));
+    const Speed sq(bal->q, kind);
+    const MoebiusResult rq = detail::moebius_c0(sq, detail::mu_only(sq, opt), Tq, opt);
+    return detail::compose_balanced(bal, rq, uniformity_balanced(s, *bal, sq, opt).u, opt.digits);
+  }
   return detail::moebius_c0(s, detail::mu_only(s, opt), T, opt);
 }
 
 namespace detail {
+
+std::shared_ptr<const BalancedCurve> balanced_for(const Curve& c, const Speed& s) {
+  if (s.identically_zero()) return nullptr;
+  std::optional<BalancedCurve> b = balance(c);
+  if (!b) return nullptr;
+  return std::make_shared<const BalancedCurve>(std::move(*b));
+}
+
+long balanced_prec(const BalancedCurve& bal, long digits) {
+  return 2 * digits_to_bits(digits) + 64 + 2 * balance_bits(bal);
+}
+
+Ball compose_alpha(const Ball& alpha, const Ball& k, long prec) {
+  Ball K, x;
+  arb_sub_si(K.get(), alpha.get(), 1, prec);
+  arb_neg(K.get(), K.get());
+  arb_div(K.get(), K.get(), alpha.get(), prec);
+  arb_mul(x.get(), K.get(), k.get(), prec);
+  arb_add_si(x.get(), x.get(), 1, prec);
+  arb_inv(x.get(), x.get(), prec);
+  return x;
+}
+
+MoebiusResult compose_balanced(const std::shared_ptr<const BalancedCurve>& bal, const MoebiusResult& rq,
+                               const Ball& u_before, long digits) {
+  MoebiusResult r = rq;
+  const long prec = balanced_prec(*bal, digits);
+  const std::size_t N = rq.pieces();
+  r.T.clear();
+  for (const Breakpoint& b : rq.T) r.T.push_back(Breakpoint{balance_map(*bal, b.t), 0, 0, 0});
+  for (std::size_t i = 0; i < N; ++i) {
+    // A, B, C of the piece on p: sigma_p^2 dt = sigma_q^2 / (dt/ds) ds and
+    // (1 - t~)^2, 2 t~ (1 - t~), t~^2 over dt~/ds~ are (1 - s~)^2 / k,
+    // 2 s~ (1 - s~), k s~^2; M = B + 2 sqrt(A C) is unchanged.
+    const Ball k = balance_local_k(*bal, rq.T[i].t, rq.T[i + 1].t, prec);
+    PieceIntegrals& I = r.integrals[i];
+    arb_div(I.A.get(), I.A.get(), k.get(), prec);
+    arb_mul(I.C.get(), I.C.get(), k.get(), prec);
+    arb_add(I.L.get(), I.A.get(), I.B.get(), prec);
+    arb_add(I.L.get(), I.L.get(), I.C.get(), prec);
+    I.alpha = compose_alpha(rq.integrals[i].alpha, k, prec);
+    I.square = Ball();
+    I.square_bits = 0;
+    if (rq.rational) {
+      const Rational kq = balance_local_k(*bal, rq.T_exact[i], rq.T_exact[i + 1]);
+      const Rational& a = rq.alpha_exact[i];
+      r.alpha_exact[i] = Rational(1) / (Rational(1) + kq * (Rational(1) - a) / a);
+      r.alpha[i] = Ball(r.alpha_exact[i], prec);
+    } else {
+      r.alpha[i] = compose_alpha(rq.alpha[i], k, prec);
+    }
+  }
+  if (rq.rational)
+    for (std::size_t i = 0; i <= N; ++i) r.T_exact[i] = r.T[i].t.rational();
+  r.u_before = u_before;
+  r.balanced = bal;
+  r.on_balanced = std::make_shared<const MoebiusResult>(rq);
+  return r;
+}
 
 std::vector<Breakpoint> moebius_breakpoints(const Speed& s, const std::vector<RealAlgebraic>& T) {
   // mark_zeros validates T (0 = t_0 < ... < t_N = 1); the rational method then

@@ -514,16 +514,12 @@ MoebiusResult reparam_c1(const Curve& c, SpeedKind kind, const Rational& target,
   return detail::reparam_c1_traced(c, kind, target, opt, max_pieces, nullptr);
 }
 
-MoebiusResult detail::reparam_c1_traced(const Curve& c, SpeedKind kind, const Rational& target,
-                                        const Options& opt, long max_pieces, C1Trace* trace) {
-  if (trace) *trace = C1Trace{};
-  if (!(target.sign() > 0 && target < Rational(1)))
-    throw InvalidArgument("the target uniformity must lie in (0, 1), got " + target.str());
-  if (max_pieces < 1 || max_pieces > 1000)
-    throw InvalidArgument("the piece budget must be in [1, 1000], got " + std::to_string(max_pieces));
-  validate(opt);
-  check_degree(c, opt);
-  const Speed s(c, kind);
+namespace {
+
+// reparam_c1_traced for the speed s (the arguments checked).
+MoebiusResult reparam_c1_on(const Speed& s, const Rational& target, const Options& opt, long max_pieces,
+                            detail::C1Trace* trace) {
+  using detail::C1Trace;
   // mu (its own parallel loop) and the critical points (the root isolation
   // of a polynomial of degree ~11d, in two halves) side by side, as in
   // radical(): the second on its own copy of the speed.
@@ -632,6 +628,29 @@ MoebiusResult detail::reparam_c1_traced(const Curve& c, SpeedKind kind, const Ra
   r.target.draft_failed = draft_failed;
   r.target.reached = arb_ge(r.u_after.get(), tq.get());
   return r;
+}
+
+}  // namespace
+
+MoebiusResult detail::reparam_c1_traced(const Curve& c, SpeedKind kind, const Rational& target,
+                                        const Options& opt, long max_pieces, C1Trace* trace) {
+  if (trace) *trace = C1Trace{};
+  if (!(target.sign() > 0 && target < Rational(1)))
+    throw InvalidArgument("the target uniformity must lie in (0, 1), got " + target.str());
+  if (max_pieces < 1 || max_pieces > 1000)
+    throw InvalidArgument("the piece budget must be in [1, 1000], got " + std::to_string(max_pieces));
+  validate(opt);
+  check_degree(c, opt);
+  const Speed s(c, kind);
+  if (const auto bal = balanced_for(c, s)) {
+    const Speed sq(bal->q, kind);
+    const MoebiusResult rq = reparam_c1_on(sq, target, opt, max_pieces, trace);
+    MoebiusResult r = compose_balanced(bal, rq, uniformity_balanced(s, *bal, sq, opt).u, opt.digits);
+    const Ball tq(target, 2 * digits_to_bits(opt.digits) + 64);
+    r.target.reached = arb_ge(r.u_after.get(), tq.get());
+    return r;
+  }
+  return reparam_c1_on(s, target, opt, max_pieces, trace);
 }
 
 }  // namespace uniparam

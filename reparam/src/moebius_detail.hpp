@@ -1,9 +1,11 @@
 // reparam/src/moebius_detail.hpp -- shared internals of the Moebius methods.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "uniparam/reparam/moebius.hpp"
+#include "uniparam/reparam/scaling.hpp"
 
 namespace uniparam::detail {
 
@@ -56,5 +58,24 @@ struct C1Data {
 };
 C1Data c1_from_pieces(const std::vector<RealAlgebraic>& T, const std::vector<Ball>& S,
                       const std::vector<PieceIntegrals>& I, const Ball& mu, long prec);
+
+/// The balanced curve the methods run on instead of c (scaling.hpp), or
+/// null: balance(c) where c's speed s is not identically zero.
+std::shared_ptr<const BalancedCurve> balanced_for(const Curve& c, const Speed& s);
+
+/// The working precision that keeps the parameters of m's composition
+/// resolvable: that of `digits` twice, plus twice balance_bits.
+long balanced_prec(const BalancedCurve& bal, long digits);
+
+/// 1 / (1 + k K), K = (1 - alpha) / alpha: the parameter of the Moebius
+/// piece alpha composed with m's local piece k (balance_local_k), without
+/// cancellation (1 - alpha of the result keeps its relative accuracy).
+Ball compose_alpha(const Ball& alpha, const Ball& k, long prec);
+
+/// rq, a result of the Moebius methods for bal.q, composed with m: the same
+/// map described on p (MoebiusResult::balanced), with p's u_before; its balls
+/// meet `digits` where rq's meet digits + 1.
+MoebiusResult compose_balanced(const std::shared_ptr<const BalancedCurve>& bal, const MoebiusResult& rq,
+                               const Ball& u_before, long digits);
 
 }  // namespace uniparam::detail

@@ -42,15 +42,10 @@ std::vector<RealAlgebraic> round_breakpoints(const std::vector<double>& t, doubl
   return out;
 }
 
-}  // namespace
-
-MoebiusResult reparam_c0(const Curve& c, SpeedKind kind, long N, const Options& opt) {
-  if (N < 1 || N > 1000) throw InvalidArgument("the number of pieces must be in [1, 1000], got " + std::to_string(N));
-  validate(opt);
-  check_degree(c, opt);
+// reparam_c0 for the speed s (N and opt checked).
+MoebiusResult reparam_c0_on(const Speed& s, long N, const Options& opt) {
   std::vector<RealAlgebraic> equal;
   for (long i = 0; i <= N; ++i) equal.emplace_back(Rational(i, N));
-  const Speed s(c, kind);
   if (N == 1 || s.identically_zero()) {
     MoebiusResult r = detail::moebius_c0(s, detail::mu_only(s, opt), equal, opt);
     r.optimiser.used = true;
@@ -109,6 +104,21 @@ MoebiusResult reparam_c0(const Curve& c, SpeedKind kind, long N, const Options& 
   r.optimiser.phi_equal = phi_eq;
   r.optimiser.stationarity = o.stationarity;
   return r;
+}
+
+}  // namespace
+
+MoebiusResult reparam_c0(const Curve& c, SpeedKind kind, long N, const Options& opt) {
+  if (N < 1 || N > 1000) throw InvalidArgument("the number of pieces must be in [1, 1000], got " + std::to_string(N));
+  validate(opt);
+  check_degree(c, opt);
+  const Speed s(c, kind);
+  if (const auto bal = detail::balanced_for(c, s)) {
+    const Speed sq(bal->q, kind);
+    const MoebiusResult rq = reparam_c0_on(sq, N, opt);
+    return detail::compose_balanced(bal, rq, uniformity_balanced(s, *bal, sq, opt).u, opt.digits);
+  }
+  return reparam_c0_on(s, N, opt);
 }
 
 }  // namespace uniparam

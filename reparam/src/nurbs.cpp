@@ -338,6 +338,9 @@ std::vector<Ball> Nurbs::breaks() const {
 }
 
 Nurbs moebius_nurbs(const Curve& c, const MoebiusResult& r, long prec) {
+  // A balanced map r = m o r_q (MoebiusResult::balanced): p o r is q o r_q
+  // exactly, and q's pieces are free of m's extreme parameters.
+  if (r.balanced) return moebius_nurbs(r.balanced->q, *r.on_balanced, prec);
   const std::vector<Poly> H = homogeneous(c);
   const long d = homogeneous_degree(H);
   Nurbs n;
@@ -380,6 +383,7 @@ Nurbs moebius_nurbs(const Curve& c, const MoebiusResult& r, long prec) {
 Nurbs composite_nurbs(const CompositeCurve& c, const CompositeMap& m, long prec) {
   const std::size_t M = c.size();
   std::vector<const MoebiusResult*> parts;
+  std::vector<const Curve*> curves;  // a balanced part's q o r_q is p o r (moebius_nurbs)
   std::vector<std::vector<Poly>> H;
   long D = 1;
   bool exact = true;
@@ -387,9 +391,10 @@ Nurbs composite_nurbs(const CompositeCurve& c, const CompositeMap& m, long prec)
     const MoebiusResult* r = m.parts()[j].moebius_result();
     if (!r)
       throw InvalidArgument(c.label(j) + ": its map is not a Moebius map, so p o r is not a NURBS curve there");
-    parts.push_back(r);
+    parts.push_back(r->balanced ? r->on_balanced.get() : r);
+    curves.push_back(r->balanced ? &r->balanced->q : &c.segment(j));
     exact = exact && r->rational;
-    H.push_back(homogeneous(c.segment(j)));
+    H.push_back(homogeneous(*curves.back()));
     D = std::max(D, homogeneous_degree(H.back()));
   }
   for (const Joint& jt : joints(c, 64))
@@ -432,7 +437,7 @@ Nurbs composite_nurbs(const CompositeCurve& c, const CompositeMap& m, long prec)
     fill_balls_from_exact(n, prec);
     check_exact_nurbs(n, segs, [&](const Segment<Rational>& seg, const Rational& sv) {
       const auto [j, i] = origin[seg.piece];
-      return exact_point(c.segment(j), moebius_exact(*parts[j], i, (sv - m.S()[j]) / (m.S()[j + 1] - m.S()[j])));
+      return exact_point(*curves[j], moebius_exact(*parts[j], i, (sv - m.S()[j]) / (m.S()[j + 1] - m.S()[j])));
     });
     return n;
   }

@@ -1,11 +1,14 @@
 #include "uniparam/reparam/radical.hpp"
 
 #include <algorithm>
+#include <memory>
+#include <stdexcept>
 
 #include "uniparam/algebra/quadrature.hpp"
 #include "uniparam/core/budget.hpp"
 #include "uniparam/core/error.hpp"
 #include "uniparam/core/parallel.hpp"
+#include "moebius_detail.hpp"
 
 namespace uniparam {
 
@@ -21,12 +24,12 @@ ZeroSide RadicalResult::side(std::size_t i) const {
   return ZeroSide::None;
 }
 
-RadicalResult radical(const Curve& c, SpeedKind kind, const Options& opt) {
-  validate(opt);
-  check_degree(c, opt);
-  const Speed s(c, kind);
+namespace {
+
+// radical() for the speed s (options checked).
+RadicalResult radical_on(const Speed& s, const Options& opt) {
   RadicalResult r;
-  r.kind = kind;
+  r.kind = s.kind();
   r.identically_zero = s.identically_zero();
   if (r.identically_zero) {
     r.T = critical_breakpoints(s);
@@ -114,6 +117,40 @@ RadicalResult radical(const Curve& c, SpeedKind kind, const Options& opt) {
   }
 }
 
+// rq, radical() on bal.q, composed with m: the same map on p
+// (RadicalResult::balanced), with p's breakpoints and u_before.
+RadicalResult compose_balanced(const Speed& sp, const std::shared_ptr<const BalancedCurve>& bal,
+                               const RadicalResult& rq, const Ball& u_before, long digits) {
+  RadicalResult r = rq;
+  std::vector<RealAlgebraic> ts;
+  for (const Breakpoint& b : rq.T) ts.push_back(balance_map(*bal, b.t));
+  r.T = mark_zeros(sp, ts);
+  for (std::size_t i = 0; i < r.T.size(); ++i)
+    if (r.T[i].multiplicity != rq.T[i].multiplicity)
+      throw std::logic_error("radical: the balanced curve's zeros do not map onto the curve's");
+  const long prec = detail::balanced_prec(*bal, digits);
+  r.outer_k.clear();
+  for (std::size_t i = 0; i + 1 < rq.T.size(); ++i) r.outer_k.push_back(balance_local_k(*bal, rq.T[i].t, rq.T[i + 1].t, prec));
+  r.u_before = u_before;
+  r.balanced = bal;
+  r.on_balanced = std::make_shared<const RadicalResult>(rq);
+  return r;
+}
+
+}  // namespace
+
+RadicalResult radical(const Curve& c, SpeedKind kind, const Options& opt) {
+  validate(opt);
+  check_degree(c, opt);
+  const Speed s(c, kind);
+  if (const auto bal = detail::balanced_for(c, s)) {
+    const Speed sq(bal->q, kind);
+    const RadicalResult rq = radical_on(sq, opt);
+    return compose_balanced(s, bal, rq, uniformity_balanced(s, *bal, sq, opt).u, opt.digits);
+  }
+  return radical_on(s, opt);
+}
+
 namespace {
 
 // Clamps a real ball to [0, 1].
@@ -144,6 +181,27 @@ void moebius(acb_t x, acb_t dx, const acb_t zt, const arb_t alpha, long prec) {
   acb_clear(a);
   acb_clear(b);
   acb_clear(den);
+}
+
+// y -> k y / (k y + 1 - y), the balancing map m on a piece
+// (RadicalResult::outer_k), with den = k y + 1 - y where asked.
+void outer_moebius(acb_t y, acb_t den, const arb_t k, long prec) {
+  acb_t d, ky;
+  acb_init(d);
+  acb_init(ky);
+  acb_mul_arb(ky, y, k, prec);
+  acb_sub_ui(d, y, 1, prec);
+  acb_neg(d, d);  // 1 - y
+  acb_add(d, d, ky, prec);
+  if (acb_is_zero(y) || acb_is_one(y)) {
+    acb_set(ky, y);  // m fixes the piece's ends exactly
+  } else {
+    acb_div(ky, ky, d, prec);
+  }
+  acb_swap(y, ky);
+  if (den) acb_swap(den, d);
+  acb_clear(d);
+  acb_clear(ky);
 }
 
 // Principal k-th root; for a ball containing 0 (where Arb's root is
@@ -221,6 +279,7 @@ Ball radical_eval_r(const RadicalResult& r, const Ball& z, long prec) {
     acb_set_arb(zc, zt.get());
     moebius(x, nullptr, zc, r.integrals[i].alpha.get(), prec);
     psi(y, x, r.side(i), r.root_index(i), false, prec);
+    if (!r.outer_k.empty()) outer_moebius(y, nullptr, r.outer_k[i].get(), prec);
     Ball v;
     // an exact end maps to its breakpoint exactly (psi and the Moebius map fix
     // 0 and 1); t_i + 1 * (t_{i+1} - t_i) would add t_i's radius twice
@@ -258,6 +317,14 @@ bool radical_speed_sq_local(acb_t out, const RadicalResult& r, const Speed& s, s
   const ZeroSide side = r.side(i);
   const int k = r.root_index(i);
   bool ok = psi(y, x, side, k, analytic, prec);
+  // With the balancing map on the piece, w = ko y / D (D = ko y + 1 - y):
+  // dw/dy = ko / D^2, w = (ko / D) y and 1 - w = (1 - y) / D, so the
+  // factor below multiplies the value without it by (ko^e / D^(k + 1))^2,
+  // e = k for a zero at the left end, 1 otherwise (k = 1 without a zero).
+  acb_t den;
+  acb_init(den);
+  const bool outer = !r.outer_k.empty();
+  if (outer) outer_moebius(y, den, r.outer_k[i].get(), prec);
   arb_sub(acb_realref(dt), tb.get(), ta.get(), prec);
   acb_mul(t, y, dt, prec);
   acb_add_arb(t, t, ta.get(), prec);
@@ -273,6 +340,18 @@ bool radical_speed_sq_local(acb_t out, const RadicalResult& r, const Speed& s, s
     acb_mul(out, out, y, prec);
     acb_mul(out, out, y, prec);
   }
+  if (outer) {
+    acb_t f;
+    acb_init(f);
+    acb_set_arb(f, r.outer_k[i].get());
+    acb_pow_ui(f, f, static_cast<ulong>(side == ZeroSide::Left ? k : 1), prec);
+    acb_pow_ui(den, den, static_cast<ulong>(k + 1), prec);
+    acb_div(f, f, den, prec);
+    acb_mul(out, out, f, prec);
+    acb_mul(out, out, f, prec);
+    acb_clear(f);
+  }
+  acb_clear(den);
   acb_clear(y);
   acb_clear(t);
   acb_clear(dt);
@@ -318,6 +397,8 @@ Ball radical_eval_speed(const RadicalResult& r, const Speed& s, const Ball& z, l
 }
 
 std::vector<Ball> radical_eval_point(const Curve& c, const RadicalResult& r, const Ball& z, long prec) {
+  // p(r(z)) = q(r_q(z)) for a balanced map, without m's extreme parameters
+  if (r.balanced) return radical_eval_point(r.balanced->q, *r.on_balanced, z, prec);
   const Ball t = radical_eval_r(r, z, prec);
   return c.eval(t, prec);
 }
@@ -359,6 +440,11 @@ Ball radical_direct_uniformity(const RadicalResult& r, const Speed& s, long digi
 
 RadicalResult refine_radical_data(const Speed& sp, const RadicalResult& in, long digits, long max_prec) {
   if (digits < 1) throw InvalidArgument("refine_radical_data: digits must be at least 1");
+  if (in.balanced) {
+    const Speed sq(in.balanced->q, sp.kind());
+    const RadicalResult rq = refine_radical_data(sq, *in.on_balanced, digits, max_prec);
+    return compose_balanced(sp, in.balanced, rq, in.u_before, digits);
+  }
   RadicalResult x = in;
   if (x.identically_zero) return x;
   const std::size_t N = x.pieces();

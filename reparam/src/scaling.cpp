@@ -56,4 +56,66 @@ std::optional<BalancedCurve> balance(const Curve& p) {
   return BalancedCurve{Curve(std::move(q)), a, b};
 }
 
+namespace {
+
+// y = alpha x / (alpha x + beta (1 - x)) for the exact x (alpha, beta > 0).
+Rational moebius_q(const Integer& alpha, const Integer& beta, const Rational& x) {
+  const Rational ax = Rational(alpha) * x;
+  return ax / (ax + Rational(beta) * (Rational(1) - x));
+}
+
+// The image of x under y = alpha x / (alpha x + beta (1 - x)): its inverse
+// is x = beta y / (beta y + alpha (1 - y)), so the root's polynomial f
+// becomes f(beta y / L(y)) L(y)^deg f with L = alpha + (beta - alpha) y.
+RealAlgebraic moebius_algebraic(const Integer& alpha, const Integer& beta, const RealAlgebraic& x) {
+  if (x.is_rational()) return RealAlgebraic(moebius_q(alpha, beta, x.rational()));
+  const Poly& f = x.poly();
+  const Poly by(std::vector<Integer>{Integer(0), beta});
+  const Poly L(std::vector<Integer>{alpha, beta - alpha});
+  const Poly g = homogenized(f, f.degree(), by, L).primitive();
+  return RealAlgebraic(g, moebius_q(alpha, beta, x.lo()), moebius_q(alpha, beta, x.hi()));
+}
+
+}  // namespace
+
+RealAlgebraic balance_map(const BalancedCurve& bal, const RealAlgebraic& s) {
+  return moebius_algebraic(bal.a, bal.b, s);
+}
+
+RealAlgebraic balance_unmap(const BalancedCurve& bal, const RealAlgebraic& t) {
+  return moebius_algebraic(bal.b, bal.a, t);
+}
+
+namespace {
+
+// D(s) = a s + b (1 - s) = b + (a - b) s as a sum of two positive terms.
+Ball weight_at(const BalancedCurve& bal, const Ball& s, long prec) {
+  Ball oms, d, t;
+  arb_sub_si(oms.get(), s.get(), 1, prec);
+  arb_neg(oms.get(), oms.get());
+  arb_mul_fmpz(t.get(), oms.get(), bal.b.get(), prec);
+  arb_mul_fmpz(d.get(), s.get(), bal.a.get(), prec);
+  arb_add(d.get(), d.get(), t.get(), prec);
+  return d;
+}
+
+}  // namespace
+
+Ball balance_local_k(const BalancedCurve& bal, const RealAlgebraic& s0, const RealAlgebraic& s1, long prec) {
+  if (s0.is_rational() && s1.is_rational()) return Ball(balance_local_k(bal, s0.rational(), s1.rational()), prec);
+  const long p = prec + 16;
+  Ball k;
+  arb_div(k.get(), weight_at(bal, s1.to_ball(p), p).get(), weight_at(bal, s0.to_ball(p), p).get(), prec);
+  return k;
+}
+
+Rational balance_local_k(const BalancedCurve& bal, const Rational& s0, const Rational& s1) {
+  auto D = [&bal](const Rational& s) { return Rational(bal.a) * s + Rational(bal.b) * (Rational(1) - s); };
+  return D(s1) / D(s0);
+}
+
+long balance_bits(const BalancedCurve& bal) {
+  return std::labs(static_cast<long>(std::lround(log2_abs(bal.b) - log2_abs(bal.a))));
+}
+
 }  // namespace uniparam

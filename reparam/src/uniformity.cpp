@@ -410,11 +410,14 @@ UniformityResult uniformity(const Curve& c, SpeedKind kind, const Options& opt) 
   // 1, 8e40, 1e82): the integrals of the balanced curve q = p o m, whose
   // speed is spread over [0, 1] instead of within 1 / lambda of one end.
   if (!s.identically_zero())
-    if (const std::optional<BalancedCurve> bal = balance(c)) {
-      const SquareWeight w{bal->a, bal->b};
-      return uniformity_of(s, Speed(bal->q, kind), &w, opt);
-    }
+    if (const std::optional<BalancedCurve> bal = balance(c)) return uniformity_balanced(s, *bal, Speed(bal->q, kind), opt);
   return uniformity_of(s, s, nullptr, opt);
+}
+
+UniformityResult uniformity_balanced(const Speed& s, const BalancedCurve& bal, const Speed& q_speed,
+                                     const Options& opt) {
+  const SquareWeight w{bal.a, bal.b};
+  return uniformity_of(s, q_speed, &w, opt);
 }
 
 UniformityResult uniformity(const Speed& s, const Options& opt) { return uniformity_of(s, s, nullptr, opt); }

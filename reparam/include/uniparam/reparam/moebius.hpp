@@ -3,12 +3,14 @@
 // ReparameterizationN with the breakpoints given; docs/math.md sections 2-3).
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "uniparam/algebra/algebraic.hpp"
 #include "uniparam/core/ball.hpp"
 #include "uniparam/core/number.hpp"
 #include "uniparam/reparam/pieces.hpp"
+#include "uniparam/reparam/scaling.hpp"
 #include "uniparam/reparam/uniformity.hpp"
 
 namespace uniparam {
@@ -76,6 +78,23 @@ struct MoebiusResult {
   /// every Ball above then describes this exact map.
   bool rational = false;
   std::vector<Rational> T_exact, S_exact, alpha_exact;
+
+  /// Set when p's weights grow geometrically (balance(p) not empty,
+  /// scaling.hpp): the method ran on the balanced curve q = p o m, and this
+  /// result is its map r_q composed with m exactly, r = m o r_q, described
+  /// on p like any other: T = m(T_q) (exact), S the same, each piece's
+  /// alpha = 1 / (1 + k K) with K = (1 - alpha_q) / alpha_q and k m's local
+  /// parameter on the piece (balance_local_k; alpha is held with
+  /// balance_bits extra bits so that 1 - alpha stays resolvable), the
+  /// integrals A / k, B, k C (L = A + B + C, M the same), so p o r = q o r_q
+  /// and u_after, mu and Phi are q's; u_before is p's (uniformity()). With
+  /// rational, T_exact and alpha_exact are m's exact images of q's rounded
+  /// data. The optimiser's phi_equal and stationarity, and a C1 result's
+  /// choices, refer to q's parameter. on_balanced is r_q, from which
+  /// make_rational and refine_moebius_data work (then compose again).
+  /// Both null otherwise.
+  std::shared_ptr<const BalancedCurve> balanced;
+  std::shared_ptr<const MoebiusResult> on_balanced;
 
   std::size_t pieces() const { return T.size() - 1; }
 };
@@ -157,7 +176,8 @@ struct C1Trace {
 };
 
 /// reparam_c1 recording its refinement in *trace (if non-null; cleared
-/// first). Same contract, same result as reparam_c1.
+/// first). Same contract, same result as reparam_c1. For a balanced curve
+/// (MoebiusResult::balanced) the rounds are those on q, in q's parameter.
 MoebiusResult reparam_c1_traced(const Curve& c, SpeedKind kind, const Rational& target, const Options& opt,
                                 long max_pieces, C1Trace* trace);
 
@@ -174,7 +194,12 @@ MoebiusResult reparam_c1_traced(const Curve& c, SpeedKind kind, const Rational& 
 /// 0 < alpha < 1 however close alpha is to 0 or 1. C1: the free parameter
 /// k_0 > 0 rounded within tol * k_0 the same way, the other alphas solved
 /// exactly from the C1 condition on the rational T and S, so r' is
-/// continuous exactly.
+/// continuous exactly. For a balanced result (r.balanced) all this happens
+/// on r.on_balanced and q, and the rounded map is composed with m exactly:
+/// T_exact = m(T_q rounded), alpha_exact from alpha_q rounded with one more
+/// digit (the T and S windows hold in q's parameter; composing with m keeps
+/// the map exact, C1 where r_q is, and alpha within tol * min(alpha,
+/// 1 - alpha), within twice that for rational_digits = 100).
 /// \pre r was computed for c; 1 <= rational_digits <= 100 (InvalidArgument).
 /// \post rational == true; T_exact, S_exact, alpha_exact are the map's data;
 ///       T, S, alpha, integrals and u_after describe that exact map (u_after
@@ -192,6 +217,8 @@ MoebiusResult make_rational(const Curve& c, const MoebiusResult& r, long rationa
 /// (rational == true) its exact S and alpha as balls of matching precision; so
 /// each refined ball lies in r's (up to rounding) and meets `digits`. Every
 /// other field is kept; an identically zero map is returned as is.
+/// A balanced result (r.balanced) refines r.on_balanced on q's speed and
+/// composes it with m again.
 /// \pre r was computed for the speed sp (not checkable); digits >= 1
 ///      (InvalidArgument).
 /// \throws BudgetExceeded when `digits` cannot be met within max_prec bits or
@@ -209,7 +236,8 @@ Ball moebius_eval_dr(const MoebiusResult& r, const Ball& s, long prec);
 /// Enclosure of sigma_{p o r}(s) = sigma_p(r(s)) r'(s); `sp` must be the speed
 /// r was computed for.
 Ball moebius_eval_speed(const MoebiusResult& r, const Speed& sp, const Ball& s, long prec);
-/// Enclosures of the components of p(r(s)) (c must be the curve of r).
+/// Enclosures of the components of p(r(s)) (c must be the curve of r); for
+/// a balanced r, evaluated as q(r_q(s)), the same point.
 std::vector<Ball> moebius_eval_point(const Curve& c, const MoebiusResult& r, const Ball& s, long prec);
 
 }  // namespace uniparam

@@ -4,10 +4,12 @@
 // the optimal piecewise Moebius map on top.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "uniparam/reparam/pieces.hpp"
+#include "uniparam/reparam/scaling.hpp"
 #include "uniparam/reparam/uniformity.hpp"
 
 namespace uniparam {
@@ -25,6 +27,21 @@ struct RadicalResult {
   Ball u_after;                          ///< u(p o phi o m) = mu^2 / (sum sqrt M)^2
   bool identically_zero = false;         ///< angular speed of a line: nothing to do, r = id
 
+  /// Set when p's weights grow geometrically (balance(p) not empty,
+  /// scaling.hpp): the method ran on the balanced curve q = p o m and r is
+  /// m o r_q. T = m(T_q) exactly, with the zeros of p's speed marked
+  /// (mark_zeros; m maps the zeros of sigma_q onto those of sigma_p, with
+  /// their multiplicities); S, Z, A, B, C, the integrals and u_radical,
+  /// u_after are r_q's (they describe the same pieces in s and z); u_before
+  /// is p's. Piece i of r is then t = t_i + Delta t_i k_i y / (k_i y + 1 - y)
+  /// with y the local value of r_q's piece (in q's parameter) and k_i =
+  /// outer_k[i] (balance_local_k on [T_q,i, T_q,i+1]): m restricted to the
+  /// piece. outer_k is empty otherwise (k_i = 1). on_balanced is r_q, from
+  /// which refine_radical_data works.
+  std::vector<Ball> outer_k;
+  std::shared_ptr<const BalancedCurve> balanced;
+  std::shared_ptr<const RadicalResult> on_balanced;
+
   std::size_t pieces() const { return T.size() - 1; }
   /// Exponent of the radical in piece i: mu + 1 when one end is a zero of
   /// multiplicity mu, 1 otherwise; and which end.
@@ -41,7 +58,8 @@ RadicalResult radical(const Curve& c, SpeedKind kind, const Options& opt = {});
 /// alpha meet `digits` (A, B, C and the integrals follow), as radical()
 /// computes them for r's breakpoints T; each refined ball therefore lies in
 /// r's (up to rounding). mu and the uniformities are kept; an identically
-/// zero map is returned as is.
+/// zero map is returned as is. A balanced result (r.balanced) refines
+/// r.on_balanced on q's speed and composes it with m again.
 /// \pre r was computed for the speed sp (not checkable); digits >= 1
 ///      (InvalidArgument).
 /// \throws BudgetExceeded when `digits` cannot be met within max_prec bits or
@@ -59,12 +77,16 @@ Ball radical_eval_r(const RadicalResult& r, const Ball& z, long prec);
 Ball radical_eval_speed(const RadicalResult& r, const Speed& s, const Ball& z, long prec);
 
 /// Enclosures of the components of p(r(z)), the reparameterized curve's
-/// point at z in [0, 1] (c must be the curve r was computed for).
+/// point at z in [0, 1] (c must be the curve r was computed for); for a
+/// balanced r, evaluated as q(r_q(z)), the same point.
 std::vector<Ball> radical_eval_point(const Curve& c, const RadicalResult& r, const Ball& z, long prec);
 
 /// Independent check of the whole chain: mu^2 / int_0^1 sigma_{p o r}(z)^2 dz,
 /// integrating the reparameterized speed built from the pieces of r directly
-/// in z (certified quadrature, `digits` digits).
+/// in z (certified quadrature, `digits` digits). For a balanced r the
+/// integrand evaluates p's speed through the pieces' outer Moebius maps,
+/// whose poles lie within about a / b of the pieces: the quadrature then
+/// needs about balance_bits bisections and may be slow.
 Ball radical_direct_uniformity(const RadicalResult& r, const Speed& s, long digits, long max_prec);
 
 }  // namespace uniparam

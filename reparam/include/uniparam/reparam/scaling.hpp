@@ -5,6 +5,8 @@
 
 #include <optional>
 
+#include "uniparam/algebra/algebraic.hpp"
+#include "uniparam/core/ball.hpp"
 #include "uniparam/core/number.hpp"
 #include "uniparam/reparam/curve.hpp"
 
@@ -35,5 +37,31 @@ struct BalancedCurve {
 /// \throws nothing beyond allocation (q is a curve: m is a bijection of
 ///         [0, 1], so q has p's poles, none in [0, 1]).
 std::optional<BalancedCurve> balance(const Curve& p);
+
+/// t = m(s) = a s / (a s + b (1 - s)) exactly, for s in [0, 1]: a rational
+/// for a rational s; else the root of the Moebius transform of s's
+/// polynomial, f(b t / (b t + a (1 - t))) (b t + a (1 - t))^deg f, in the
+/// image of s's isolating interval (m is increasing, so it isolates).
+RealAlgebraic balance_map(const BalancedCurve& bal, const RealAlgebraic& s);
+/// The inverse s = m^-1(t) = b t / (b t + a (1 - t)) the same way, for t in
+/// [0, 1].
+RealAlgebraic balance_unmap(const BalancedCurve& bal, const RealAlgebraic& t);
+
+/// The restriction of m to a piece [s0, s1] (0 <= s0 < s1 <= 1) in local
+/// coordinates is the Moebius map t~ = k s~ / (k s~ + 1 - s~) of [0, 1]
+/// onto itself, with k = D(s1) / D(s0), D(s) = a s + b (1 - s) > 0: an
+/// enclosure of that k (relative accuracy about 2^-prec; no cancellation).
+/// Composing the piece x -> K x / (K x + 1 - x) with it gives the parameter
+/// k K, so a Moebius piece with alpha = 1 / (1 + K) on q becomes one with
+/// alpha = 1 / (1 + k K) on p.
+Ball balance_local_k(const BalancedCurve& bal, const RealAlgebraic& s0, const RealAlgebraic& s1, long prec);
+/// The same k exactly, for rational s0 and s1.
+Rational balance_local_k(const BalancedCurve& bal, const Rational& s0, const Rational& s1);
+
+/// |log2 (b / a)|: the bits by which m's local parameters k may differ from
+/// 1 (k lies in [min(a, b) / max(a, b), max(a, b) / min(a, b)]), so the
+/// extra working precision that keeps 1 - alpha resolvable when alpha is
+/// within 2^-bits of 1.
+long balance_bits(const BalancedCurve& bal);
 
 }  // namespace uniparam

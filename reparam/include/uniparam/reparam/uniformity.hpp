@@ -66,6 +66,14 @@ struct UniformityResult {
 UniformityResult uniformity(const Curve& c, SpeedKind kind, const Options& opt = {});
 /// The same for an already built speed (the curve's degree is not checked).
 UniformityResult uniformity(const Speed& s, const Options& opt = {});
+struct BalancedCurve;
+/// uniformity(c, kind, opt) for a curve c with balance(c) = bal
+/// (scaling.hpp), from the already built speeds s = Speed(c, kind) and
+/// q_speed = Speed(bal.q, kind): sigma^2 and the zeros are s's, the
+/// integrals q's (mu, and sigma^2 with the weight 1 / m'). Same contract as
+/// uniformity(c, kind, opt); the pairing of s, bal and q_speed is not checked.
+UniformityResult uniformity_balanced(const Speed& s, const BalancedCurve& bal, const Speed& q_speed,
+                                     const Options& opt = {});
 /// mu = int_0^1 sigma alone, split and threaded as in uniformity(), each
 /// part to relative accuracy 2^-rel_goal_bits (so mu too: sigma >= 0). For
 /// callers that get int sigma^2 elsewhere (radical(): from its pieces'
