@@ -15,7 +15,7 @@
 
 #include "support/json.hpp"
 #include "support/run.hpp"
-#include "uniparam/uniparam.hpp"
+#include "uniparam/reparam/all.hpp"
 
 using namespace uniparam;
 using uniparam::test_support::json_ball;

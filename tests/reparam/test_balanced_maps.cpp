@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "uniparam/uniparam.hpp"
+#include "uniparam/reparam/all.hpp"
 #include "uniparam/core/budget.hpp"
 #include "uniparam/reparam/scaling.hpp"
 
