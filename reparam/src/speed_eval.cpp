@@ -53,7 +53,7 @@ void Speed::eval_components(AcbBox& S, AcbBox& F, const acb_t z, long prec) cons
     // N_i Q' and B_i = N_i'' Q - N_i Q'' in place of x_i' and x_i''
     // (speed_formula.hpp), S and F come scaled by Q^4 and Q^8 (E by Q^4),
     // which sigma's ratios F / S^2, E / S do not see: no division by Q,
-    // whose complex zeros (the curve's poles, not sigma's) no longer spoil
+    // so its complex zeros (the curve's poles, not sigma's) do not spoil
     // wide balls.
     AcbBox nv, n1, n2, q, q1, q2;
     m.eval_den(0, q, q1, q2, z, prec);
