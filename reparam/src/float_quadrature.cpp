@@ -6,6 +6,8 @@
 #include <array>
 #include <cmath>
 
+#include "uniparam/core/budget.hpp"
+
 namespace uniparam::detail {
 
 double sigma2_double(const Speed& s, double t) {
@@ -64,20 +66,20 @@ GaussLegendre20 make_rule() {
   return r;
 }
 
-struct Acc {
-  double a = 0, b = 0, c = 0;
-};
-
-// A, B, C contributions of [l, r] inside the piece [a, a + h].
-Acc panel(const Speed& s, double a, double h, double l, double r) {
+// The FloatPiece integrals of one 20-point panel [l, r] of the piece
+// [a, a + h]: the moments of sigma^2 (float_abc, the C1 draft) and, with
+// kLength, the length (the C1 draft; float_abc leaves it 0).
+template <bool kLength>
+FloatPiece panel(const Speed& s, double a, double h, double l, double r) {
   const GaussLegendre20& g = gauss_legendre20();
-  Acc out;
+  FloatPiece out;
   const double m = (l + r) / 2, k = (r - l) / 2;
   for (int i = 0; i < kNodes; ++i) {
-    const double t = m + k * g.x[i], u = (t - a) / h, f = sigma2_double(s, t) * g.w[i] * k;
-    out.a += f * (1 - u) * (1 - u);
-    out.b += f * 2 * u * (1 - u);
-    out.c += f * u * u;
+    const double t = m + k * g.x[i], u = (t - a) / h, s2 = sigma2_double(s, t), f = s2 * g.w[i] * k;
+    out.A += f * (1 - u) * (1 - u);
+    out.B += f * 2 * u * (1 - u);
+    out.C += f * u * u;
+    if (kLength) out.len += std::sqrt(s2) * g.w[i] * k;
   }
   return out;
 }
@@ -88,19 +90,19 @@ Acc panel(const Speed& s, double a, double h, double l, double r) {
 // otherwise bisect everywhere to depth 30; the result only steers the
 // optimiser, which certifies what it chooses)
 // (the size of the whole piece's first estimate), so tiny panels stop early.
-Acc adapt(const Speed& s, double a, double h, double l, double r, const Acc& whole, double scale, int depth,
-          int& budget) {
+FloatPiece adapt(const Speed& s, double a, double h, double l, double r, const FloatPiece& whole, double scale,
+                 int depth, int& budget) {
   --budget;
   const double m = (l + r) / 2;
-  const Acc left = panel(s, a, h, l, m), right = panel(s, a, h, m, r);
-  const double diff = std::fabs(left.a + right.a - whole.a) + std::fabs(left.b + right.b - whole.b) +
-                      std::fabs(left.c + right.c - whole.c);
+  const FloatPiece left = panel<false>(s, a, h, l, m), right = panel<false>(s, a, h, m, r);
+  const double diff = std::fabs(left.A + right.A - whole.A) + std::fabs(left.B + right.B - whole.B) +
+                      std::fabs(left.C + right.C - whole.C);
   if (depth >= 30 || budget <= 0 || diff <= 1e-12 * scale || r - l < 1e-15) {
-    return Acc{left.a + right.a, left.b + right.b, left.c + right.c};
+    return left + right;
   }
-  const Acc x = adapt(s, a, h, l, m, left, scale, depth + 1, budget);
-  const Acc y = adapt(s, a, h, m, r, right, scale, depth + 1, budget);
-  return Acc{x.a + y.a, x.b + y.b, x.c + y.c};
+  const FloatPiece x = adapt(s, a, h, l, m, left, scale, depth + 1, budget);
+  const FloatPiece y = adapt(s, a, h, m, r, right, scale, depth + 1, budget);
+  return x + y;
 }
 
 }  // namespace
@@ -114,11 +116,66 @@ double FloatABC::M(double h) const { return h * (B + 2 * std::sqrt(A * C)); }
 
 FloatABC float_abc(const Speed& s, double a, double b) {
   const double h = b - a;
-  const Acc whole = panel(s, a, h, a, b);
-  const double scale = std::fabs(whole.a) + std::fabs(whole.b) + std::fabs(whole.c);
+  const FloatPiece whole = panel<false>(s, a, h, a, b);
+  const double scale = std::fabs(whole.A) + std::fabs(whole.B) + std::fabs(whole.C);
   int budget = 256;  // panel pairs: 10240 evaluations of sigma^2 at most
-  const Acc v = adapt(s, a, h, a, b, whole, scale, 0, budget);
-  return FloatABC{v.a, v.b, v.c};
+  const FloatPiece v = adapt(s, a, h, a, b, whole, scale, 0, budget);
+  return FloatABC{v.A, v.B, v.C};
+}
+
+FloatPiece operator+(const FloatPiece& x, const FloatPiece& y) {
+  return FloatPiece{x.A + y.A, x.B + y.B, x.C + y.C, x.len + y.len};
+}
+
+namespace {
+
+// Adaptive bisection until both the sigma^2 moments and the length of [l, r]
+// change by at most 1e-13 of the piece's first estimates. sigma is smooth on
+// [l, r] (zeros of sigma, where |g| has a kink, are panel ends). Next to a
+// zero of sigma the bisection can go 30 levels deep (up to 2^30 panels), so
+// the time budget is checked every 4 levels: at most 31 calls between checks.
+FloatPiece adapt_piece(const Speed& s, double a, double h, double l, double r, const FloatPiece& whole,
+                       double scale2, double scale1, int depth) {
+  if (depth % 4 == 0) check_time_budget();
+  const double m = (l + r) / 2;
+  const FloatPiece left = panel<true>(s, a, h, l, m), right = panel<true>(s, a, h, m, r), both = left + right;
+  const double d2 = std::fabs(both.A - whole.A) + std::fabs(both.B - whole.B) + std::fabs(both.C - whole.C);
+  const double d1 = std::fabs(both.len - whole.len);
+  if (depth >= 30 || r - l < 1e-15 || (d2 <= 1e-13 * scale2 && d1 <= 1e-13 * scale1)) return both;
+  return adapt_piece(s, a, h, l, m, left, scale2, scale1, depth + 1) +
+         adapt_piece(s, a, h, m, r, right, scale2, scale1, depth + 1);
+}
+
+}  // namespace
+
+double midpoint_double(const RealAlgebraic& x) {
+  return arf_get_d(arb_midref(x.to_ball(64).get()), ARF_RND_NEAR);
+}
+
+FloatPieces::FloatPieces(const Speed& s) : s_(s) {
+  for (const auto& z : s.zeros()) zeros_.push_back(midpoint_double(z.t));
+}
+
+const FloatPiece& FloatPieces::get(double a, double b) {
+  const auto key = std::make_pair(a, b);
+  auto it = cache_.find(key);
+  if (it != cache_.end()) return it->second;
+  const double h = b - a;
+  FloatPiece total;
+  // split at the zeros of sigma inside (a, b): sigma = |g| ... is not smooth there
+  std::vector<double> ends{a};
+  for (double z : zeros_)
+    if (z > a && z < b) ends.push_back(z);
+  ends.push_back(b);
+  FloatPiece first;
+  for (std::size_t j = 0; j + 1 < ends.size(); ++j) first = first + panel<true>(s_, a, h, ends[j], ends[j + 1]);
+  const double scale2 = std::fabs(first.A) + std::fabs(first.B) + std::fabs(first.C) + 1e-300;
+  const double scale1 = std::fabs(first.len) + 1e-300;
+  for (std::size_t j = 0; j + 1 < ends.size(); ++j) {
+    const FloatPiece w = panel<true>(s_, a, h, ends[j], ends[j + 1]);
+    total = total + adapt_piece(s_, a, h, ends[j], ends[j + 1], w, scale2, scale1, 0);
+  }
+  return cache_.emplace(key, total).first->second;
 }
 
 }  // namespace uniparam::detail

@@ -8,6 +8,11 @@
 // not finite.
 #pragma once
 
+#include <map>
+#include <utility>
+#include <vector>
+
+#include "uniparam/algebra/algebraic.hpp"
 #include "uniparam/reparam/speed.hpp"
 
 namespace uniparam::detail {
@@ -33,5 +38,32 @@ struct FloatABC {
   double M(double h) const;
 };
 FloatABC float_abc(const Speed& s, double a, double b);
+
+/// x rounded to double from a 64-bit enclosure (uncertified).
+double midpoint_double(const RealAlgebraic& x);
+
+/// The C1 method's draft integrals of a piece [a, a + h] (uncertified): the
+/// integrals of sigma^2 (1-t~)^2, 2 t~ (1-t~), t~^2 and of sigma, all over dt.
+struct FloatPiece {
+  double A = 0, B = 0, C = 0, len = 0;
+};
+FloatPiece operator+(const FloatPiece& x, const FloatPiece& y);
+
+/// FloatPiece integrals of the pieces [a, b], cached per pair of
+/// breakpoints (a refinement round keeps most breakpoints, so most pieces are
+/// reused): 20-point Gauss-Legendre panels, split at the zeros of sigma and
+/// bisected until the moments and the length change by at most 1e-13 of the
+/// piece's first estimates (at most 30 levels; the time budget is checked
+/// every 4). \pre s outlives the object. Not thread-safe.
+class FloatPieces {
+ public:
+  explicit FloatPieces(const Speed& s);
+  const FloatPiece& get(double a, double b);
+
+ private:
+  const Speed& s_;
+  std::vector<double> zeros_;
+  std::map<std::pair<double, double>, FloatPiece> cache_;
+};
 
 }  // namespace uniparam::detail

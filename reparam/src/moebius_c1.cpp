@@ -184,85 +184,6 @@ Built build(const Speed& s, const UniformityResult& base, const std::vector<Real
 // Nothing computed here is reported; reparam_c1 certifies the chosen T with
 // build() and decides target.reached from that certified map only.
 
-constexpr int kGL = detail::GaussLegendre20::kNodes;
-
-// Over a piece [a, a + h]: int sigma^2 (1-t~)^2, 2 t~ (1-t~), t~^2 and int sigma,
-// all over dt (uncertified).
-struct FloatPiece {
-  double A = 0, B = 0, C = 0, len = 0;
-};
-
-FloatPiece operator+(const FloatPiece& x, const FloatPiece& y) {
-  return FloatPiece{x.A + y.A, x.B + y.B, x.C + y.C, x.len + y.len};
-}
-
-FloatPiece panel(const Speed& s, double a, double h, double l, double r) {
-  const detail::GaussLegendre20& g = detail::gauss_legendre20();
-  FloatPiece out;
-  const double m = (l + r) / 2, k = (r - l) / 2;
-  for (int i = 0; i < kGL; ++i) {
-    const double t = m + k * g.x[i], u = (t - a) / h, s2 = detail::sigma2_double(s, t), f = s2 * g.w[i] * k;
-    out.A += f * (1 - u) * (1 - u);
-    out.B += f * 2 * u * (1 - u);
-    out.C += f * u * u;
-    out.len += std::sqrt(s2) * g.w[i] * k;
-  }
-  return out;
-}
-
-// Adaptive bisection until both the sigma^2 moments and the length of [l, r]
-// change by at most 1e-13 of the piece's first estimates. sigma is smooth on
-// [l, r] (zeros of sigma, where |g| has a kink, are panel ends). Next to a
-// zero of sigma the bisection can go 30 levels deep (up to 2^30 panels), so
-// the time budget is checked every 4 levels: at most 31 calls between checks.
-FloatPiece adapt(const Speed& s, double a, double h, double l, double r, const FloatPiece& whole,
-                 double scale2, double scale1, int depth) {
-  if (depth % 4 == 0) check_time_budget();
-  const double m = (l + r) / 2;
-  const FloatPiece left = panel(s, a, h, l, m), right = panel(s, a, h, m, r), both = left + right;
-  const double d2 = std::fabs(both.A - whole.A) + std::fabs(both.B - whole.B) + std::fabs(both.C - whole.C);
-  const double d1 = std::fabs(both.len - whole.len);
-  if (depth >= 30 || r - l < 1e-15 || (d2 <= 1e-13 * scale2 && d1 <= 1e-13 * scale1)) return both;
-  return adapt(s, a, h, l, m, left, scale2, scale1, depth + 1) + adapt(s, a, h, m, r, right, scale2, scale1, depth + 1);
-}
-
-double to_double(const RealAlgebraic& x) { return arf_get_d(arb_midref(x.to_ball(64).get()), ARF_RND_NEAR); }
-
-// Float integrals of the pieces of T, cached per pair of breakpoints: a
-// refinement round keeps most breakpoints, so most pieces are reused.
-class FloatPieces {
- public:
-  explicit FloatPieces(const Speed& s) : s_(s) {
-    for (const auto& z : s.zeros()) zeros_.push_back(to_double(z.t));
-  }
-  const FloatPiece& get(double a, double b) {
-    const auto key = std::make_pair(a, b);
-    auto it = cache_.find(key);
-    if (it != cache_.end()) return it->second;
-    const double h = b - a;
-    FloatPiece total;
-    // split at the zeros of sigma inside (a, b): sigma = |g| ... is not smooth there
-    std::vector<double> ends{a};
-    for (double z : zeros_)
-      if (z > a && z < b) ends.push_back(z);
-    ends.push_back(b);
-    FloatPiece first;
-    for (std::size_t j = 0; j + 1 < ends.size(); ++j) first = first + panel(s_, a, h, ends[j], ends[j + 1]);
-    const double scale2 = std::fabs(first.A) + std::fabs(first.B) + std::fabs(first.C) + 1e-300;
-    const double scale1 = std::fabs(first.len) + 1e-300;
-    for (std::size_t j = 0; j + 1 < ends.size(); ++j) {
-      const FloatPiece w = panel(s_, a, h, ends[j], ends[j + 1]);
-      total = total + adapt(s_, a, h, ends[j], ends[j + 1], w, scale2, scale1, 0);
-    }
-    return cache_.emplace(key, total).first->second;
-  }
-
- private:
-  const Speed& s_;
-  std::vector<double> zeros_;
-  std::map<std::pair<double, double>, FloatPiece> cache_;
-};
-
 // The draft C1 map of T (UNCERTIFIED, double): t, S, alpha, F and u, the same
 // quantities as build() / c1_from_pieces. u is NaN if the floating point
 // breaks down (then the draft counts as worst).
@@ -271,13 +192,13 @@ struct Draft {
   double u = std::nan("");
 };
 
-Draft draft_c1(FloatPieces& fp, const std::vector<RealAlgebraic>& T, double mu) {
+Draft draft_c1(detail::FloatPieces& fp, const std::vector<RealAlgebraic>& T, double mu) {
   const std::size_t N = T.size() - 1;
   Draft d;
-  for (const auto& x : T) d.t.push_back(to_double(x));
+  for (const auto& x : T) d.t.push_back(detail::midpoint_double(x));
   d.t.front() = 0;
   d.t.back() = 1;
-  std::vector<FloatPiece> I(N);
+  std::vector<detail::FloatPiece> I(N);
   double total = 0;
   for (std::size_t i = 0; i < N; ++i) {
     I[i] = fp.get(d.t[i], d.t[i + 1]);
@@ -548,7 +469,7 @@ MoebiusResult reparam_c1_on(const Speed& s, const Rational& target, const Option
   // The rounds choose T in floating point (draft_c1, UNCERTIFIED); a T whose
   // draft meets the target is certified (build) and accepted only if the
   // certified u_after >= target. Otherwise the best draft is certified at the end.
-  FloatPieces fp(s);
+  detail::FloatPieces fp(s);
   const double mu_d = arf_get_d(arb_midref(base.mu.get()), ARF_RND_NEAR);
   const double target_d = arf_get_d(arb_midref(Ball(target, 128).get()), ARF_RND_NEAR);
   const Ball tq(target, 2 * digits_to_bits(opt.digits) + 64);
