@@ -77,6 +77,19 @@ void Speed::eval_g(AcbBox& out, const acb_t z, long prec, std::size_t skip) cons
       [&](std::size_t i) { return g_m_[i]; }, skip);
 }
 
+namespace {
+
+// A disc evaluation's outcome (Speed::DiskResult): true when it settled out,
+// with its enclosure (Ok) or as indeterminate (Refused: no finite bound
+// exists there); false when the next tier must try.
+template <class DiskResult>
+bool disk_settled(DiskResult r, acb_t out) {
+  if (r == DiskResult::Refused) acb_indeterminate(out);
+  return r != DiskResult::Unknown;
+}
+
+}  // namespace
+
 void Speed::eval(acb_t out, const acb_t z, const PieceSigns& p, bool analytic, long prec, bool double_word) const {
   if (zero_) { acb_zero(out); return; }
   if (!analytic && double_word && eval_double_word(out, z, p, false, prec)) return;
@@ -102,12 +115,7 @@ void Speed::eval(acb_t out, const acb_t z, const PieceSigns& p, bool analytic, l
   // Ellipses in discs first (see eval_disk); Arb's balls only where a
   // factor lacks its centred form in double (see above).
   if (analytic) {
-    const DiskResult r = eval_disk(out, z, p, prec);
-    if (r == DiskResult::Ok) return;
-    if (r == DiskResult::Refused) {
-      acb_indeterminate(out);
-      return;
-    }
+    if (disk_settled(eval_disk(out, z, p, prec), out)) return;
   }
   // From the components first (low degree: cheap); where that is not
   // finite (space curves on wide balls: F = |p' x p''|^2 is a difference of
@@ -163,12 +171,7 @@ void Speed::eval_squared(acb_t out, const acb_t z, long prec, bool double_word) 
   if (double_word && eval_double_word(out, z, PieceSigns{}, true, prec)) return;
   // Wide balls in discs first, as eval's ellipses.
   if (is_wide_ball(z)) {  // (its enclosures only bound sigma^2)
-    const DiskResult r = eval_squared_disk(out, z, prec);
-    if (r == DiskResult::Ok) return;
-    if (r == DiskResult::Refused) {
-      acb_indeterminate(out);
-      return;
-    }
+    if (disk_settled(eval_squared_disk(out, z, prec), out)) return;
   }
   AcbBox S, F, r;
   eval_components(S, F, z, prec);

@@ -142,13 +142,7 @@ TEST(Quadrature, BallsDoNotDependOnWhatTheThreadComputedBefore) {
 TEST(Quadrature, NearbyComplexPole) {
   // 10^6 / (10^6 t^2 + 1) has poles at +-i/1000; its integral over [0, 1] is
   // 1000 atan(1000).
-  Integrand f = [](acb_t out, const acb_t z, bool, long prec) {
-    acb_mul(out, z, z, prec);
-    acb_mul_ui(out, out, 1000000, prec);
-    acb_add_ui(out, out, 1, prec);
-    acb_inv(out, out, prec);
-    acb_mul_ui(out, out, 1000000, prec);
-  };
+  Integrand f = test_support::near_pole_integrand;
   for (long bits : {53L, 200L}) {
     QuadratureOptions opt;
     opt.rel_goal_bits = bits;

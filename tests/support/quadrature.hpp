@@ -128,4 +128,14 @@ inline void pole_pair_reference(arb_t ref, const Rational& a2) {  // (2 / a) ata
   arb_clear(a);
 }
 
+/// 10^6 / (10^6 z^2 + 1), an integrand with poles at +-i/1000 (its integral
+/// over [0, 1] is 1000 atan(1000)).
+inline void near_pole_integrand(acb_t out, const acb_t z, bool, long prec) {
+  acb_mul(out, z, z, prec);
+  acb_mul_ui(out, out, 1000000, prec);
+  acb_add_ui(out, out, 1, prec);
+  acb_inv(out, out, prec);
+  acb_mul_ui(out, out, 1000000, prec);
+}
+
 }  // namespace uniparam::test_support
