@@ -66,6 +66,13 @@ void clamp_unit(arb_t x, long prec);
 
 /// The midpoint of b as an exact rational. \pre b finite (checked: DomainError).
 Rational mid_rational(const Ball& b);
+/// The radius of b as an exact rational (Arb's radius is a dyadic number,
+/// so nothing is rounded). \pre the radius finite (checked: DomainError).
+Rational rad_rational(const Ball& b);
+
+/// A ball containing the closed interval between lo and hi (either order):
+/// the union of their enclosures at prec bits.
+Ball interval_ball(const Rational& lo, const Rational& hi, long prec);
 
 /// Whether every ball of v meets_digits(digits) (true for an empty v).
 bool all_meet_digits(const std::vector<Ball>& v, long digits);

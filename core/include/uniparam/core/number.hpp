@@ -101,4 +101,12 @@ class Rational {
   fmpq_t v_;
 };
 
+/// 2^e as an exact rational, for any e (e < 0 gives 1 / 2^-e).
+Rational pow2(long e);
+
+/// The largest multiple of 2^s that is <= x, i.e. floor(x / 2^s) 2^s,
+/// exact; s may be negative (a grid of step 2^s finer than the integers).
+/// The ceiling on the same grid is -grid_floor(-x, s).
+Rational grid_floor(const Rational& x, long s);
+
 }  // namespace uniparam
