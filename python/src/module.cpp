@@ -129,17 +129,10 @@ PYBIND11_MODULE(_uniparam, m) {
           }
           const Curve& cv = *in.curve;
           std::optional<Rational> z;
-          if (at) {
-            z = rational_arg("at", *at);
-            if (*z < Rational(0) || *z > Rational(1)) throw InvalidArgument("at must lie in [0, 1], got " + z->str());
-          }
+          if (at) z = cli::unit_at("at", rational_arg("at", *at));
           const RadicalResult r = radical(cv, kind, opt);
           std::optional<SamplePoint> atv;
-          if (z) {
-            const Speed s(cv, kind);
-            Sampler ev(cv, s, Reparameterization(r), opt.digits + 1, opt.max_prec);
-            atv = ev.at(*z);
-          }
+          if (z) atv = cli::radical_at(cv, kind, r, *z, opt);
           Json j = cli::radical_json(cv, r, opt.digits, fmt);
           if (atv) j.set("at", cli::radical_at_json(*z, *atv, opt.digits));
           return dump(j);
