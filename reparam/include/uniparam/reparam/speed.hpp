@@ -79,6 +79,7 @@ class Speed {
   ///         Y_i, so it is positive on the whole real line.
   Speed(const Curve& c, SpeedKind kind);
 
+  /// The speed given at construction.
   SpeedKind kind() const { return kind_; }
   /// sigma^2 as a canonical rational function (exact). Computed on the
   /// first call (thread-safe; copies share it).
