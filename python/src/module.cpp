@@ -147,9 +147,7 @@ PYBIND11_MODULE(_uniparam, m) {
         return guarded(c, [&] {
           const Options opt = options_of(c);
           const SpeedKind kind = parse_speed_kind(c.speed);
-          cli::MoebiusPrint how;
-          how.json = true;
-          how.format = cli::parse_format(format);
+          const cli::MoebiusPrint how = json_print(format);
           const auto T = breakpoints_of(breakpoints.value_or(std::vector<std::string>{"0", "1"}));
           const cli::NurbsOutput no = output_of(output);
           const Input in = input_of(c);
@@ -177,9 +175,7 @@ PYBIND11_MODULE(_uniparam, m) {
         return guarded(c, [&] {
           const Options opt = options_of(c);
           const SpeedKind kind = parse_speed_kind(c.speed);
-          cli::MoebiusPrint how;
-          how.json = true;
-          how.format = cli::parse_format(format);
+          const cli::MoebiusPrint how = json_print(format);
           const int given = static_cast<int>(pieces.has_value()) + static_cast<int>(!breakpoints.empty()) +
                             static_cast<int>(target.has_value());
           if (given != 1) throw InvalidArgument("give exactly one of pieces, breakpoints, target");
