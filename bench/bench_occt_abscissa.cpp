@@ -261,17 +261,6 @@ Points scaled(const Points& p, const Rational& f) {
   return out;
 }
 
-Rational pow2(long e) {  // 2^e
-  fmpq_t q;
-  fmpq_init(q);
-  fmpq_one(q);
-  if (e >= 0) fmpq_mul_2exp(q, q, static_cast<ulong>(e));
-  else fmpq_div_2exp(q, q, static_cast<ulong>(-e));
-  Rational r(q);
-  fmpq_clear(q);
-  return r;
-}
-
 struct HardCase {
   std::string name;
   Points pts;

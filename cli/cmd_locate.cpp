@@ -75,30 +75,13 @@ int run_locate(int argc, char** argv) {
   check_degree(c, opt);
   const Speed s(c, kind);
   const LocateTarget target = option == "fraction" ? LocateTarget::Fraction : LocateTarget::Integral;
-  LocateResult r;
-  try {
-    r = locate(c, s, value, target, opt);
-  } catch (const InvalidArgument& e) {
-    throw InvalidArgument("--" + option + ": " + e.what());
-  }
-  const long pd = printed_digits(opt.digits);
-  const char* measure = kind == SpeedKind::Parametric ? "length" : "angle";
-
+  const LocateResult r = locate_for_option(option, c, s, value, target, opt);
   if (wants_json(a)) {
     answer() << locate_json(c, kind, opt.digits, option, value, r).dump(2) << "\n";
     return 0;
   }
-  auto line = [](const std::string& label) { return label + std::string(label.size() < 11 ? 11 - label.size() : 1, ' '); };
-  answer() << line("curve") << c.str() << "\n"
-            << line("speed") << to_string(kind) << "\n"
-            << line("mu") << format_ball(r.mu, pd, Format::Text) << "  (the whole curve's "
-            << (kind == SpeedKind::Parametric ? "arc length" : "turning angle") << ")\n";
-  if (target == LocateTarget::Fraction) answer() << line("fraction") << value.str() << "\n";
-  answer() << line(measure) << format_ball(r.target, pd, Format::Text) << "\n"
-            << line("t") << format_ball(r.at.t, pd, Format::Text) << "\n";
-  for (std::size_t i = 0; i < r.at.point.size(); ++i)
-    answer() << line(coordinate_name(i, r.at.point.size())) << format_ball(r.at.point[i], pd, Format::Text)
-              << "\n";
+  print_locate_text(c.str(), kind, kind == SpeedKind::Parametric ? "arc length" : "turning angle", value, target, r,
+                    opt.digits);
   return 0;
 }
 

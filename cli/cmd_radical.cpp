@@ -55,6 +55,17 @@ Json radical_at_json(const Rational& z, const SamplePoint& v, long digits) {
   return e;
 }
 
+Rational unit_at(const std::string& name, const Rational& z) {
+  if (z < Rational(0) || z > Rational(1)) throw InvalidArgument(name + " must lie in [0, 1], got " + z.str());
+  return z;
+}
+
+SamplePoint radical_at(const Curve& c, SpeedKind kind, const RadicalResult& r, const Rational& z, const Options& opt) {
+  const Speed s(c, kind);
+  Sampler ev(c, s, Reparameterization(r), opt.digits + 1, opt.max_prec);
+  return ev.at(z);
+}
+
 Json radical_json(const Curve& c, const RadicalResult& r, long digits, Format fmt) {
   const long pd = printed_digits(digits);
   const auto formulas = radical_formulas(c, r, fmt, digits);
@@ -129,20 +140,10 @@ int run_radical(int argc, char** argv) {
   }
   const Curve c = read_curve(a);
   std::optional<Rational> at;
-  if (a.has("at")) {
-    at = read_rational("at", a.get("at", ""));
-    if (*at < Rational(0) || *at > Rational(1)) throw InvalidArgument("--at must lie in [0, 1], got " + at->str());
-  }
+  if (a.has("at")) at = unit_at("--at", read_rational("at", a.get("at", "")));
   const RadicalResult r = radical(c, kind, opt);
-  // Certified values at z = --at, to the requested digits: r's data are
-  // refined as far as the evaluation needs (an ill-conditioned map needs them
-  // to more digits than the report), within --max-prec.
   std::optional<SamplePoint> atv;
-  if (at) {
-    const Speed s(c, kind);
-    Sampler ev(c, s, Reparameterization(r), opt.digits + 1, opt.max_prec);
-    atv = ev.at(*at);
-  }
+  if (at) atv = radical_at(c, kind, r, *at, opt);
   const long pd = printed_digits(opt.digits);
   if (wants_json(a)) {
     Json j = radical_json(c, r, opt.digits, fmt);

@@ -343,29 +343,30 @@ Json composite_sample_header_json(const std::string& description, const Composit
 int run_locate_composite(const Args& a, const CompositeCurve& c, SpeedKind kind, const Options& opt,
                          const Rational& value, LocateTarget target, const std::string& option) {
   const std::vector<Speed> sp = c.speeds(kind);
-  LocateResult r;
-  try {
-    r = locate(c, sp, value, target, opt);
-  } catch (const InvalidArgument& e) {
-    throw InvalidArgument("--" + option + ": " + e.what());
-  }
-  const long pd = printed_digits(opt.digits);
-  const char* measure = kind == SpeedKind::Parametric ? "length" : "angle";
+  const LocateResult r = locate_for_option(option, c, sp, value, target, opt);
   if (wants_json(a)) {
     answer() << composite_locate_json(composite_description(a, c), kind, opt.digits, option, value, r).dump(2)
              << "\n";
     return 0;
   }
-  answer() << line("curve") << composite_description(a, c) << "\n"
+  print_locate_text(composite_description(a, c), kind,
+                    kind == SpeedKind::Parametric ? "arc length" : "turning angle, corners not included", value,
+                    target, r, opt.digits);
+  return 0;
+}
+
+void print_locate_text(const std::string& description, SpeedKind kind, const std::string& whole, const Rational& value,
+                       LocateTarget target, const LocateResult& r, long digits) {
+  const long pd = printed_digits(digits);
+  const char* measure = kind == SpeedKind::Parametric ? "length" : "angle";
+  answer() << line("curve") << description << "\n"
             << line("speed") << to_string(kind) << "\n"
-            << line("mu") << format_ball(r.mu, pd, Format::Text) << "  (the whole curve's "
-            << (kind == SpeedKind::Parametric ? "arc length" : "turning angle, corners not included") << ")\n";
+            << line("mu") << format_ball(r.mu, pd, Format::Text) << "  (the whole curve's " << whole << ")\n";
   if (target == LocateTarget::Fraction) answer() << line("fraction") << value.str() << "\n";
   answer() << line(measure) << format_ball(r.target, pd, Format::Text) << "\n"
             << line("t") << format_ball(r.at.t, pd, Format::Text) << "\n";
   for (std::size_t i = 0; i < r.at.point.size(); ++i)
     answer() << line(coordinate_name(i, r.at.point.size())) << format_ball(r.at.point[i], pd, Format::Text) << "\n";
-  return 0;
 }
 
 }  // namespace uniparam::cli

@@ -79,6 +79,23 @@ Json composite_map_json(const std::string& description, const CompositeCurve& c,
 /// missed on some segment (they print the best map).
 std::string composite_target_missed_message(const CompositeMethod& m);
 
+/// locate(args...), an InvalidArgument's message prefixed with "--<option>: "
+/// (the value given to --option is out of range); other errors as locate().
+template <class... A>
+LocateResult locate_for_option(const std::string& option, const A&... args) {
+  try {
+    return locate(args...);
+  } catch (const InvalidArgument& e) {
+    throw InvalidArgument("--" + option + ": " + e.what());
+  }
+}
+
+/// The text report of `locate` (curve, speed, mu, the value reached, t and
+/// the point's coordinates) on the answer stream; `description` names the
+/// curve, `whole` says what mu measures ("arc length", "turning angle").
+void print_locate_text(const std::string& description, SpeedKind kind, const std::string& whole, const Rational& value,
+                       LocateTarget target, const LocateResult& r, long digits);
+
 /// `locate --json` on a composite curve (`option`: length, angle or
 /// fraction; `value` the number given to it).
 Json composite_locate_json(const std::string& description, SpeedKind kind, long digits, const std::string& option,

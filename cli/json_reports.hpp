@@ -23,6 +23,18 @@ Json uniformity_json(const Curve& c, SpeedKind kind, long digits, const Uniformi
 /// the rest of the document).
 Json radical_at_json(const Rational& z, const SamplePoint& v, long digits);
 
+/// The values of p o r at z for `uniparam radical --at Z` (the Python
+/// module's at=), certified to opt.digits + 1: r's data are refined as far
+/// as the evaluation needs (an ill-conditioned map needs them to more
+/// digits than the report), within opt.max_prec.
+/// \pre r = radical(c, kind, opt); z in [0, 1] (unit_at).
+/// \throws as Sampler::at (BudgetExceeded, time budget).
+SamplePoint radical_at(const Curve& c, SpeedKind kind, const RadicalResult& r, const Rational& z, const Options& opt);
+
+/// z, checked to lie in [0, 1] before anything is computed.
+/// \throws InvalidArgument "<name> must lie in [0, 1], got <z>" otherwise.
+Rational unit_at(const std::string& name, const Rational& z);
+
 /// Whether the exact weights of a Bezier result of degree n are printed
 /// expanded, for --exact-weights `form` ("expanded", "formula" or "auto":
 /// expanded while the largest has at most 4096 characters).

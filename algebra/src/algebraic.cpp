@@ -174,7 +174,7 @@ void RealAlgebraic::refine(long bits) const {
       newton_log = shared_->newton_log;
     }
   }
-  if (hi_ - lo_ <= detail::pow2(-bits)) return;
+  if (hi_ - lo_ <= pow2(-bits)) return;
   // An exact hit (impossible for an irrational root) would leave lo == hi,
   // still a correct value.
   detail::refine_isolating_interval(poly_, lo_, hi_, bits, &newton_log, shared_ ? shared_->sev.get() : nullptr);
@@ -211,15 +211,15 @@ Ball RealAlgebraic::to_ball(long prec) const {
     fmpz_t klo, khi;
     fmpz_init(klo);
     fmpz_init(khi);
-    Rational t = lo_ * detail::pow2(p);
+    Rational t = lo_ * pow2(p);
     fmpz_fdiv_q(klo, fmpq_numref(t.get()), fmpq_denref(t.get()));
-    t = hi_ * detail::pow2(p);
+    t = hi_ * pow2(p);
     fmpz_fdiv_q(khi, fmpq_numref(t.get()), fmpq_denref(t.get()));
     if (!fmpz_equal(klo, khi)) {
       // hi - lo <= 2^-(p+2): one grid point g = khi 2^-p in (lo, hi]
       Integer kh;
       fmpz_set(kh.get(), khi);
-      const Rational g = Rational(kh) * detail::pow2(-p);
+      const Rational g = Rational(kh) * pow2(-p);
       if (compare_rational(*this, g) >= 0) fmpz_set(klo, khi);
     }
     // midpoint (2k + 1) 2^-(p+1), radius 2^-(p+1)
@@ -352,7 +352,7 @@ int sign_at(const Poly& p, const RealAlgebraic& x) {
     x.refine(b);
     if (x.is_rational()) return exact_sign(p, x.rational());
     const long prec = b + 32 + p.max_bits();
-    const Ball xb = detail::interval_ball(x.lo(), x.hi(), prec);
+    const Ball xb = interval_ball(x.lo(), x.hi(), prec);
     Ball v;
     arb_fmpz_poly_evaluate_arb(v.get(), p.get(), xb.get(), prec);
     if (v.certainly_positive()) return 1;

@@ -2,8 +2,9 @@
 // quadrature.cpp (the driver: precisions, goals, errors), quadrature_adaptive.cpp
 // (the subdivision), quadrature_gl.cpp (one Gauss-Legendre step and its node
 // cache) and quadrature_ends.cpp (end errors, node_fast at single points)
-// share: the Arb holders, the state of one attempt, and the integrand call
-// that every evaluation goes through (inline: it is the hot path).
+// share (besides the Arb holders of core/arb_holders.hpp): the state of one
+// attempt, and the integrand call that every evaluation goes through
+// (inline: it is the hot path).
 #pragma once
 
 #include <acb.h>
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "uniparam/algebra/quadrature.hpp"
+#include "uniparam/core/arb_holders.hpp"
 #include "uniparam/core/ball.hpp"
 #include "uniparam/core/ball_regions.hpp"
 #include "uniparam/core/budget.hpp"
@@ -24,22 +26,6 @@
 namespace uniparam {
 namespace quadrature_detail {
 
-/// RAII holders for the few Arb temporaries, so that an exception thrown by
-/// the integrand (rethrown below) leaks nothing.
-struct AcbVar {
-  acb_t v;
-  AcbVar() noexcept { acb_init(v); }
-  ~AcbVar() { acb_clear(v); }
-  AcbVar(const AcbVar&) = delete;
-  AcbVar& operator=(const AcbVar&) = delete;
-};
-struct MagVar {
-  mag_t v;
-  MagVar() noexcept { mag_init(v); }
-  ~MagVar() { mag_clear(v); }
-  MagVar(const MagVar&) = delete;
-  MagVar& operator=(const MagVar&) = delete;
-};
 
 /// count enclosures (an acb vector), freed on scope exit.
 struct AcbVec {

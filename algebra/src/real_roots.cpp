@@ -128,7 +128,7 @@ void isolate_factor(const Poly& f, int mult, const Rational& a, const Rational& 
   // map to [0, 1] then involves only powers of 2, however large the
   // denominators of a and b are.
   const long k = detail::floor_log2(b - a) - 1;
-  const Rational a2 = detail::grid_floor(a, k), b2 = -detail::grid_floor(-b, k);
+  const Rational a2 = grid_floor(a, k), b2 = -grid_floor(-b, k);
   const Rational w = b2 - a2;
   const Poly G = map_to_unit_interval(f, a2, b2);
   std::vector<Found> raw;
@@ -219,7 +219,7 @@ void make_disjoint(std::vector<Found>& roots, long cap) {
             throw BudgetExceeded("could not separate two touching isolating intervals within " +
                                  std::to_string(2 * cap) + " bisections");
           Found& r = side == 0 ? x : y;
-          const Rational q = detail::grid_floor((r.lo + r.hi) * Rational(1, 2), detail::floor_log2(r.hi - r.lo) - 2);
+          const Rational q = grid_floor((r.lo + r.hi) * Rational(1, 2), detail::floor_log2(r.hi - r.lo) - 2);
           const int sq = exact_sign(r.factor, q);
           if (sq == 0) {
             r.lo = r.hi = q;

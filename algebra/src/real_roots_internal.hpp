@@ -9,22 +9,11 @@
 #include <vector>
 
 #include "uniparam/algebra/real_roots.hpp"
+#include "uniparam/core/arb_holders.hpp"
 #include "uniparam/core/number.hpp"
 #include "uniparam/core/poly.hpp"
 
 namespace uniparam::detail {
-
-/// Owning arb_t for local use.
-struct ArbVar {
-  arb_t v;
-  ArbVar() { arb_init(v); }
-  ~ArbVar() { arb_clear(v); }
-  ArbVar(const ArbVar&) = delete;
-  ArbVar& operator=(const ArbVar&) = delete;
-};
-
-/// floor(x / 2^s) * 2^s: the grid point of spacing 2^s at or below x.
-Rational grid_floor(const Rational& x, long s);
 
 /// d*t - n for q = n/d.
 Poly linear_poly(const Rational& q);

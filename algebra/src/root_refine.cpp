@@ -23,13 +23,6 @@
 namespace uniparam {
 namespace detail {
 
-Rational grid_floor(const Rational& x, long s) {
-  const Rational y = x * pow2(-s);
-  Integer f;
-  fmpz_fdiv_q(f.get(), fmpq_numref(y.get()), fmpq_denref(y.get()));
-  return Rational(f) * pow2(s);
-}
-
 namespace {
 
 bool is_dyadic(const Rational& x) {
@@ -306,13 +299,6 @@ bool interval_newton_step(const Poly& f, const Poly& df, const ScaledEvaluator& 
 
 }  // namespace
 
-Rational pow2(long e) {
-  Rational r(1);
-  if (e >= 0) fmpq_mul_2exp(r.get(), r.get(), static_cast<flint_bitcnt_t>(e));
-  else fmpq_div_2exp(r.get(), r.get(), static_cast<flint_bitcnt_t>(-e));
-  return r;
-}
-
 long floor_log2(const Rational& w) {
   if (w.sign() <= 0) throw InvalidArgument("floor_log2 of a nonpositive number");
   const long e = static_cast<long>(fmpz_bits(fmpq_numref(w.get()))) -
@@ -490,12 +476,6 @@ bool refine_isolating_interval(const Poly& f, Rational& lo, Rational& hi, long b
     }
     w = hi - lo;
   }
-}
-
-Ball interval_ball(const Rational& lo, const Rational& hi, long prec) {
-  Ball a(lo, prec), b(hi, prec), r;
-  arb_union(r.get(), a.get(), b.get(), prec);
-  return r;
 }
 
 }  // namespace detail

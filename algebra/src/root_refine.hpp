@@ -69,12 +69,6 @@ bool prove_root_near(const Poly& f, const ScaledEvaluator& sev, const Rational& 
 /// exact Taylor shift where those cannot decide. \pre deg P >= 1.
 int descartes_test(const Poly& P, int& sign_at_1);
 
-/// A ball containing the closed interval [lo, hi] (working precision prec).
-Ball interval_ball(const Rational& lo, const Rational& hi, long prec);
-
-/// 2^e as an exact rational (e may be negative).
-Rational pow2(long e);
-
 /// floor(log2(w)) for a rational w > 0 (InvalidArgument otherwise).
 long floor_log2(const Rational& w);
 

@@ -41,15 +41,6 @@ namespace {
 /// the dropped terms on |w| <= h.
 using Expansion = LocalExpansion;
 
-/// Owning mag_t for local use.
-struct MagVar {
-  mag_t v;
-  MagVar() { mag_init(v); }
-  ~MagVar() { mag_clear(v); }
-  MagVar(const MagVar&) = delete;
-  MagVar& operator=(const MagVar&) = delete;
-};
-
 /// Drops the top terms of e (cell half-width h = 2^log2h) while their
 /// contributions sum |c_k| h^k to G and h sum k |c_k| h^(k-1) to h G' on
 /// |w| <= h stay below eps, adding their bounds to the tails. Keeps >= 2 terms.
@@ -327,7 +318,6 @@ namespace {
 /// cell goes to the exact isolation.
 constexpr long kEvaluatorDepth = 30;
 
-using detail::ArbVar;
 using detail::exact_if_rational;
 using detail::Found;
 using detail::kSubdivisionDegree;
@@ -370,7 +360,7 @@ std::vector<IsolatedRoot> isolate_real_roots(const Poly& p, const PolyEvaluator&
     stack.pop_back();
     check_time_budget();
     ++cells;
-    const Ball z = detail::interval_ball(iv.l, iv.r, 64);  // holds the closed [l, r]
+    const Ball z = interval_ball(iv.l, iv.r, 64);  // holds the closed [l, r]
     ev(v.v, d.v, z.get(), 64);
     if (arb_is_finite(v.v) && !arb_contains_zero(v.v)) continue;  // no root in [l, r]
     if (arb_is_finite(d.v) && !arb_contains_zero(d.v)) {

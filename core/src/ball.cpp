@@ -65,6 +65,23 @@ Rational mid_rational(const Ball& b) {
   return r;
 }
 
+Rational rad_rational(const Ball& b) {
+  if (!mag_is_finite(arb_radref(b.get()))) throw DomainError("rad_rational: the ball's radius is not finite");
+  arf_t r;
+  arf_init(r);
+  arf_set_mag(r, arb_radref(b.get()));
+  Rational q;
+  arf_get_fmpq(q.get(), r);
+  arf_clear(r);
+  return q;
+}
+
+Ball interval_ball(const Rational& lo, const Rational& hi, long prec) {
+  Ball a(lo, prec), b(hi, prec), r;
+  arb_union(r.get(), a.get(), b.get(), prec);
+  return r;
+}
+
 bool all_meet_digits(const std::vector<Ball>& v, long digits) {
   for (const auto& b : v)
     if (!b.meets_digits(digits)) return false;

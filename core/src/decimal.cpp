@@ -80,15 +80,7 @@ std::string decimal_upper(const Rational& x) {
 
 DecimalEnclosure decimal_enclosure(const Ball& x, long sig_digits) {
   if (!x.is_finite()) throw DomainError("a non-finite ball cannot be printed as an enclosure");
-  Rational mid, rad;
-  arf_get_fmpq(mid.get(), arb_midref(x.get()));
-  {
-    arf_t r;
-    arf_init(r);
-    arf_set_mag(r, arb_radref(x.get()));
-    arf_get_fmpq(rad.get(), r);
-    arf_clear(r);
-  }
+  const Rational mid = mid_rational(x), rad = rad_rational(x);
   DecimalEnclosure out;
   out.mid = decimal_string(mid, sig_digits);
   Rational printed = Rational::parse(out.mid);

@@ -95,4 +95,18 @@ Rational Rational::simplest_between(const Rational& lo, const Rational& hi) {
   return r;
 }
 
+Rational pow2(long e) {
+  Rational r(1);
+  if (e >= 0) fmpq_mul_2exp(r.get(), r.get(), static_cast<flint_bitcnt_t>(e));
+  else fmpq_div_2exp(r.get(), r.get(), static_cast<flint_bitcnt_t>(-e));
+  return r;
+}
+
+Rational grid_floor(const Rational& x, long s) {
+  const Rational y = x * pow2(-s);
+  Integer f;
+  fmpz_fdiv_q(f.get(), fmpq_numref(y.get()), fmpq_denref(y.get()));
+  return Rational(f) * pow2(s);
+}
+
 }  // namespace uniparam

@@ -129,17 +129,10 @@ PYBIND11_MODULE(_uniparam, m) {
           }
           const Curve& cv = *in.curve;
           std::optional<Rational> z;
-          if (at) {
-            z = rational_arg("at", *at);
-            if (*z < Rational(0) || *z > Rational(1)) throw InvalidArgument("at must lie in [0, 1], got " + z->str());
-          }
+          if (at) z = cli::unit_at("at", rational_arg("at", *at));
           const RadicalResult r = radical(cv, kind, opt);
           std::optional<SamplePoint> atv;
-          if (z) {
-            const Speed s(cv, kind);
-            Sampler ev(cv, s, Reparameterization(r), opt.digits + 1, opt.max_prec);
-            atv = ev.at(*z);
-          }
+          if (z) atv = cli::radical_at(cv, kind, r, *z, opt);
           Json j = cli::radical_json(cv, r, opt.digits, fmt);
           if (atv) j.set("at", cli::radical_at_json(*z, *atv, opt.digits));
           return dump(j);
@@ -154,9 +147,7 @@ PYBIND11_MODULE(_uniparam, m) {
         return guarded(c, [&] {
           const Options opt = options_of(c);
           const SpeedKind kind = parse_speed_kind(c.speed);
-          cli::MoebiusPrint how;
-          how.json = true;
-          how.format = cli::parse_format(format);
+          const cli::MoebiusPrint how = json_print(format);
           const auto T = breakpoints_of(breakpoints.value_or(std::vector<std::string>{"0", "1"}));
           const cli::NurbsOutput no = output_of(output);
           const Input in = input_of(c);
@@ -184,9 +175,7 @@ PYBIND11_MODULE(_uniparam, m) {
         return guarded(c, [&] {
           const Options opt = options_of(c);
           const SpeedKind kind = parse_speed_kind(c.speed);
-          cli::MoebiusPrint how;
-          how.json = true;
-          how.format = cli::parse_format(format);
+          const cli::MoebiusPrint how = json_print(format);
           const int given = static_cast<int>(pieces.has_value()) + static_cast<int>(!breakpoints.empty()) +
                             static_cast<int>(target.has_value());
           if (given != 1) throw InvalidArgument("give exactly one of pieces, breakpoints, target");

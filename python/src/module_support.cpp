@@ -148,6 +148,13 @@ cli::NurbsOutput output_of(const std::string& output) {
   }
 }
 
+cli::MoebiusPrint json_print(const std::string& format) {
+  cli::MoebiusPrint how;
+  how.json = true;
+  how.format = cli::parse_format(format);
+  return how;
+}
+
 /// The NURBS n as `o` asks, as the CLI's write_nurbs: the NURBS JSON or the
 /// STEP text in place of `report`, or the STEP file written and `report`.
 Answer nurbs_answer(const Nurbs& n, const cli::NurbsOutput& o, long digits, const std::function<Json()>& report,

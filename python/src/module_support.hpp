@@ -121,6 +121,11 @@ std::vector<RealAlgebraic> breakpoints_of(const std::vector<std::string>& list);
 /// file, checked writable before computing: cli::parse_nurbs_output).
 cli::NurbsOutput output_of(const std::string& output);
 
+/// How moebius() and reparam() print their report: JSON, formulas in
+/// `format` (text, latex, maple; InvalidArgument otherwise:
+/// cli::parse_format).
+cli::MoebiusPrint json_print(const std::string& format);
+
 /// The NURBS n as `o` asks, as the CLI's write_nurbs: the NURBS JSON or the
 /// STEP text in place of `report`, or the STEP file written and `report`.
 Answer nurbs_answer(const Nurbs& n, const cli::NurbsOutput& o, long digits, const std::function<Json()>& report,

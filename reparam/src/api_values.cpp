@@ -116,16 +116,7 @@ Rational Ball::mid() const {
 
 Rational Ball::rad() const {
   check_finite(p_->v);
-  arf_t r;
-  arf_init(r);
-  arf_set_mag(r, arb_radref(p_->v.get()));
-  fmpq_t q;
-  fmpq_init(q);
-  arf_get_fmpq(q, r);
-  uniparam::Rational out(q);
-  fmpq_clear(q);
-  arf_clear(r);
-  return wrap(out);
+  return wrap(rad_rational(p_->v));
 }
 
 Rational Ball::lower() const { return wrap(unwrap(mid()) - unwrap(rad())); }

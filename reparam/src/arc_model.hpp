@@ -1,6 +1,6 @@
 // reparam/src/arc_model.hpp -- INTERNAL: certified Taylor models of
 // G(u) = int sigma on short intervals of one speed's parameter, for the
-// locator (locate.cpp; docs/locate.md, "Taylor models").
+// locator's cover (locate_cover.cpp; docs/locate.md, "Taylor models").
 //
 // On an interval [a, b] of the parameter free of zeros of sigma in its
 // interior, sigma is the restriction of the analytic function

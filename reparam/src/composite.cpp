@@ -97,29 +97,18 @@ std::size_t CompositeCurve::segment_of(const Rational& x) const {
 }
 
 std::vector<Ball> CompositeCurve::eval(const Ball& t, long prec) const {
-  const auto& k = knots_;
-  if (t.is_exact()) {
-    const Rational x = mid_rational(t);
-    const std::size_t j = segment_of(x);
-    return segments_[j].eval(Ball((x - k[j]) / (k[j + 1] - k[j]), prec), prec);
-  }
   std::vector<Ball> out;
-  for (std::size_t j = 0; j < size(); ++j) {
-    // The part of t inside [k_j, k_{j+1}], in the segment's parameter.
-    Ball lo(k[j], prec), hi(k[j + 1], prec);
-    if (arb_lt(t.get(), lo.get()) || arb_gt(t.get(), hi.get())) continue;
-    Ball local;
-    arb_sub(local.get(), t.get(), lo.get(), prec);
-    local = div_rational(local, k[j + 1] - k[j], prec);
-    clamp_unit(local.get(), prec);
-    const std::vector<Ball> p = segments_[j].eval(local, prec);
-    if (out.empty()) {
-      out = p;
-    } else {
-      for (std::size_t i = 0; i < p.size(); ++i) arb_union(out[i].get(), out[i].get(), p[i].get(), prec);
-    }
-  }
-  if (out.empty()) throw InvalidArgument("the parameter's enclosure lies outside [0, 1]");
+  // the part of t inside each [k_j, k_{j+1}] it meets, in the segment's parameter
+  for_segments_at(knots_, t, prec, "the parameter's enclosure lies outside [0, 1]",
+                  [&](std::size_t j, const Ball& local) {
+                    const std::vector<Ball> p = segments_[j].eval(local, prec);
+                    if (out.empty()) {
+                      out = p;
+                    } else {
+                      for (std::size_t i = 0; i < p.size(); ++i)
+                        arb_union(out[i].get(), out[i].get(), p[i].get(), prec);
+                    }
+                  });
   return out;
 }
 

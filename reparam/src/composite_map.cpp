@@ -54,30 +54,6 @@ bool CompositeMap::target_reached() const {
 
 namespace {
 
-// Calls f(j, local) for every segment j whose [S_j, S_{j+1}] meets the ball
-// s, with local = (s - S_j) / (S_{j+1} - S_j) clipped to [0, 1].
-template <class F>
-void for_segments_at(const std::vector<Rational>& S, const Ball& s, long prec, F&& f) {
-  if (arb_is_exact(s.get())) {
-    const Rational x = mid_rational(s);
-    std::size_t j = 0;
-    while (j + 2 < S.size() && !(x < S[j + 1])) ++j;
-    f(j, Ball((x - S[j]) / (S[j + 1] - S[j]), prec));
-    return;
-  }
-  bool any = false;
-  for (std::size_t j = 0; j + 1 < S.size(); ++j) {
-    Ball lo(S[j], prec), hi(S[j + 1], prec);
-    if (arb_lt(s.get(), lo.get()) || arb_gt(s.get(), hi.get())) continue;
-    Ball local;
-    arb_sub(local.get(), s.get(), lo.get(), prec);
-    local = div_rational(local, S[j + 1] - S[j], prec);
-    clamp_unit(local.get(), prec);
-    f(j, local);
-    any = true;
-  }
-  if (!any) throw InvalidArgument("the parameter s must lie in [0, 1]");
-}
 
 void unite(Ball& acc, bool& first, const Ball& x, long prec) {
   if (first) acc = x;
@@ -90,7 +66,7 @@ void unite(Ball& acc, bool& first, const Ball& x, long prec) {
 Ball CompositeMap::eval_r(const CompositeCurve& c, const Ball& s, long prec) const {
   Ball out;
   bool first = true;
-  for_segments_at(S_, s, prec, [&](std::size_t j, const Ball& local) {
+  for_segments_at(S_, s, prec, "the parameter s must lie in [0, 1]", [&](std::size_t j, const Ball& local) {
     Ball t = mul_rational(parts_[j].eval_r(local, prec), c.knots()[j + 1] - c.knots()[j], prec);
     arb_add(t.get(), t.get(), Ball(c.knots()[j], prec).get(), prec);
     unite(out, first, t, prec);
@@ -102,7 +78,7 @@ Ball CompositeMap::eval_speed(const CompositeCurve& c, const std::vector<Speed>&
   (void)c;
   Ball out;
   bool first = true;
-  for_segments_at(S_, s, prec, [&](std::size_t j, const Ball& local) {
+  for_segments_at(S_, s, prec, "the parameter s must lie in [0, 1]", [&](std::size_t j, const Ball& local) {
     unite(out, first, div_rational(parts_[j].eval_speed(sp[j], local, prec), S_[j + 1] - S_[j], prec), prec);
   });
   return out;

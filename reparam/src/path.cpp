@@ -223,6 +223,13 @@ class SvgReader {
     return rel ? Pt{cur_.x + x, cur_.y + y} : Pt{x, y};
   }
 
+  // The first control point of a smooth S or T: the previous command's last
+  // control point reflected about the current point, or the current point
+  // when the previous command was not of the same kind.
+  Pt reflected(const std::optional<Pt>& ctrl) const {
+    return ctrl ? Pt{cur_.x + cur_.x - ctrl->x, cur_.y + cur_.y - ctrl->y} : cur_;
+  }
+
   void apply(char cmd, char up, bool rel, bool first, const std::vector<Rational>& v, std::size_t at) {
     const std::string name(1, cmd);
     if (up == 'M' && first) {
@@ -269,8 +276,7 @@ class SvgReader {
         break;
       }
       case 'S': {
-        const Pt p1 = last_cubic_ctrl_ ? Pt{cur_.x + cur_.x - last_cubic_ctrl_->x, cur_.y + cur_.y - last_cubic_ctrl_->y}
-                                       : cur_;
+        const Pt p1 = reflected(last_cubic_ctrl_);
         const Pt p2 = point(rel, v[0], v[1]), p3 = point(rel, v[2], v[3]);
         add(BezierCurve({vec(cur_), vec(p1), vec(p2), vec(p3)}), name, at);
         cubic_ctrl = p2;
@@ -285,8 +291,7 @@ class SvgReader {
         break;
       }
       case 'T': {
-        const Pt p1 = last_quad_ctrl_ ? Pt{cur_.x + cur_.x - last_quad_ctrl_->x, cur_.y + cur_.y - last_quad_ctrl_->y}
-                                      : cur_;
+        const Pt p1 = reflected(last_quad_ctrl_);
         const Pt p2 = point(rel, v[0], v[1]);
         add(BezierCurve({vec(cur_), vec(p1), vec(p2)}), name, at);
         quad_ctrl = p1;

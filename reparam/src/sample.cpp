@@ -2,8 +2,6 @@
 // samples of p o r.
 #include "uniparam/reparam/sample.hpp"
 
-#include <acb.h>
-
 #include <algorithm>
 #include <cmath>
 
@@ -98,16 +96,7 @@ Ball Reparameterization::eval_r(const Ball& s, long prec) const {
 Ball Reparameterization::eval_speed(const Speed& sp, const Ball& s, long prec) const {
   check_unit(s, "Reparameterization::eval_speed");
   if (acts_as_identity(*this)) {
-    acb_t z, w;
-    acb_init(z);
-    acb_init(w);
-    acb_set_arb(z, s.get());
-    sp.eval_squared(w, z, prec);
-    Ball v;
-    arb_sqrtpos(v.get(), acb_realref(w), prec);  // sigma^2 >= 0 mathematically
-    acb_clear(z);
-    acb_clear(w);
-    return v;
+    return sp.eval_real(s, prec);
   }
   if (const auto* x = radical_result()) return radical_eval_speed(*x, sp, s, prec);
   return moebius_eval_speed(*moebius_result(), sp, s, prec);

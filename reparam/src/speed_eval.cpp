@@ -264,4 +264,17 @@ void Speed::eval_squared_over_zero(acb_t out, const acb_t z, const SpeedZero& ze
   }
 }
 
+Ball Speed::eval_real(const Ball& t, long prec) const {
+  acb_t z, w;
+  acb_init(z);
+  acb_init(w);
+  acb_set_arb(z, t.get());
+  eval_squared(w, z, prec);
+  Ball v;
+  arb_sqrtpos(v.get(), acb_realref(w), prec);
+  acb_clear(z);
+  acb_clear(w);
+  return v;
+}
+
 }  // namespace uniparam

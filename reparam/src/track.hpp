@@ -1,4 +1,4 @@
-// reparam/src/track.hpp -- INTERNAL: what the locator (locate.cpp) needs of
+// reparam/src/track.hpp -- INTERNAL: what the locator (locate*.cpp) needs of
 // a curve, so that one curve and a composite curve share it.
 #pragma once
 

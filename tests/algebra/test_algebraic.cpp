@@ -34,12 +34,6 @@ Rational pow10(long e) {
   const Rational p(pow_int(10, static_cast<unsigned long>(e < 0 ? -e : e)));
   return e >= 0 ? p : Rational(1) / p;
 }
-Rational pow2(long e) {
-  Rational r(1);
-  if (e >= 0) fmpq_mul_2exp(r.get(), r.get(), static_cast<ulong>(e));
-  else fmpq_div_2exp(r.get(), r.get(), static_cast<ulong>(-e));
-  return r;
-}
 
 /// Exact oracle: a rational q, or s * sqrt(r) with r > 0 not a rational square.
 struct Quad {

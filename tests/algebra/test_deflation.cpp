@@ -22,27 +22,6 @@ using test_support::iterations;
 
 Poly constant(const Integer& c) { return Poly(std::vector<Integer>{c}); }
 
-Rational mid_of(const Ball& b) {
-  Rational m;
-  arf_get_fmpq(m.get(), arb_midref(b.get()));
-  return m;
-}
-Rational rad_of(const Ball& b) {
-  Rational r;
-  arf_t a;
-  arf_init(a);
-  arf_set_mag(a, arb_radref(b.get()));
-  arf_get_fmpq(r.get(), a);
-  arf_clear(a);
-  return r;
-}
-Rational pow2(long e) {
-  Rational r(1);
-  if (e >= 0) fmpq_mul_2exp(r.get(), r.get(), static_cast<ulong>(e));
-  else fmpq_div_2exp(r.get(), r.get(), static_cast<ulong>(-e));
-  return r;
-}
-
 Poly random_poly(std::mt19937_64& rng, long max_degree, long max_coeff) {
   const long n = std::uniform_int_distribution<long>(0, max_degree)(rng);
   std::vector<long> c(static_cast<std::size_t>(n + 1));
@@ -138,10 +117,10 @@ TEST(Deflation, IrrationalGammaEnclosesTheQuotient) {
       const Ball c = d.coeff(i), r = quo.coeff(i);
       EXPECT_TRUE(arb_overlaps(c.get(), r.get())) << "coefficient " << i << ": " << c.str() << " vs " << r.str();
       // Accuracy: the radius is about 2^-prec relative.
-      Rational scale = mid_of(r);
+      Rational scale = mid_rational(r);
       if (scale.sign() < 0) scale = -scale;
       if (scale < Rational(1)) scale = Rational(1);
-      EXPECT_TRUE(rad_of(c) <= scale * pow2(-(prec - 8))) << "coefficient " << i << " too wide: " << c.str();
+      EXPECT_TRUE(rad_rational(c) <= scale * pow2(-(prec - 8))) << "coefficient " << i << " too wide: " << c.str();
     }
     // q_deflated(t0) * (t0 - gamma)^k must contain p(t0) exactly.
     for (int s = 0; s < 5; ++s) {

@@ -22,13 +22,6 @@ namespace {
 
 using test_support::iterations;
 
-Rational pow2(long e) {
-  Rational r(1);
-  if (e >= 0) fmpq_mul_2exp(r.get(), r.get(), static_cast<flint_bitcnt_t>(e));
-  else fmpq_div_2exp(r.get(), r.get(), static_cast<flint_bitcnt_t>(-e));
-  return r;
-}
-
 // A random polynomial of degree 3..60: small dense coefficients, or a
 // product of linear factors with roots in [0, 1] (values far below the
 // power-basis coefficients there).

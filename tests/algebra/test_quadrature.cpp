@@ -33,8 +33,7 @@ namespace {
 using namespace test_support;
 
 TEST(Quadrature, PolynomialsAtRationalEndsContainExactIntegral) {
-  const char* seed_env = std::getenv("UNIPARAM_TEST_SEED");
-  const unsigned seed = seed_env ? static_cast<unsigned>(std::strtoul(seed_env, nullptr, 10)) : 20240611u;
+  const unsigned seed = test_seed(20240611u);
   std::mt19937 rng(seed);
   std::uniform_int_distribution<long> coef(-9, 9), num(-30, 30), den(1, 12), deg(0, 7);
   const long n = iterations(30);

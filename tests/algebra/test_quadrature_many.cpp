@@ -35,8 +35,7 @@ TEST(QuadratureMany, PolynomialsOfDifferentScalesEachContainTheirExactIntegral) 
   // count random polynomials, one scaled by 10^-12 and one by 10^9, on
   // random rational segments: each result contains its exact integral and
   // meets its own relative goal (a shared tolerance would miss the small one).
-  const char* seed_env = std::getenv("UNIPARAM_TEST_SEED");
-  const unsigned seed = seed_env ? static_cast<unsigned>(std::strtoul(seed_env, nullptr, 10)) : 20261123u;
+  const unsigned seed = test_seed(20261123u);
   std::mt19937 rng(seed);
   std::uniform_int_distribution<long> coef(-9, 9), num(-30, 30), den(1, 12), deg(0, 9), cnt(1, 4);
   const long n = iterations(30);

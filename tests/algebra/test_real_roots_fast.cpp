@@ -32,6 +32,7 @@ using test_support::iterations;
 using test_support::Known;
 using real_roots_test::bernstein;
 using real_roots_test::positive_bernstein;
+using real_roots_test::product_evaluator;
 
 Poly constant(const Integer& c) { return Poly(std::vector<Integer>{c}); }
 Poly lin(const Integer& d, const Integer& n) { return Poly(std::vector<Integer>{Integer(0) - n, d}); }  // d t - n
@@ -188,19 +189,6 @@ TEST(RealRootsFast, SubdivisionAgreesWithExactVca) {
   }
 }
 
-}  // namespace
-}  // namespace uniparam
-
-namespace uniparam {
-namespace {
-
-using test_support::check_isolation;
-using test_support::iterations;
-using test_support::Known;
-using real_roots_test::bernstein;
-using real_roots_test::positive_bernstein;
-
-using real_roots_test::product_evaluator;
 
 /// The evaluator-driven subdivision (isolate_real_roots with a
 /// PolyEvaluator) against exactly known roots: rational ones (two of them

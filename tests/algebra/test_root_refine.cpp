@@ -220,12 +220,12 @@ TEST(RealRootsFast, ProveRootNearAcceptsOnlyIntervalsThatHoldARoot) {
     };
     for (int k = 0; k < 60; ++k) {  // random centres on the grid 2^-24, radii 2^-4 .. 2^-30
       const Rational g(static_cast<long>(rng() % (1L << 24)), 1L << 24);
-      check(g, detail::pow2(-4 - static_cast<long>(rng() % 27)), false);
+      check(g, pow2(-4 - static_cast<long>(rng() % 27)), false);
     }
     for (const IsolatedRoot& r : isolate_real_roots(p, Rational(0), Rational(1))) {
       RealAlgebraic x(r);
       x.refine(70);
-      check(x.lo(), detail::pow2(-40), true);  // |x - lo| <= 2^-70
+      check(x.lo(), pow2(-40), true);  // |x - lo| <= 2^-70
     }
   }
   EXPECT_GT(accepted, 0);

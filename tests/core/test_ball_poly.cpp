@@ -18,29 +18,9 @@ namespace {
 
 using test_support::iterations;
 
-// 2^e as a rational, any sign of e.
-Rational pow2q(long e) {
-  Rational r(1);
-  if (e >= 0) fmpq_mul_2exp(r.get(), r.get(), static_cast<ulong>(e));
-  else fmpq_div_2exp(r.get(), r.get(), static_cast<ulong>(-e));
-  return r;
-}
-
 // The exact midpoint and radius of a ball as rationals.
-Rational mid_q(const arb_t x) {
-  Rational q;
-  arf_get_fmpq(q.get(), arb_midref(x));
-  return q;
-}
-Rational rad_q(const arb_t x) {
-  arf_t r;
-  arf_init(r);
-  arf_set_mag(r, arb_radref(x));
-  Rational q;
-  arf_get_fmpq(q.get(), r);
-  arf_clear(r);
-  return q;
-}
+Rational mid_q(const arb_t x) { return mid_rational(Ball(x)); }
+Rational rad_q(const arb_t x) { return rad_rational(Ball(x)); }
 
 bool contains(const arb_t x, const Rational& q) { return arb_contains_fmpq(x, q.get()); }
 
@@ -115,7 +95,7 @@ TEST(TaylorShiftPow2, EnclosesTheExactShiftOfEveryPolynomialInTheBalls) {
         const long t = trial == 0 ? 4 : trial == 1 ? -4 : pick(rng);
         a.push_back(mid_q(c) + rad_q(c) * Rational(t, 4));
       }
-      const std::vector<Rational> want = exact_shift(a, Rational(s) * pow2q(e));
+      const std::vector<Rational> want = exact_shift(a, Rational(s) * pow2(e));
       ASSERT_EQ(static_cast<long>(want.size()), arb_poly_length(p.get()));
       for (std::size_t j = 0; j < want.size(); ++j) {
         arb_t got;
@@ -170,13 +150,13 @@ TEST(TaylorShiftPow2, RadiiAreShiftedUpwardAndTightly) {
           fmpz_divexact_ui(binom.get(), binom.get(), static_cast<ulong>(k - j));
         }
         if (r[static_cast<std::size_t>(k)].sign() != 0)
-          want = want + Rational(binom) * r[static_cast<std::size_t>(k)] * pow2q(e * (k - j));
+          want = want + Rational(binom) * r[static_cast<std::size_t>(k)] * pow2(e * (k - j));
       }
       const arb_struct* c = j < arb_poly_length(q.get()) ? q.get()->coeffs + j : nullptr;
       const Rational got = c ? rad_q(c) : Rational(0);
       ASSERT_TRUE(c == nullptr || arf_is_zero(arb_midref(c)));
       ASSERT_GE(got, want) << "n = " << n << ", coefficient " << j;
-      const Rational slack = n <= 900 ? pow2q(-20) : Rational(n) * pow2q(-28);
+      const Rational slack = n <= 900 ? pow2(-20) : Rational(n) * pow2(-28);
       if (any_near) EXPECT_LE(got, want * (Rational(1) + slack)) << "n = " << n << ", coefficient " << j;
     }
   }

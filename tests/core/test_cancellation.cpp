@@ -70,26 +70,22 @@ TEST(Cancellation, NestsWithABudget) {
 TEST(Cancellation, WorkersInheritTheFlag) {
   std::atomic<bool> flag{false};
   const ScopedCancellation c(flag);
-  std::atomic<int> seen{0};
-  parallel_for(16, 4, [&](std::size_t, std::size_t) {
-    spin(2);
-    try {
-      check_time_budget();
-    } catch (const Interrupted&) {
-      ++seen;
-    }
-  });
-  EXPECT_EQ(seen.load(), 0);
+  // How many of 16 work items on 4 workers see the cancellation.
+  auto interrupted_items = [] {
+    std::atomic<int> seen{0};
+    parallel_for(16, 4, [&](std::size_t, std::size_t) {
+      spin(2);
+      try {
+        check_time_budget();
+      } catch (const Interrupted&) {
+        ++seen;
+      }
+    });
+    return seen.load();
+  };
+  EXPECT_EQ(interrupted_items(), 0);
   flag = true;
-  parallel_for(16, 4, [&](std::size_t, std::size_t) {
-    spin(2);
-    try {
-      check_time_budget();
-    } catch (const Interrupted&) {
-      ++seen;
-    }
-  });
-  EXPECT_EQ(seen.load(), 16);
+  EXPECT_EQ(interrupted_items(), 16);
 }
 
 TEST(WorkerCount, ScopedCountIsInForceAndRestored) {

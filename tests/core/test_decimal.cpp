@@ -21,6 +21,7 @@ namespace uniparam {
 namespace {
 
 using test_support::iterations;
+using test_support::random_integer;
 
 Rational pow10(long k) {
   Integer p;
@@ -53,30 +54,6 @@ long significant_digits(const std::string& s) {
   // the point, and "1000" (rounded to 1 digit) has one significant digit.
   const std::size_t last = d.find_last_not_of('0');
   return static_cast<long>(last + 1);
-}
-
-Rational exact_mid(const Ball& b) {
-  Rational m;
-  arf_get_fmpq(m.get(), arb_midref(b.get()));
-  return m;
-}
-
-Rational exact_rad(const Ball& b) {
-  Rational r;
-  arf_t t;
-  arf_init(t);
-  arf_set_mag(t, arb_radref(b.get()));
-  arf_get_fmpq(r.get(), t);
-  arf_clear(t);
-  return r;
-}
-
-Integer random_integer(std::mt19937_64& rng, int max_digits) {
-  std::uniform_int_distribution<int> len(1, max_digits), dig(0, 9);
-  std::string s;
-  for (int i = len(rng); i > 0; --i) s += static_cast<char>('0' + dig(rng));
-  Integer v(s);
-  return (rng() & 1) ? Integer(0) - v : v;
 }
 
 Rational random_rational(std::mt19937_64& rng) {
@@ -178,7 +155,7 @@ TEST(Decimal, EnclosureContainsTheBallProperty) {
     const DecimalEnclosure e = decimal_enclosure(b, sig);
     const Rational mid = Rational::parse(e.mid), rad = Rational::parse(e.rad);
     ASSERT_GE(rad.sign(), 0) << e.rad;
-    const Rational m = exact_mid(b), r = exact_rad(b);
+    const Rational m = mid_rational(b), r = rad_rational(b);
     EXPECT_LE(mid - rad, m - r) << e.mid << " +/- " << e.rad;
     EXPECT_GE(mid + rad, m + r) << e.mid << " +/- " << e.rad;
     EXPECT_LE(significant_digits(e.mid), sig) << e.mid;

@@ -20,19 +20,13 @@ namespace uniparam {
 namespace {
 
 using test_support::iterations;
+using test_support::random_digits;
 
 Integer pow10(long k) {
   Integer p;
   fmpz_set_ui(p.get(), 10);
   fmpz_pow_ui(p.get(), p.get(), static_cast<ulong>(k));
   return p;
-}
-
-std::string random_digits(std::mt19937_64& rng, int max_len) {
-  std::uniform_int_distribution<int> len(1, max_len), dig(0, 9);
-  std::string s;
-  for (int i = len(rng); i > 0; --i) s += static_cast<char>('0' + dig(rng));
-  return s;
 }
 
 // ---- Integer ------------------------------------------------------------------

@@ -20,17 +20,10 @@ namespace uniparam {
 namespace {
 
 using test_support::iterations;
+using test_support::random_integer;
 
 const RatFunc T = RatFunc::t();
 RatFunc q(long a, long b = 1) { return RatFunc(Rational(a, b)); }
-
-Integer random_integer(std::mt19937_64& rng, int max_digits) {
-  std::uniform_int_distribution<int> len(1, max_digits), dig(0, 9);
-  std::string s;
-  for (int i = len(rng); i > 0; --i) s += static_cast<char>('0' + dig(rng));
-  Integer v(s);
-  return (rng() & 1) ? Integer(0) - v : v;
-}
 
 Poly random_poly(std::mt19937_64& rng, int max_degree, int max_digits) {
   const int d = std::uniform_int_distribution<int>(0, max_degree)(rng);

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "support/bezier_point.hpp"
 #include "support/errors.hpp"
 #include "uniparam/core/error.hpp"
 #include "uniparam/reparam/path.hpp"
@@ -19,26 +20,7 @@ namespace {
 
 Rational R(long a, long b = 1) { return Rational(a, b); }
 
-// The exact point of a (rational) Bezier curve at t, by the Bernstein sum.
-std::vector<Rational> eval(const BezierCurve& b, const Rational& t) {
-  const auto& p = b.points();
-  const auto w = b.weights();
-  const long n = b.degree();
-  std::vector<Rational> num(b.dimension(), Rational(0));
-  Rational den(0);
-  for (long i = 0; i <= n; ++i) {
-    Integer binom;
-    fmpz_bin_uiui(binom.get(), static_cast<unsigned long>(n), static_cast<unsigned long>(i));
-    Rational basis(binom);
-    for (long k = 0; k < i; ++k) basis = basis * t;
-    for (long k = 0; k < n - i; ++k) basis = basis * (Rational(1) - t);
-    basis = basis * w[static_cast<std::size_t>(i)];
-    den = den + basis;
-    for (std::size_t c = 0; c < num.size(); ++c) num[c] = num[c] + basis * p[static_cast<std::size_t>(i)][c];
-  }
-  for (auto& x : num) x = x / den;
-  return num;
-}
+using test_support::bezier_point;
 
 // Cox-de Boor: N_{i,p}(x) for the knot vector u, with the half-open
 // convention on [u_i, u_{i+1}) except that x = `right` (the domain's end)
@@ -98,7 +80,7 @@ TEST(NurbsInput, FullCircleWithRationalWeights) {
   for (const auto& b : path.segments) {
     ASSERT_TRUE(b.is_rational());
     for (const Rational& t : {R(0), R(1, 5), R(1, 3), R(1, 2), R(7, 9), R(1)}) {
-      const auto x = eval(b, t);
+      const auto x = bezier_point(b, t);
       EXPECT_EQ(x[0] * x[0] + x[1] * x[1], R(1)) << t.str();
     }
   }
@@ -115,7 +97,7 @@ TEST(NurbsInput, PythagoreanArcs) {
   ASSERT_EQ(path.segments.size(), 2u);
   for (const auto& b : path.segments)
     for (const Rational& t : {R(1, 4), R(1, 2), R(2, 3)}) {
-      const auto x = eval(b, t);
+      const auto x = bezier_point(b, t);
       EXPECT_EQ(x[0] * x[0] + x[1] * x[1], R(1)) << t.str();
     }
   EXPECT_EQ(path.segments[1].points().back(), (std::vector<Rational>{R(-7, 25), R(24, 25)}));
@@ -169,7 +151,7 @@ TEST(NurbsInput, SegmentsAgreeWithCoxDeBoor) {
       for (const Rational& s : {R(0), R(1, 3), R(1, 2), R(4, 5), R(1)}) {
         // s = 1 is the span's right end: evaluated from the right span by
         // Cox-de Boor, equal by continuity (interior multiplicity <= p).
-        EXPECT_EQ(eval(path.segments[j], s), nurbs_point(P, ww, u, p, a + s * (b - a)))
+        EXPECT_EQ(bezier_point(path.segments[j], s), nurbs_point(P, ww, u, p, a + s * (b - a)))
             << "segment " << j << " s = " << s.str();
       }
     }
@@ -253,26 +235,10 @@ TEST(NurbsInput, MutatedDescriptionsGiveResultsOrErrors) {
       R"([0.2, 1.1], [-0.28, 0.96]], "weights": [1, 0.8, 0.8, 0.64, 0.64]})";
   const std::string alphabet = "0123456789.-e,[]{}\": /";
   std::mt19937_64 rng(2023);
-  int results = 0;
-  for (int it = 0; it < 3000; ++it) {
-    std::string t = seed;
-    for (int k = 1 + static_cast<int>(rng() % 3); k > 0; --k) {
-      const std::size_t at = rng() % (t.size() + 1);
-      switch (rng() % 3) {
-        case 0: if (at < t.size()) t.erase(at, 1); break;
-        case 1: t.insert(at, 1, alphabet[rng() % alphabet.size()]); break;
-        default: if (at < t.size()) t[at] = alphabet[rng() % alphabet.size()];
-      }
-    }
-    try {
-      const PathInput p = parse_nurbs(t);
-      ASSERT_EQ(p.knots.size(), p.segments.size() + 1) << t;
-      ++results;
-    } catch (const Error&) {
-    } catch (const std::exception& e) {
-      ADD_FAILURE() << t << ": " << e.what();
-    }
-  }
+  const int results = test_support::mutated_results({seed}, alphabet, 3, rng, 3000, [](const std::string& t) {
+    const PathInput p = parse_nurbs(t);
+    EXPECT_EQ(p.knots.size(), p.segments.size() + 1) << t;
+  });
   EXPECT_GT(results, 100);
 }
 

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "support/bezier_point.hpp"
 #include "support/errors.hpp"
 #include "uniparam/core/error.hpp"
 #include "uniparam/reparam/path.hpp"
@@ -24,27 +25,7 @@ using Points = std::vector<std::vector<Rational>>;
 
 Rational R(long a, long b = 1) { return Rational(a, b); }
 
-// The exact point of a (rational) Bezier curve at t, by the Bernstein sum.
-std::vector<Rational> eval(const BezierCurve& b, const Rational& t) {
-  const auto& p = b.points();
-  const auto w = b.weights();
-  const long n = b.degree();
-  std::vector<Rational> num(b.dimension(), Rational(0));
-  Rational den(0);
-  for (long i = 0; i <= n; ++i) {
-    Rational basis(1);
-    Integer binom;
-    fmpz_bin_uiui(binom.get(), static_cast<unsigned long>(n), static_cast<unsigned long>(i));
-    basis = Rational(binom);
-    for (long k = 0; k < i; ++k) basis = basis * t;
-    for (long k = 0; k < n - i; ++k) basis = basis * (Rational(1) - t);
-    basis = basis * w[static_cast<std::size_t>(i)];
-    den = den + basis;
-    for (std::size_t c = 0; c < num.size(); ++c) num[c] = num[c] + basis * p[static_cast<std::size_t>(i)][c];
-  }
-  for (auto& x : num) x = x / den;
-  return num;
-}
+using test_support::bezier_point;
 
 // Segments as comparable text (points and weights).
 std::string text_of(const std::vector<PathInput>& paths) {
@@ -348,7 +329,7 @@ TEST(SvgPath, ArcsAreExactConicArcs) {
       ASSERT_EQ(b.degree(), 2);
       ASSERT_TRUE(b.is_rational());
       for (const Rational& t : {R(0), R(1, 7), R(1, 3), R(1, 2), R(5, 6), R(1)}) {
-        const auto x = eval(b, t);
+        const auto x = bezier_point(b, t);
         EXPECT_EQ(e.level(x), R(1)) << t.str();
         if (t == R(1, 2)) EXPECT_EQ(cross(p1, p2, x).sign(), side);
       }
@@ -364,7 +345,7 @@ TEST(SvgPath, ArcRadiiScaledUpAndDegenerate) {
   // lambda = 25/1: rx = 5, ry = 10 about (5, 0)
   Ellipse e{R(5), R(0), R(5), R(10), 0};
   for (const auto& b : p.segments)
-    for (const Rational& t : {R(1, 3), R(1, 2), R(3, 4)}) EXPECT_EQ(e.level(eval(b, t)), R(1));
+    for (const Rational& t : {R(1, 3), R(1, 2), R(3, 4)}) EXPECT_EQ(e.level(bezier_point(b, t)), R(1));
   EXPECT_EQ(p.segments.size(), 2u);
   // Zero radius: the chord.
   p = parse_svg_path("M 0 0 A 0 2 0 0 1 10 5")[0];
@@ -430,37 +411,21 @@ TEST(SvgPath, ParseErrorsWithColumns) {
 // Random edits of valid paths: every outcome is a result or a uniparam::Error
 // (no crash, no other exception); a result keeps the PathInput invariants.
 TEST(SvgPath, MutatedPathsGiveResultsOrErrors) {
-  const std::string seeds[] = {
+  const std::vector<std::string> seeds = {
       "M 0 0 L 10 0 H 20 V 10 C 20 20 30 20 30 10 S 40 0 40 10 Q 50 20 60 10 T 80 10 A 5 5 0 0 1 88 10 Z",
       "m1.5.5l-2-3.25e1zm4 4a10 5 90 1 0 0 16c1,2,3,4,5,6s1 1 2 2q3 3 4 4t5 5h1v1z",
       "M10-5L.5.5A3 4 180 10 2 2"};
   const std::string alphabet = "MmLlHhVvCcSsQqTtZzAa0123456789.-+eE, \t";
   std::mt19937_64 rng(404);
-  int results = 0;
-  for (int it = 0; it < 3000; ++it) {
-    std::string d = seeds[rng() % 3];
-    for (int k = 1 + static_cast<int>(rng() % 4); k > 0; --k) {
-      const std::size_t at = rng() % (d.size() + 1);
-      switch (rng() % 3) {
-        case 0: if (at < d.size()) d.erase(at, 1); break;
-        case 1: d.insert(at, 1, alphabet[rng() % alphabet.size()]); break;
-        default: if (at < d.size()) d[at] = alphabet[rng() % alphabet.size()];
-      }
+  const int results = test_support::mutated_results(seeds, alphabet, 4, rng, 3000, [](const std::string& d) {
+    for (const auto& p : parse_svg_path(d)) {
+      ASSERT_FALSE(p.segments.empty()) << d;
+      ASSERT_EQ(p.knots.size(), p.segments.size() + 1) << d;
+      ASSERT_EQ(p.labels.size(), p.segments.size()) << d;
+      for (std::size_t k = 0; k + 1 < p.segments.size(); ++k)
+        ASSERT_EQ(p.segments[k].points().back(), p.segments[k + 1].points().front()) << d;
     }
-    try {
-      for (const auto& p : parse_svg_path(d)) {
-        ASSERT_FALSE(p.segments.empty()) << d;
-        ASSERT_EQ(p.knots.size(), p.segments.size() + 1) << d;
-        ASSERT_EQ(p.labels.size(), p.segments.size()) << d;
-        for (std::size_t k = 0; k + 1 < p.segments.size(); ++k)
-          ASSERT_EQ(p.segments[k].points().back(), p.segments[k + 1].points().front()) << d;
-      }
-      ++results;
-    } catch (const Error&) {
-    } catch (const std::exception& e) {
-      ADD_FAILURE() << d << ": " << e.what();
-    }
-  }
+  });
   EXPECT_GT(results, 100);
 }
 

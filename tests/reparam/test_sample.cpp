@@ -133,16 +133,8 @@ std::vector<Ball> point_at(const Curve& c, const Ball& t, long prec) {
 
 // sigma_p(t) * r' from Speed::eval_squared.
 Ball speed_times(const Speed& sp, const Ball& t, const Ball& dr, long prec) {
-  acb_t z, w;
-  acb_init(z);
-  acb_init(w);
-  acb_set_arb(z, t.get());
-  sp.eval_squared(w, z, prec);
-  Ball v;
-  arb_sqrtpos(v.get(), acb_realref(w), prec);
+  Ball v = sp.eval_real(t, prec);
   arb_mul(v.get(), v.get(), dr.get(), prec);
-  acb_clear(z);
-  acb_clear(w);
   return v;
 }
 

@@ -27,6 +27,8 @@ class ParseError : public Error {
       : Error("parse error at column " + std::to_string(column) + ": " + detail +
               (expected.empty() ? std::string() : " (expected " + expected + ")")),
         column_(column), expected_(std::move(expected)) {}
+  /// The 1-based column, and what would have been valid there ("" when
+  /// nothing short says it).
   std::size_t column() const noexcept { return column_; }
   const std::string& expected() const noexcept { return expected_; }
 

@@ -73,6 +73,7 @@ class Rational {
   /// -1, 0 or 1.
   int sign() const;
 
+  /// Exact comparisons.
   friend bool operator==(const Rational& a, const Rational& b);
   friend bool operator!=(const Rational& a, const Rational& b) { return !(a == b); }
   friend bool operator<(const Rational& a, const Rational& b);
@@ -193,6 +194,7 @@ class Curve {
   /// Options::max_input_length or a degree above Options::max_degree.
   static Curve nurbs_json(const std::string& json, const Options& o = {});
 
+  /// The number of components n (>= 2) of p : [0, 1] -> R^n.
   std::size_t dimension() const;
   /// Number of segments (1 for a single curve).
   std::size_t segments() const;
@@ -264,6 +266,7 @@ std::vector<Located> exact_samples(const Curve& c, long K, const Options& o = {}
 /// Moebius map, exactly where the data are exact.
 class Nurbs {
  public:
+  /// The degree of every piece, and the number of coordinates of the points.
   long degree() const;
   std::size_t dimension() const;
   /// Every number exact: knots_exact(), points_exact(), weights_exact() set.
@@ -315,6 +318,7 @@ class Reparameterization {
   struct Joint {
     Ball s, t;
   };
+  /// The N + 1 joints (see Joint).
   std::vector<Joint> breakpoints() const;
   /// mu = int_0^1 sigma, u(p) and u(p o r) as certified by the method
   /// (Options::digits).

@@ -46,6 +46,9 @@ class RealAlgebraic {
   ///      (InvalidArgument otherwise).
   RealAlgebraic(const Poly& squarefree, const Rational& lo, const Rational& hi);
 
+  /// True when the number is held exactly as a rational q (interval [q, q]);
+  /// false for a root held by an isolating interval (irrational unless its
+  /// polynomial, of degree >= 2, has a rational root there).
   bool is_rational() const { return lo_ == hi_; }
   /// The exact value; \pre is_rational().
   const Rational& rational() const;

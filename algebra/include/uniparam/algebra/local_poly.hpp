@@ -121,6 +121,7 @@ class LocalPoly {
   /// same cells as eval_double). \pre 0 <= order <= 15 (InvalidArgument).
   void eval_double_taylor(double t, int order, double* b) const;
 
+  /// The polynomial p, and its number of coefficients (degree + 1).
   const Poly& poly() const { return p_; }
   long length() const { return p_.degree() + 1; }
 

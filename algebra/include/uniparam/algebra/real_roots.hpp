@@ -31,6 +31,7 @@ struct IsolatedRoot {
   /// caller that sets it vouches for the contract: it is not checked.
   bool certified = false;
 
+  /// Whether the root is the rational lo = hi exactly.
   bool is_exact() const { return lo == hi; }
 };
 

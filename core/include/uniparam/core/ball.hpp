@@ -17,6 +17,7 @@ namespace uniparam {
 
 class Ball {
  public:
+  /// The exact 0.
   Ball() noexcept { arb_init(v_); }
   /// The exact integer x.
   explicit Ball(long x) noexcept { arb_init(v_); arb_set_si(v_, x); }
@@ -24,17 +25,27 @@ class Ball {
   Ball(double) = delete;  // a double is not an enclosure of the number it was meant to be
   /// An enclosure of x rounded to prec bits (exact when representable).
   Ball(const Rational& x, long prec) noexcept { arb_init(v_); arb_set_fmpq(v_, x.get(), prec); }
+  /// The exact integer x.
   explicit Ball(const Integer& x) noexcept { arb_init(v_); arb_set_fmpz(v_, x.get()); }
+  /// A copy of Arb's ball x (the same midpoint and radius).
   explicit Ball(const arb_t x) noexcept { arb_init(v_); arb_set(v_, x); }
+  /// Copies are exact; a moved-from Ball holds some valid ball (0 after a
+  /// move construction).
   Ball(const Ball& o) noexcept { arb_init(v_); arb_set(v_, o.v_); }
   Ball(Ball&& o) noexcept { arb_init(v_); arb_swap(v_, o.v_); }
   Ball& operator=(const Ball& o) noexcept { arb_set(v_, o.v_); return *this; }
   Ball& operator=(Ball&& o) noexcept { arb_swap(v_, o.v_); return *this; }
   ~Ball() { arb_clear(v_); }
 
+  /// The arb_t itself, for Arb's functions (which keep the ball rule).
   arb_struct* get() noexcept { return v_; }
   const arb_struct* get() const noexcept { return v_; }
 
+  /// Certain predicates (Arb's arb_is_*, arb_contains*): true only when
+  /// proven for every point of the ball, false for "not proven". is_finite:
+  /// mid and rad finite; is_exact: rad = 0; certainly_positive/negative/zero:
+  /// every point is > 0, < 0, = 0; contains(x): x (a rational, or every
+  /// point of the ball x) lies in this ball.
   bool is_finite() const noexcept { return arb_is_finite(v_); }
   bool is_exact() const noexcept { return arb_is_exact(v_); }
   bool certainly_positive() const noexcept { return arb_is_positive(v_); }
@@ -64,8 +75,16 @@ class Ball {
 /// argument that is known to lie in [0, 1].
 void clamp_unit(arb_t x, long prec);
 
-/// The midpoint of b as an exact rational. \pre b finite (checked: DomainError).
+/// The midpoint of b as an exact rational. \pre the midpoint finite
+/// (checked: DomainError).
 Rational mid_rational(const Ball& b);
+/// The radius of b as an exact rational (Arb's radius is a dyadic number,
+/// so nothing is rounded). \pre the radius finite (checked: DomainError).
+Rational rad_rational(const Ball& b);
+
+/// A ball containing the closed interval between lo and hi (either order):
+/// the union of their enclosures at prec bits.
+Ball interval_ball(const Rational& lo, const Rational& hi, long prec);
 
 /// Whether every ball of v meets_digits(digits) (true for an empty v).
 bool all_meet_digits(const std::vector<Ball>& v, long digits);

@@ -12,22 +12,29 @@
 
 namespace uniparam {
 
+/// A polynomial with real ball coefficients (see above).
 class BallPoly {
  public:
+  /// The zero polynomial.
   BallPoly() noexcept { arb_poly_init(v_); }
   /// The exact integer polynomial p (exact balls; no rounding).
   explicit BallPoly(const Poly& p) noexcept { arb_poly_init(v_); arb_poly_set_fmpz_poly(v_, p.get(), ARF_PREC_EXACT); }
+  /// Copies are exact; a moved-from BallPoly holds some valid polynomial.
   BallPoly(const BallPoly& o) noexcept { arb_poly_init(v_); arb_poly_set(v_, o.v_); }
   BallPoly(BallPoly&& o) noexcept { arb_poly_init(v_); arb_poly_swap(v_, o.v_); }
   BallPoly& operator=(const BallPoly& o) noexcept { arb_poly_set(v_, o.v_); return *this; }
   BallPoly& operator=(BallPoly&& o) noexcept { arb_poly_swap(v_, o.v_); return *this; }
   ~BallPoly() { arb_poly_clear(v_); }
 
+  /// The arb_poly_t itself, for Arb's functions.
   arb_poly_struct* get() noexcept { return v_; }
   const arb_poly_struct* get() const noexcept { return v_; }
 
+  /// The number of stored coefficients (degree() + 1; 0 for the zero
+  /// polynomial) and the degree (-1 for the zero polynomial).
   long length() const noexcept { return arb_poly_length(v_); }
   long degree() const noexcept { return arb_poly_degree(v_); }
+  /// The ball coefficient of t^i: exactly 0 for i > degree(). \pre i >= 0.
   Ball coeff(long i) const { Ball c; arb_poly_get_coeff_arb(c.get(), v_, i); return c; }
 
   /// Enclosure of p(x) for real x.

@@ -57,6 +57,7 @@ struct Deadline {
   /// set, check_time_budget() throws Interrupted.
   const std::atomic<bool>* cancel = nullptr;
 };
+/// The calling thread's Deadline (the budget and cancellation flag in force).
 Deadline current_deadline();
 
 /// Installs `d` as the calling thread's deadline for the scope's lifetime

@@ -74,6 +74,7 @@ inline bool in_range(double x, double y) {
   const double m = std::max(std::fabs(x), std::fabs(y));
   return m >= 0x1p-400 && m <= 0x1p400;
 }
+// The disc that means "nothing is known" (every field NaN).
 inline CDisk unknown() { return CDisk{NAN, NAN, NAN}; }
 }  // namespace cdisk_detail
 
@@ -82,8 +83,12 @@ inline bool cdisk_is_finite(const CDisk& a) {
   return std::isfinite(a.re) && std::isfinite(a.im) && std::isfinite(a.rad);
 }
 
+/// -a, exactly.
 inline CDisk cdisk_neg(const CDisk& a) { return CDisk{-a.re, -a.im, a.rad}; }
 
+/// A disc containing u + v for every u in a and v in b (see the file
+/// comment for the rounding bound); not finite when an input is not, or on
+/// overflow.
 inline CDisk cdisk_add(const CDisk& a, const CDisk& b) {
   using namespace cdisk_detail;
   CDisk s{a.re + b.re, a.im + b.im, 0};
@@ -91,6 +96,9 @@ inline CDisk cdisk_add(const CDisk& a, const CDisk& b) {
   return s;
 }
 
+/// A disc containing u v for every u in a and v in b (textbook product, its
+/// rounding bounded as in the file comment); not finite when an input is
+/// not, or on overflow.
 inline CDisk cdisk_mul(const CDisk& a, const CDisk& b) {
   using namespace cdisk_detail;
   CDisk p{a.re * b.re - a.im * b.im, a.re * b.im + a.im * b.re, 0};

@@ -41,6 +41,9 @@ void dd_get_arb(arb_t out, const DDBall& x);
 /// The exact ball [v +/- 0] for a double v.
 DDBall dd_from_double(double v);
 
+/// -a, a + b, a - b, a b: balls containing the exact result for every
+/// choice of points in the input balls (see DDBall); not finite when an
+/// input is not, or beyond the magnitudes kept.
 DDBall dd_neg(const DDBall& a);
 DDBall dd_add(const DDBall& a, const DDBall& b);
 DDBall dd_sub(const DDBall& a, const DDBall& b);

@@ -32,6 +32,7 @@ struct JsonValue {
   std::vector<std::pair<std::string, JsonValue>> members;    ///< Kind::Object, in input order, keys distinct
   std::size_t line = 1, column = 1;  ///< where the value starts in the parsed text (1-based)
 
+  /// Whether the value is of that kind.
   bool is_null() const { return kind == Kind::Null; }
   bool is_bool() const { return kind == Kind::Bool; }
   bool is_number() const { return kind == Kind::Number; }

@@ -15,27 +15,35 @@ namespace uniparam {
 /// An exact integer.
 class Integer {
  public:
+  /// 0, and the exact value of a machine integer.
   Integer() noexcept { fmpz_init(v_); }
   Integer(long x) noexcept { fmpz_init_set_si(v_, x); }  // NOLINT: exact
   Integer(int x) noexcept : Integer(static_cast<long>(x)) {}  // NOLINT: beats the fmpz_t overload for 0
   Integer(double) = delete;  // no silent rounding: parse the decimal text instead
   /// Parses a decimal integer (optional leading '-'); throws InvalidArgument.
   explicit Integer(const std::string& decimal);
+  /// A copy of FLINT's x.
   explicit Integer(const fmpz_t x) noexcept { fmpz_init_set(v_, x); }
+  /// Copies are exact; a moved-from Integer holds some valid integer.
   Integer(const Integer& o) noexcept { fmpz_init_set(v_, o.v_); }
   Integer(Integer&& o) noexcept { fmpz_init(v_); fmpz_swap(v_, o.v_); }
   Integer& operator=(const Integer& o) noexcept { fmpz_set(v_, o.v_); return *this; }
   Integer& operator=(Integer&& o) noexcept { fmpz_swap(v_, o.v_); return *this; }
   ~Integer() { fmpz_clear(v_); }
 
+  /// The fmpz itself, for FLINT's functions.
   fmpz* get() noexcept { return v_; }
   const fmpz* get() const noexcept { return v_; }
 
+  /// -1, 0 or 1.
   int sign() const noexcept { return fmpz_sgn(v_); }
   /// Number of bits of |x| (0 for x = 0).
   long bits() const noexcept { return static_cast<long>(fmpz_bits(v_)); }
+  /// The decimal digits, with a leading '-' when negative.
   std::string str() const;
 
+  /// Exact comparisons and ring operations (never overflow, never throw but
+  /// for memory).
   friend bool operator==(const Integer& a, const Integer& b) noexcept { return fmpz_equal(a.v_, b.v_); }
   friend bool operator!=(const Integer& a, const Integer& b) noexcept { return !(a == b); }
   friend bool operator<(const Integer& a, const Integer& b) noexcept { return fmpz_cmp(a.v_, b.v_) < 0; }
@@ -51,6 +59,7 @@ class Integer {
 /// denominator).
 class Rational {
  public:
+  /// 0, and the exact value of a machine integer.
   Rational() noexcept { fmpq_init(v_); }
   Rational(long x) noexcept { fmpq_init(v_); fmpq_set_si(v_, x, 1); }  // NOLINT: exact
   Rational(int x) noexcept : Rational(static_cast<long>(x)) {}  // NOLINT: beats the fmpq_t overload for 0
@@ -58,7 +67,9 @@ class Rational {
   /// num/den; throws DomainError when den == 0.
   Rational(const Integer& num, const Integer& den);
   Rational(long num, long den);
+  /// The integer x.
   explicit Rational(const Integer& x) noexcept { fmpq_init(v_); fmpz_set(fmpq_numref(v_), x.get()); }
+  /// A copy of FLINT's x. \pre x canonical (as every fmpq FLINT returns).
   explicit Rational(const fmpq_t x) noexcept { fmpq_init(v_); fmpq_set(v_, x); }
   /// Parses "a", "-a", "a/b" or a decimal "1.25", "-0.1", "1e-3" exactly.
   /// Throws ParseError (column within the string) on anything else.
@@ -67,15 +78,20 @@ class Rational {
   /// absolute value) in the closed interval [lo, hi]. \pre lo <= hi
   /// (checked: InvalidArgument).
   static Rational simplest_between(const Rational& lo, const Rational& hi);
+  /// Copies are exact; a moved-from Rational holds some valid rational.
   Rational(const Rational& o) noexcept { fmpq_init(v_); fmpq_set(v_, o.v_); }
   Rational(Rational&& o) noexcept { fmpq_init(v_); fmpq_swap(v_, o.v_); }
   Rational& operator=(const Rational& o) noexcept { fmpq_set(v_, o.v_); return *this; }
   Rational& operator=(Rational&& o) noexcept { fmpq_swap(v_, o.v_); return *this; }
   ~Rational() { fmpq_clear(v_); }
 
+  /// The fmpq itself, for FLINT's functions. \post a caller writing
+  /// through it leaves it canonical (FLINT's fmpq functions do).
   fmpq* get() noexcept { return v_; }
   const fmpq* get() const noexcept { return v_; }
 
+  /// Numerator and (positive) denominator of the canonical form; the sign
+  /// (-1, 0, 1); whether it is 0 or an integer.
   Integer num() const { return Integer(fmpq_numref(v_)); }
   Integer den() const { return Integer(fmpq_denref(v_)); }
   int sign() const noexcept { return fmpq_sgn(v_); }
@@ -84,6 +100,7 @@ class Rational {
   /// "a" or "a/b".
   std::string str() const;
 
+  /// Exact comparisons and field operations (never rounded).
   friend bool operator==(const Rational& a, const Rational& b) noexcept { return fmpq_equal(a.v_, b.v_); }
   friend bool operator!=(const Rational& a, const Rational& b) noexcept { return !(a == b); }
   friend bool operator<(const Rational& a, const Rational& b) noexcept { return fmpq_cmp(a.v_, b.v_) < 0; }
@@ -100,5 +117,13 @@ class Rational {
  private:
   fmpq_t v_;
 };
+
+/// 2^e as an exact rational, for any e (e < 0 gives 1 / 2^-e).
+Rational pow2(long e);
+
+/// The largest multiple of 2^s that is <= x, i.e. floor(x / 2^s) 2^s,
+/// exact; s may be negative (a grid of step 2^s finer than the integers).
+/// The ceiling on the same grid is -grid_floor(-x, s).
+Rational grid_floor(const Rational& x, long s);
 
 }  // namespace uniparam

@@ -13,6 +13,7 @@ namespace uniparam {
 /// A polynomial with integer coefficients. Degree of 0 is -1.
 class Poly {
  public:
+  /// The zero polynomial.
   Poly() noexcept { fmpz_poly_init(v_); }
   /// The constant c.
   Poly(long c) noexcept { fmpz_poly_init(v_); fmpz_poly_set_si(v_, c); }  // NOLINT: exact
@@ -21,24 +22,31 @@ class Poly {
   /// Coefficients from low to high degree.
   explicit Poly(const std::vector<Integer>& coeffs_low_to_high);
   explicit Poly(const std::vector<long>& coeffs_low_to_high);
+  /// A copy of FLINT's p.
   explicit Poly(const fmpz_poly_t p) noexcept { fmpz_poly_init(v_); fmpz_poly_set(v_, p); }
   /// The polynomial t.
   static Poly t();
+  /// Copies are exact; a moved-from Poly holds some valid polynomial.
   Poly(const Poly& o) noexcept { fmpz_poly_init(v_); fmpz_poly_set(v_, o.v_); }
   Poly(Poly&& o) noexcept { fmpz_poly_init(v_); fmpz_poly_swap(v_, o.v_); }
   Poly& operator=(const Poly& o) noexcept { fmpz_poly_set(v_, o.v_); return *this; }
   Poly& operator=(Poly&& o) noexcept { fmpz_poly_swap(v_, o.v_); return *this; }
   ~Poly() { fmpz_poly_clear(v_); }
 
+  /// The fmpz_poly itself, for FLINT's functions.
   fmpz_poly_struct* get() noexcept { return v_; }
   const fmpz_poly_struct* get() const noexcept { return v_; }
 
+  /// The degree (-1 for the zero polynomial); whether it is zero.
   long degree() const noexcept { return fmpz_poly_degree(v_); }
   bool is_zero() const noexcept { return fmpz_poly_is_zero(v_); }
+  /// The coefficient of t^i: 0 for i < 0 or i > degree().
   Integer coeff(long i) const;
+  /// The coefficient of t^degree() (0 for the zero polynomial).
   Integer leading() const { return coeff(degree()); }
   /// Max bits of the coefficients' absolute values.
   long max_bits() const noexcept;
+  /// The exact derivative d/dt.
   Poly derivative() const;
   /// Exact value at a rational point.
   Rational operator()(const Rational& x) const;
@@ -51,6 +59,8 @@ class Poly {
   /// Plain text in t, e.g. "3*t^2 - t + 1".
   std::string str(const char* var = "t") const;
 
+  /// Exact comparisons and ring operations; pow(e) is the e-th power
+  /// (pow(0) = 1).
   friend bool operator==(const Poly& a, const Poly& b) noexcept { return fmpz_poly_equal(a.v_, b.v_); }
   friend bool operator!=(const Poly& a, const Poly& b) noexcept { return !(a == b); }
   friend Poly operator+(const Poly& a, const Poly& b);

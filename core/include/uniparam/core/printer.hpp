@@ -35,17 +35,21 @@ class Json {
  public:
   enum class Kind { Null, Bool, Number, String, Array, Object };
   Json() = default;  ///< null
+  /// true/false; a number; a string (any bytes; escaped when dumped); an
+  /// empty array; an empty object.
   static Json boolean(bool b);
-  static Json number(const std::string& decimal_text);  ///< caller guarantees valid JSON number text
+  static Json number(const std::string& decimal_text);  ///< \pre valid JSON number text (not checked)
   static Json number(long v);
   static Json string(const std::string& s);
   static Json array();
   static Json object();
 
-  /// Appends to an array (precondition: kind() == Array).
+  /// Appends to an array. \pre kind() == Array (checked: InvalidArgument).
   Json& push(Json v);
-  /// Sets a key of an object, replacing an existing one (precondition: Object).
+  /// Sets a key of an object, replacing an existing one.
+  /// \pre kind() == Object (checked: InvalidArgument).
   Json& set(const std::string& key, Json v);
+  /// Which of the six kinds this value is.
   Kind kind() const { return kind_; }
   /// Serialises; indent < 0 gives one line, otherwise pretty-printed.
   std::string dump(int indent = 2) const;

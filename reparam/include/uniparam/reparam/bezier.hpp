@@ -47,6 +47,8 @@ class BezierCurve {
   static BezierCurve parse(const std::string& control, const std::string& weights = "",
                            std::size_t max_points = 20001);
 
+  /// The degree n (n + 1 control points), the dimension of the points,
+  /// whether weights were given (a rational curve), and the control points.
   long degree() const { return static_cast<long>(points_.size()) - 1; }
   std::size_t dimension() const { return points_.front().size(); }
   bool is_rational() const { return !weights_.empty(); }
@@ -82,6 +84,8 @@ class QuadraticSurd {
   /// rational.
   static QuadraticSurd make(const Rational& x, const Rational& y, const Rational& r);
 
+  /// Whether y = 0 (the value is the rational x); x, y and c of x + y sqrt(c)
+  /// (c = 1 when y = 0).
   bool is_rational() const { return y_.is_zero(); }
   const Rational& x() const { return x_; }
   const Rational& y() const { return y_; }
@@ -129,6 +133,8 @@ class QuadraticSurd {
 struct BezierMoments {
   Rational A, B, C;
 };
+/// The moments A, B, C of b (see BezierMoments), exact.
+/// \pre !b.is_rational() (InvalidArgument otherwise).
 BezierMoments bezier_moments(const BezierCurve& b);
 
 /// The optimal bilinear reparameterization of a Bezier curve for the

@@ -44,6 +44,9 @@ class CompositeCurve {
   /// One segment on [0, 1].
   explicit CompositeCurve(Curve c);
 
+  /// The number of segments; segment j (std::out_of_range for j >= size());
+  /// all segments; the knots (size() + 1, from 0 to 1); segment j's label
+  /// (std::out_of_range as segment()); the dimension.
   std::size_t size() const { return segments_.size(); }
   const Curve& segment(std::size_t j) const { return segments_.at(j); }
   const std::vector<Curve>& segments() const { return segments_; }

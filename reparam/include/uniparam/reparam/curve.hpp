@@ -44,6 +44,7 @@ class Curve {
   /// Parses "(x(t), y(t), ...)" (see parser.hpp) and checks as above.
   static Curve parse(const std::string& text, const ParseLimits& limits = {});
 
+  /// The number of components (>= 2), and the components x_i(t).
   std::size_t dimension() const { return components_.size(); }
   const std::vector<RatFunc>& components() const { return components_; }
   /// Numerators of p' over the common denominator W().

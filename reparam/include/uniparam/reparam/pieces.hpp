@@ -68,6 +68,16 @@ struct PieceIntegrals {
   long square_bits = 0;
 };
 
+/// The integrals above of s over the piece [a, b].
+/// \pre a < b consecutive breakpoints of s (critical_breakpoints or
+///      mark_zeros: no zero of sigma inside, the multiplicities of the
+///      zeros at the ends marked).
+/// \post every ball contains its exact value, the integrals computed to the
+///       relative goal 2^-rel_goal_bits; an identically zero speed gives 0
+///       and alpha* = 1/2.
+/// \throws DomainError when both ends are zeros of sigma; BudgetExceeded
+///         when the goal cannot be met within max_prec bits or the
+///         thread's TimeBudget.
 PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakpoint& b, long rel_goal_bits,
                                long max_prec);
 

@@ -38,6 +38,7 @@ class Reparameterization {
   const RadicalResult* radical_result() const;
   const MoebiusResult* moebius_result() const;
 
+  /// The number N of pieces (>= 1).
   std::size_t pieces() const { return t_.size() - 1; }
   /// Joints in s (balls, s_0 = 0 and s_N = 1 exactly) and their images t_i.
   const std::vector<Ball>& joints_s() const { return s_; }

@@ -79,6 +79,7 @@ class Speed {
   ///         Y_i, so it is positive on the whole real line.
   Speed(const Curve& c, SpeedKind kind);
 
+  /// The speed given at construction.
   SpeedKind kind() const { return kind_; }
   /// sigma^2 as a canonical rational function (exact). Computed on the
   /// first call (thread-safe; copies share it).
@@ -134,6 +135,11 @@ class Speed {
   /// p'(z) . p'(z) != 0).
   /// double_word as in eval.
   void eval_squared(acb_t out, const acb_t z, long prec, bool double_word = true) const;
+  /// A ball containing sigma(t) for every t in the real ball t (in [0, 1]
+  /// or wherever sigma^2 is defined): the square root of eval_squared's
+  /// real part, its part below 0 cut off (sigma^2 >= 0). Indeterminate
+  /// (not finite) where eval_squared is, e.g. at a pole; never throws.
+  Ball eval_real(const Ball& t, long prec) const;
   /// UNCERTIFIED: sigma(t)^2 in IEEE double from the evaluation curve's
   /// components' local expansions (LocalPoly::eval_double). For
   /// floating-point search only (the optimiser's breakpoints); NaN or inf
