@@ -118,9 +118,9 @@ struct Job {
   /// that is descheduled for long). The items the others could take: those
   /// not started, less the one the caller starts next when `between` (it
   /// is between two items, and takes the next one itself before a woken
-  /// thread could). Items of the same kind cost about the same; where they
-  /// do not, the estimate errs either way by what the job's tail differs
-  /// from its head, never by more than the job's length.
+  /// thread could). Items of one job cost about the same; where its tail
+  /// costs more than its head, the estimate is low and the job may finish
+  /// alone, which costs at most what one thread costs.
   bool due(std::int64_t now_wall, bool between) const;
 };
 
@@ -152,7 +152,9 @@ bool Job::due(std::int64_t now_wall, bool between) const {
   if (taken == 0 || taken >= n) return false;  // nothing measured yet, or nothing left
   const std::size_t open = n - taken - (between ? 1 : 0);
   if (open == 0) return false;  // the caller's own next item is the last: threads cannot help
-  const auto left = [&](std::int64_t spent) { return static_cast<std::int64_t>(open) * (spent / static_cast<std::int64_t>(taken)); };
+  const auto left = [&](std::int64_t spent) {  // the work left for the others, at `spent` so far
+    return static_cast<std::int64_t>(open) * (spent / static_cast<std::int64_t>(taken));
+  };
   const std::int64_t wall = now_wall - start_wall;
   if (wall >= kInlineWall && left(wall) >= kInlineWall) return true;
   if (wall < kInlineCpu) return false;  // CPU time <= wall time: no system call
@@ -279,8 +281,8 @@ class Pool {
 /// One thread that wakes the pool threads for the jobs that are due while
 /// their calling thread is inside an item (e.g. an operation's two long
 /// steps side by side): it looks every kTick while any pool has a published
-/// job without a prepare step, and blocks otherwise (a parallel_for that finds it blocked wakes
-/// it). It never runs items itself. Started by the first job found long
+/// job without a prepare step, and blocks otherwise (a parallel_for that
+/// finds it blocked wakes it). It never runs items itself. Started by the first job found long
 /// (start()), so a process that only runs small jobs has no thread besides
 /// its own (the allocator's single-thread fast paths stay on, and nothing
 /// wakes up); the calling thread dispatches between items by itself.
