@@ -87,9 +87,6 @@ struct Job {
   clockid_t caller_clock = CLOCK_THREAD_CPUTIME_ID;
   std::int64_t start_cpu = 0, start_wall = 0;
   std::atomic<bool> dispatched{false};  // pool threads may join (written under the pool's mutex)
-  // The dispatcher found the job due and it has a prepare step: the caller
-  // runs it between two items and dispatches then.
-  std::atomic<bool> requested{false};
 
   /// Worker `worker` takes items until none is left or one failed. Worker
   /// 0 calls between_items() after each of its items (may be empty).
@@ -113,17 +110,31 @@ struct Job {
     work(worker, [] {});
   }
 
-  /// Long enough to pay for threads: the caller spent kInlineCpu of CPU
-  /// on it, or kInlineWall went by (a task that blocks, or a caller that is
-  /// descheduled for long), with items left.
-  bool due(std::int64_t now_wall) const;
+  /// Worth waking the pool threads for: what is left of the job is long
+  /// enough to pay for them. The caller has spent kInlineCpu of CPU time on
+  /// it, and the items the other workers could take, estimated at the
+  /// caller's CPU time per item so far, add up to kInlineCpu more; or the
+  /// same with wall time and kInlineWall (a task that blocks, or a caller
+  /// that is descheduled for long). The items the others could take: those
+  /// not started, less the one the caller starts next when `between` (it
+  /// is between two items, and takes the next one itself before a woken
+  /// thread could). Items of one job cost about the same; where its tail
+  /// costs more than its head, the estimate is low and the job may finish
+  /// alone, which costs at most what one thread costs.
+  bool due(std::int64_t now_wall, bool between) const;
 };
 
 /// The work a job does on the calling thread alone before the pool threads
-/// are woken. Waking a blocked thread costs a futex call and a reschedule
-/// (tens of microseconds on an idle VM, a time slice on a busy machine),
-/// more than a whole job at low degree; a job that ends within this much
-/// CPU time never touches another thread, so it costs what it costs on one.
+/// are woken, and the least work that must be left for them then. Waking a
+/// blocked thread costs a futex call and a reschedule (tens of microseconds
+/// on an idle VM, a time slice on a busy machine), a prepare step's copies
+/// cost more, the woken thread's copies start with cold caches, and the
+/// caller waits at the end for the item the last woken thread took: more
+/// than a whole job at low degree, and more than a job's last few items
+/// save. A job that ends within this much CPU time never touches another
+/// thread, so it costs what it costs on one; one is dispatched only when
+/// at least this much is estimated to be left for the others, so that the
+/// time they save (half of it on two workers) pays for them.
 /// CPU time, not wall time: a caller descheduled on a busy machine has not
 /// done more work, and threads would not make it faster.
 constexpr std::int64_t kInlineCpu = 500000;      // ns
@@ -133,12 +144,22 @@ constexpr std::int64_t kInlineWall = 100000000;  // ns
 /// threads; each look is a wake-up of the dispatcher (microseconds).
 constexpr std::chrono::microseconds kTick{1000};
 
-bool Job::due(std::int64_t now_wall) const {
-  if (next.load() >= n) return false;  // every item taken: threads cannot help
+bool Job::due(std::int64_t now_wall, bool between) const {
+  // Before the dispatch only the caller takes items: `taken` items were
+  // started by it, all done when it is between two, all but the last
+  // otherwise (the time per item then is too low, if anything).
+  const std::size_t taken = next.load();
+  if (taken == 0 || taken >= n) return false;  // nothing measured yet, or nothing left
+  const std::size_t open = n - taken - (between ? 1 : 0);
+  if (open == 0) return false;  // the caller's own next item is the last: threads cannot help
+  const auto left = [&](std::int64_t spent) {  // the work left for the others, at `spent` so far
+    return static_cast<std::int64_t>(open) * (spent / static_cast<std::int64_t>(taken));
+  };
   const std::int64_t wall = now_wall - start_wall;
-  if (wall >= kInlineWall) return true;
+  if (wall >= kInlineWall && left(wall) >= kInlineWall) return true;
   if (wall < kInlineCpu) return false;  // CPU time <= wall time: no system call
-  return cpu_ns(caller_clock) - start_cpu >= kInlineCpu;
+  const std::int64_t cpu = cpu_ns(caller_clock) - start_cpu;
+  return cpu >= kInlineCpu && left(cpu) >= kInlineCpu;
 }
 
 /// The number of pools: a parallel_for made inside a task of another (an
@@ -171,24 +192,22 @@ class Pool {
   /// threads 1..workers-1; false (nothing run) when the pool is in use.
   bool run(Job& job);
 
-  /// Dispatches the current job if it is due (the dispatcher's tick); true
-  /// when the pool has a job that is not yet dispatched.
+  /// Dispatches the current job if it is due (the dispatcher's tick; the
+  /// caller is taken to be inside an item); true when the pool has a job
+  /// that is not yet dispatched and has no prepare step (one with a prepare
+  /// step is the caller's to dispatch, between two items).
   bool poll(std::int64_t now_wall) {
     std::unique_lock<std::mutex> lock(m_);
-    if (!job_ || job_->dispatched || job_->requested.load()) return false;
-    if (!job_->due(now_wall)) return true;
-    if (job_->prepare) {  // the caller prepares and dispatches (Pool::run)
-      job_->requested.store(true);
-      waiting_.store(false);
-      return false;
-    }
+    if (!job_ || job_->dispatched || job_->prepare) return false;
+    if (!job_->due(now_wall, false)) return true;
     dispatch_locked();
     lock.unlock();
     wake_.notify_all();
     return false;
   }
 
-  /// A job is published and not yet dispatched (read without the lock).
+  /// A job without a prepare step is published and not yet dispatched
+  /// (read without the lock): the dispatcher has something to look at.
   bool waiting() const { return waiting_.load(); }
 
   ~Pool() {
@@ -249,7 +268,7 @@ class Pool {
 
   int level_;                        // this pool's index (Pool::instance)
   std::atomic<bool> in_use_{false};  // a parallel_for is using the pool
-  std::atomic<bool> waiting_{false};  // job_ set and not dispatched
+  std::atomic<bool> waiting_{false};  // job_ set, not dispatched, without a prepare step
   std::mutex m_;  // guards everything below
   std::condition_variable wake_, done_;
   std::vector<std::thread> threads_;
@@ -262,8 +281,8 @@ class Pool {
 /// One thread that wakes the pool threads for the jobs that are due while
 /// their calling thread is inside an item (e.g. an operation's two long
 /// steps side by side): it looks every kTick while any pool has a published
-/// job, and blocks otherwise (a parallel_for that finds it blocked wakes
-/// it). It never runs items itself. Started by the first job found long
+/// job without a prepare step, and blocks otherwise (a parallel_for that
+/// finds it blocked wakes it). It never runs items itself. Started by the first job found long
 /// (start()), so a process that only runs small jobs has no thread besides
 /// its own (the allocator's single-thread fast paths stay on, and nothing
 /// wakes up); the calling thread dispatches between items by itself.
@@ -346,18 +365,17 @@ bool Pool::run(Job& job) {
   if (pthread_getcpuclockid(pthread_self(), &job.caller_clock) != 0) job.caller_clock = CLOCK_THREAD_CPUTIME_ID;
   job.start_cpu = cpu_ns(job.caller_clock);
   job.start_wall = wall_ns();
+  const bool for_dispatcher = !job.prepare;  // a prepare step runs on the caller
   {
     std::lock_guard<std::mutex> lock(m_);
     job_ = &job;
-    waiting_.store(true);
+    waiting_.store(for_dispatcher);
   }
-  if (Dispatcher* d = Dispatcher::started()) d->arm();
+  if (Dispatcher* d = Dispatcher::started(); d && for_dispatcher) d->arm();
   // Between its items the caller dispatches a job that is due itself (the
   // dispatcher may not run yet, and cannot run a prepare step).
   job.work(0, [&] {
-    if (job.dispatched.load() || job.next.load() >= job.n) return;
-    if (!job.requested.load() && !job.due(wall_ns())) return;
-    job.requested.store(false);
+    if (job.dispatched.load() || !job.due(wall_ns(), true)) return;
     Dispatcher::start();
     if (job.prepare) job.prepare(job.workers);  // no task runs now: the caller is between items
     {

@@ -38,15 +38,20 @@ class ScopedWorkerCount {
 /// min(workers, n), so a task may use per-worker state indexed by `worker`
 /// without locking. Items are handed out in increasing order as workers
 /// become free.
-/// Small jobs run on the calling thread alone: the call publishes the job
-/// and starts on it; the other workers are woken only once the calling
-/// thread has spent 0.5 ms of CPU time on it, or 0.1 s has gone by, with
-/// items left: by the calling thread between two items, or during one by a
-/// dispatcher thread that looks every millisecond while jobs run (started
-/// by the first job found long: until then a job can only be dispatched
-/// between items, and a process of small jobs starts no thread at all), so a job shorter than that costs what it costs on one thread
-/// and never waits for another. Waiting threads block on a condition
-/// variable (no spinning).
+/// Small jobs, and the small ends of long ones, run on the calling thread
+/// alone: the call publishes the job and starts on it; the other workers
+/// are woken only once the calling thread has spent 0.5 ms of CPU time on
+/// it and the items the others could take (those not started, less the
+/// one the calling thread takes next when it is between two) are estimated,
+/// at its CPU time per item so far, at 0.5 ms or more (the same with 0.1 s
+/// of wall time, for tasks that block): by the calling thread between two
+/// items, or during one by a dispatcher thread that looks every
+/// millisecond while jobs without a prepare step run (started by the first
+/// job found long: until then a job can only be dispatched between items,
+/// and a process of small jobs starts no thread at all). So a job shorter
+/// than that, or one found long only near its end, costs what it costs on
+/// one thread and never waits for another. Waiting threads block on a
+/// condition variable (no spinning).
 /// Worker threads inherit the calling thread's time budget (the same
 /// deadline, see budget.hpp). Workers 1.. are persistent pool threads,
 /// started when first needed and kept until the process exits (when they
@@ -62,8 +67,8 @@ class ScopedWorkerCount {
 /// thread, between two of its items (no task is running then), right
 /// before workers 1..k-1 (k = min(workers, n)) are woken, and never for a
 /// job that stays on the calling thread, so a small job does not pay for
-/// copies it does not use. A job with a prepare step is dispatched when the
-/// calling thread finishes the item it is running once the job is due.
+/// copies it does not use. A job with a prepare step is dispatched only by
+/// the calling thread, between two items, when it finds the job due.
 /// An exception from prepare is treated as one from a task.
 /// \post all items ran, or the first exception thrown by a task is rethrown
 ///       here after every worker has stopped (items not yet started are

@@ -1,0 +1,121 @@
+// parallel_for wakes the pool threads only for work that can pay for them:
+// a job found long near its end, with too little left for another worker
+// (the last item, which the calling thread takes itself, or a few short
+// ones), finishes on the calling thread, without its prepare step; a job
+// with much left is still dispatched.
+#include <gtest/gtest.h>
+
+#include <time.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+
+#include "uniparam/core/parallel.hpp"
+
+namespace uniparam {
+namespace {
+
+std::int64_t thread_cpu_ns() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<std::int64_t>(ts.tv_sec) * 1000000000 + ts.tv_nsec;
+}
+
+// Busy work for about `ns` of this thread's CPU time.
+void burn(std::int64_t ns) {
+  const std::int64_t until = thread_cpu_ns() + ns;
+  volatile std::uint64_t x = 1;
+  while (thread_cpu_ns() < until)
+    for (int i = 0; i < 100; ++i) x = x * 6364136223846793005ULL + 1;
+}
+
+struct Outcome {
+  std::uint64_t dispatches = 0;  // jobs whose pool threads were woken
+  int prepares = 0;              // calls of the prepare step
+  long elsewhere = 0;            // items run by workers other than 0
+  double wall = 0;               // seconds
+};
+
+// One parallel_for of n items on 2 workers, item i burning cost(i) ns of
+// CPU time, with a prepare step that only counts its calls.
+template <class Cost>
+Outcome run_job(std::size_t n, Cost cost) {
+  Outcome out;
+  std::atomic<long> elsewhere{0};
+  const std::uint64_t before = parallel_dispatches();
+  const auto t0 = std::chrono::steady_clock::now();
+  parallel_for(
+      n, 2,
+      [&](std::size_t w, std::size_t i) {
+        if (w != 0) ++elsewhere;
+        burn(cost(i));
+      },
+      [&](std::size_t) { ++out.prepares; });
+  out.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  out.dispatches = parallel_dispatches() - before;
+  out.elsewhere = elsewhere.load();
+  return out;
+}
+
+// Rounds that took more than this wall time are not judged: on a machine
+// busy enough to deschedule the caller for that long, a job may be
+// dispatched on wall time (0.1 s) instead of CPU time.
+constexpr double kJudgedWall = 0.05;
+
+// 8 items of 0.1 ms: the caller has spent 0.5 ms after 5 of them, when 3
+// are left, the next of which it takes itself: about 0.2 ms for another
+// worker, less than waking it costs. The whole job stays on the caller.
+TEST(ParallelPolicy, AShortTailIsNotDispatched) {
+  int judged = 0;
+  for (int round = 0; round < 20; ++round) {
+    const Outcome o = run_job(8, [](std::size_t) { return 100000; });
+    if (o.wall > kJudgedWall) continue;
+    ++judged;
+    EXPECT_EQ(o.dispatches, 0u) << "round " << round;
+    EXPECT_EQ(o.prepares, 0) << "round " << round;
+    EXPECT_EQ(o.elsewhere, 0) << "round " << round;
+  }
+  EXPECT_GE(judged, 15);
+}
+
+// Two items of 1 ms (an operation's parts, each copied for a woken worker
+// by the prepare step): after the first the job is long, but the caller
+// takes the second itself; copying for a worker that would find nothing
+// left is waste.
+TEST(ParallelPolicy, TheLastItemIsNotDispatched) {
+  int judged = 0;
+  for (int round = 0; round < 20; ++round) {
+    const Outcome o = run_job(2, [](std::size_t) { return 1000000; });
+    if (o.wall > kJudgedWall) continue;
+    ++judged;
+    EXPECT_EQ(o.dispatches, 0u) << "round " << round;
+    EXPECT_EQ(o.prepares, 0) << "round " << round;
+  }
+  EXPECT_GE(judged, 15);
+}
+
+// Cheap items first, then an expensive last one: when the caller has
+// spent 0.5 ms, only the item it takes next is left.
+TEST(ParallelPolicy, AJobFoundLongAtItsLastItemIsNotDispatched) {
+  int judged = 0;
+  for (int round = 0; round < 20; ++round) {
+    const Outcome o = run_job(10, [](std::size_t i) { return i < 9 ? 60000 : 1000000; });
+    if (o.wall > kJudgedWall) continue;
+    ++judged;
+    EXPECT_EQ(o.dispatches, 0u) << "round " << round;
+    EXPECT_EQ(o.prepares, 0) << "round " << round;
+  }
+  EXPECT_GE(judged, 15);
+}
+
+// 30 items of 0.1 ms: after 0.5 ms, 2.4 ms are left: the job is
+// dispatched once, with its prepare step run once.
+TEST(ParallelPolicy, ALongTailIsDispatched) {
+  const Outcome o = run_job(30, [](std::size_t) { return 100000; });
+  EXPECT_EQ(o.dispatches, 1u);
+  EXPECT_EQ(o.prepares, 1);
+}
+
+}  // namespace
+}  // namespace uniparam
