@@ -8,6 +8,7 @@
 #include "uniparam/core/budget.hpp"
 #include "uniparam/core/error.hpp"
 #include "moebius_detail.hpp"
+#include "moebius_map.hpp"
 
 namespace uniparam {
 
@@ -23,40 +24,25 @@ void piece_eval(Ball* t, Ball* dt, const MoebiusResult& r, std::size_t i, const 
   arb_sub(st.get(), s.get(), r.S[i].get(), prec);
   arb_div(st.get(), st.get(), ds.get(), prec);
   clamp_unit(st.get(), prec);  // only the part of s inside the piece maps through it
-  // At an exact end (s equal to an exact s_i or s_{i+1}, as s = 0 and s = 1
-  // are) the local coordinate is exactly 0 or 1, and t exactly t_i or t_{i+1}:
-  // the quotient of the correlated balls above would keep their radii.
-  const bool at_lo = s.is_exact() && r.S[i].is_exact() && arb_equal(s.get(), r.S[i].get());
-  const bool at_hi = s.is_exact() && r.S[i + 1].is_exact() && arb_equal(s.get(), r.S[i + 1].get());
-  if (at_lo) arb_zero(st.get());
-  else if (at_hi) arb_one(st.get());
+  // an exact end (s = 0, s = 1) has the local coordinate exactly 0 or 1,
+  // and maps to t_i or t_{i+1} exactly
+  detail::pin_exact_end(st.get(), s, r.S[i], r.S[i + 1]);
   arb_sub(h.get(), tb.get(), ta.get(), prec);
-  const Ball& a = r.alpha[i];
-  Ball oma, den, num, q;
-  arb_sub_si(oma.get(), a.get(), 1, prec);
-  arb_neg(oma.get(), oma.get());  // 1 - alpha
-  // den = (1 - alpha) s~ + alpha (1 - s~) = alpha + (1 - 2 alpha) s~
-  Ball c12;
-  arb_mul_2exp_si(c12.get(), a.get(), 1);
-  arb_sub_si(c12.get(), c12.get(), 1, prec);
-  arb_neg(c12.get(), c12.get());
-  arb_mul(den.get(), c12.get(), st.get(), prec);
-  arb_add(den.get(), den.get(), a.get(), prec);
-  if (t && (at_lo || at_hi)) {
-    *t = at_lo ? ta : tb;
-  } else if (t) {
-    arb_mul(num.get(), oma.get(), st.get(), prec);
-    arb_div(q.get(), num.get(), den.get(), prec);
-    arb_mul(q.get(), q.get(), h.get(), prec);
-    arb_add(t->get(), ta.get(), q.get(), prec);
+  Ball x;
+  detail::moebius_alpha_map(detail::BallMapArith{prec}, t ? x.get() : nullptr, dt ? dt->get() : nullptr, st.get(),
+                            r.alpha[i].get());
+  if (t) {
+    if (arb_is_zero(st.get())) *t = ta;
+    else if (arb_is_one(st.get())) *t = tb;
+    else {
+      arb_mul(x.get(), x.get(), h.get(), prec);
+      arb_add(t->get(), ta.get(), x.get(), prec);
+    }
   }
   if (dt) {
-    // dt/ds = (h / ds) alpha (1 - alpha) / den^2
-    arb_mul(q.get(), a.get(), oma.get(), prec);
-    arb_div(q.get(), q.get(), den.get(), prec);
-    arb_div(q.get(), q.get(), den.get(), prec);
-    arb_mul(q.get(), q.get(), h.get(), prec);
-    arb_div(dt->get(), q.get(), ds.get(), prec);
+    // dt/ds = (h / ds) dx/ds~
+    arb_mul(dt->get(), dt->get(), h.get(), prec);
+    arb_div(dt->get(), dt->get(), ds.get(), prec);
   }
 }
 

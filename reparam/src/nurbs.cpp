@@ -10,6 +10,7 @@
 #include "uniparam/core/error.hpp"
 #include "uniparam/core/poly.hpp"
 #include "uniparam/core/ratfunc.hpp"
+#include "moebius_map.hpp"
 
 namespace uniparam {
 
@@ -262,8 +263,9 @@ Rational moebius_exact(const MoebiusResult& r, std::size_t i, const Rational& s)
   const Rational& tb = r.T_exact[i + 1];
   const Rational& a = r.alpha_exact[i];
   const Rational u = (s - r.S_exact[i]) / (r.S_exact[i + 1] - r.S_exact[i]);
-  const Rational den = a + (Rational(1) - a - a) * u;
-  return ta + (tb - ta) * (Rational(1) - a) * u / den;
+  Rational x;
+  detail::moebius_alpha_map(detail::RationalMapArith{}, &x, nullptr, &u, &a);
+  return ta + (tb - ta) * x;
 }
 
 void fill_balls_from_exact(Nurbs& n, long prec) {
@@ -487,15 +489,11 @@ Nurbs bezier_nurbs(const BezierCurve& b, const BezierResult& r, long prec) {
       throw BudgetExceeded("the signs of the NURBS weights could not be certified at the working precision: raise --digits");
   // the check against p(r(s)), r(s) = (1 - a) s / ((1 - a) s + a (1 - s))
   const Curve c = b.to_curve();
-  const BField f{prec};
   const Ball a = r.exact ? r.alpha_exact->to_ball(prec) : r.alpha;
   for (long q = 0; q <= 8; ++q) {
-    const Ball s = f.q(Rational(q, 8));
-    const Ball oma = f.sub(f.q(Rational(1)), a);
-    const Ball num = f.mul(oma, s);
-    Ball t = f.div(num, f.add(num, f.mul(a, f.sub(f.q(Rational(1)), s))));
-    if (q == 0) t = f.q(Rational(0));
-    if (q == 8) t = f.q(Rational(1));
+    const Ball s(Rational(q, 8), prec);
+    Ball t;
+    detail::moebius_alpha_map(detail::BallMapArith{prec}, t.get(), nullptr, s.get(), a.get());
     clamp_unit(t.get(), prec);
     if (!overlaps(nurbs_eval(n, s, prec), c.eval(t, prec))) internal("at s = " + Rational(q, 8).str());
   }
