@@ -69,10 +69,10 @@ void unite(Ball& acc, bool& any, const Ball& v, long prec) {
 
 }  // namespace
 
-Ball moebius_eval_r(const MoebiusResult& r, const Ball& s, long prec) {
+Ball eval_r(const MoebiusResult& r, const Ball& s, long prec) {
   Ball out;
   bool any = false;
-  for_pieces_at(r, s, "moebius_eval_r", [&](std::size_t i) {
+  for_pieces_at(r, s, "eval_r", [&](std::size_t i) {
     Ball t;
     piece_eval(&t, nullptr, r, i, s, prec);
     unite(out, any, t, prec);
@@ -80,10 +80,10 @@ Ball moebius_eval_r(const MoebiusResult& r, const Ball& s, long prec) {
   return out;
 }
 
-Ball moebius_eval_dr(const MoebiusResult& r, const Ball& s, long prec) {
+Ball eval_dr(const MoebiusResult& r, const Ball& s, long prec) {
   Ball out;
   bool any = false;
-  for_pieces_at(r, s, "moebius_eval_dr", [&](std::size_t i) {
+  for_pieces_at(r, s, "eval_dr", [&](std::size_t i) {
     Ball d;
     piece_eval(nullptr, &d, r, i, s, prec);
     unite(out, any, d, prec);
@@ -91,10 +91,10 @@ Ball moebius_eval_dr(const MoebiusResult& r, const Ball& s, long prec) {
   return out;
 }
 
-Ball moebius_eval_speed(const MoebiusResult& r, const Speed& sp, const Ball& s, long prec) {
+Ball eval_speed(const MoebiusResult& r, const Speed& sp, const Ball& s, long prec) {
   Ball out;
   bool any = false;
-  for_pieces_at(r, s, "moebius_eval_speed", [&](std::size_t i) {
+  for_pieces_at(r, s, "eval_speed", [&](std::size_t i) {
     Ball t, d, v;
     piece_eval(&t, &d, r, i, s, prec);
     acb_t z, w;
@@ -111,10 +111,10 @@ Ball moebius_eval_speed(const MoebiusResult& r, const Speed& sp, const Ball& s, 
   return out;
 }
 
-std::vector<Ball> moebius_eval_point(const Curve& c, const MoebiusResult& r, const Ball& s, long prec) {
+std::vector<Ball> eval_point(const Curve& c, const MoebiusResult& r, const Ball& s, long prec) {
   // p(r(s)) = q(r_q(s)) for a balanced map, without m's extreme parameters
-  if (r.balanced) return moebius_eval_point(r.balanced->q, *r.on_balanced, s, prec);
-  const Ball t = moebius_eval_r(r, s, prec);
+  if (r.balanced) return eval_point(r.balanced->q, *r.on_balanced, s, prec);
+  const Ball t = eval_r(r, s, prec);
   return c.eval(t, prec);
 }
 
@@ -179,17 +179,17 @@ MoebiusResult compose_balanced(const std::shared_ptr<const BalancedCurve>& bal, 
     I.alpha = compose_alpha(rq.integrals[i].alpha, k, prec);
     I.square = Ball();
     I.square_bits = 0;
-    if (rq.rational) {
-      const Rational kq = balance_local_k(*bal, rq.T_exact[i], rq.T_exact[i + 1]);
-      const Rational& a = rq.alpha_exact[i];
-      r.alpha_exact[i] = Rational(1) / (Rational(1) + kq * (Rational(1) - a) / a);
-      r.alpha[i] = Ball(r.alpha_exact[i], prec);
+    if (rq.exact.has_value()) {
+      const Rational kq = balance_local_k(*bal, rq.exact->T[i], rq.exact->T[i + 1]);
+      const Rational& a = rq.exact->alpha[i];
+      r.exact->alpha[i] = Rational(1) / (Rational(1) + kq * (Rational(1) - a) / a);
+      r.alpha[i] = Ball(r.exact->alpha[i], prec);
     } else {
       r.alpha[i] = compose_alpha(rq.alpha[i], k, prec);
     }
   }
-  if (rq.rational)
-    for (std::size_t i = 0; i <= N; ++i) r.T_exact[i] = r.T[i].t.rational();
+  if (rq.exact.has_value())
+    for (std::size_t i = 0; i <= N; ++i) r.exact->T[i] = r.T[i].t.rational();
   r.u_before = u_before;
   r.balanced = bal;
   r.on_balanced = std::make_shared<const MoebiusResult>(rq);

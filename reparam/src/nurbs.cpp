@@ -259,10 +259,10 @@ std::vector<typename F::T> eval_segment(const F& f, const std::vector<std::vecto
 
 // t = r(s) on Moebius piece i, exactly.
 Rational moebius_exact(const MoebiusResult& r, std::size_t i, const Rational& s) {
-  const Rational& ta = r.T_exact[i];
-  const Rational& tb = r.T_exact[i + 1];
-  const Rational& a = r.alpha_exact[i];
-  const Rational u = (s - r.S_exact[i]) / (r.S_exact[i + 1] - r.S_exact[i]);
+  const Rational& ta = r.exact->T[i];
+  const Rational& tb = r.exact->T[i + 1];
+  const Rational& a = r.exact->alpha[i];
+  const Rational u = (s - r.exact->S[i]) / (r.exact->S[i + 1] - r.exact->S[i]);
   Rational x;
   detail::moebius_alpha_map(detail::RationalMapArith{}, &x, nullptr, &u, &a);
   return ta + (tb - ta) * x;
@@ -349,13 +349,13 @@ Nurbs moebius_nurbs(const Curve& c, const MoebiusResult& r, long prec) {
   n.degree = d;
   n.dimension = c.dimension();
   const std::size_t N = r.pieces();
-  if (r.rational) {
+  if (r.exact.has_value()) {
     const QField f;
     std::vector<Segment<Rational>> segs;
     for (std::size_t i = 0; i < N; ++i) {
       check_time_budget();
-      Segment<Rational> s{r.S_exact[i], r.S_exact[i + 1],
-                          piece_control(f, H, d, r.T_exact[i], r.T_exact[i + 1], r.alpha_exact[i]), i};
+      Segment<Rational> s{r.exact->S[i], r.exact->S[i + 1],
+                          piece_control(f, H, d, r.exact->T[i], r.exact->T[i + 1], r.exact->alpha[i]), i};
       positive_segments(f, s, segs, n.subdivided);
     }
     assemble(f, segs, d, n.knots_exact, n.points_exact, n.weights_exact);
@@ -378,7 +378,7 @@ Nurbs moebius_nurbs(const Curve& c, const MoebiusResult& r, long prec) {
   assemble(f, segs, d, n.knots, n.points, n.weights);
   n.kind = Nurbs::Kind::Balls;
   n.segments = segs.size();
-  check_ball_nurbs(f, n, segs, prec, [&](const Ball& sv) { return moebius_eval_point(c, r, sv, prec); });
+  check_ball_nurbs(f, n, segs, prec, [&](const Ball& sv) { return eval_point(c, r, sv, prec); });
   return n;
 }
 
@@ -395,7 +395,7 @@ Nurbs composite_nurbs(const CompositeCurve& c, const CompositeMap& m, long prec)
       throw InvalidArgument(c.label(j) + ": its map is not a Moebius map, so p o r is not a NURBS curve there");
     parts.push_back(r->balanced ? r->on_balanced.get() : r);
     curves.push_back(r->balanced ? &r->balanced->q : &c.segment(j));
-    exact = exact && r->rational;
+    exact = exact && r->exact.has_value();
     H.push_back(homogeneous(*curves.back()));
     D = std::max(D, homogeneous_degree(H.back()));
   }
@@ -428,10 +428,10 @@ Nurbs composite_nurbs(const CompositeCurve& c, const CompositeMap& m, long prec)
     std::vector<Segment<Rational>> segs;
     build(f, segs,
           [&](std::size_t j, std::size_t i) {
-            return m.S()[j] + (m.S()[j + 1] - m.S()[j]) * parts[j]->S_exact[i];
+            return m.S()[j] + (m.S()[j + 1] - m.S()[j]) * parts[j]->exact->S[i];
           },
           [](const MoebiusResult& r, std::size_t i) {
-            return std::make_tuple(r.T_exact[i], r.T_exact[i + 1], r.alpha_exact[i]);
+            return std::make_tuple(r.exact->T[i], r.exact->T[i + 1], r.exact->alpha[i]);
           });
     assemble(f, segs, D, n.knots_exact, n.points_exact, n.weights_exact);
     n.kind = Nurbs::Kind::Exact;

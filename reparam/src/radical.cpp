@@ -215,7 +215,7 @@ bool psi(acb_t out, const acb_t x, ZeroSide side, int k, bool analytic, long pre
 
 }  // namespace
 
-Ball radical_eval_r(const RadicalResult& r, const Ball& z, long prec) {
+Ball eval_r(const RadicalResult& r, const Ball& z, long prec) {
   Ball result;
   bool any = false;
   for (std::size_t i = 0; i < r.pieces(); ++i) {
@@ -257,7 +257,7 @@ Ball radical_eval_r(const RadicalResult& r, const Ball& z, long prec) {
     acb_clear(y);
     acb_clear(zc);
   }
-  if (!any) throw InvalidArgument("radical_eval_r: z must lie in [0, 1]");
+  if (!any) throw InvalidArgument("eval_r: z must lie in [0, 1]");
   return result;
 }
 
@@ -320,7 +320,7 @@ bool radical_speed_sq_local(acb_t out, const RadicalResult& r, const Speed& s, s
 
 }  // namespace
 
-Ball radical_eval_speed(const RadicalResult& r, const Speed& s, const Ball& z, long prec) {
+Ball eval_speed(const RadicalResult& r, const Speed& s, const Ball& z, long prec) {
   Ball result;
   bool any = false;
   for (std::size_t i = 0; i < r.pieces(); ++i) {
@@ -352,14 +352,14 @@ Ball radical_eval_speed(const RadicalResult& r, const Speed& s, const Ball& z, l
     acb_clear(zc);
     acb_clear(v);
   }
-  if (!any) throw InvalidArgument("radical_eval_speed: z must lie in [0, 1]");
+  if (!any) throw InvalidArgument("eval_speed: z must lie in [0, 1]");
   return result;
 }
 
-std::vector<Ball> radical_eval_point(const Curve& c, const RadicalResult& r, const Ball& z, long prec) {
+std::vector<Ball> eval_point(const Curve& c, const RadicalResult& r, const Ball& z, long prec) {
   // p(r(z)) = q(r_q(z)) for a balanced map, without m's extreme parameters
-  if (r.balanced) return radical_eval_point(r.balanced->q, *r.on_balanced, z, prec);
-  const Ball t = radical_eval_r(r, z, prec);
+  if (r.balanced) return eval_point(r.balanced->q, *r.on_balanced, z, prec);
+  const Ball t = eval_r(r, z, prec);
   return c.eval(t, prec);
 }
 

@@ -66,20 +66,24 @@ RadicalResult radical(const Curve& c, SpeedKind kind, const Options& opt = {});
 ///         the thread's TimeBudget.
 RadicalResult refine_radical_data(const Speed& sp, const RadicalResult& r, long digits, long max_prec);
 
+/// Evaluation of a piecewise radical map (the overloads for a MoebiusResult
+/// are in moebius.hpp).
 /// Enclosure of r(z) for z in [0, 1] (the ball may straddle a joint: both
 /// pieces are evaluated and the union returned). An exact z equal to an exact
 /// joint z_i (z = 0, z = 1) gives t_i's ball, exact for a dyadic t_i. The
 /// accuracy is limited by r's data (Z, alpha: balls); see
-/// Reparameterization::refined.
-Ball radical_eval_r(const RadicalResult& r, const Ball& z, long prec);
+/// Reparameterization::refined. InvalidArgument if z misses [0, 1].
+Ball eval_r(const RadicalResult& r, const Ball& z, long prec);
 /// Enclosure of sigma_{p o r}(z) = sigma_p(r(z)) r'(z), the reparameterized
-/// speed, evaluated from the formulas of the pieces.
-Ball radical_eval_speed(const RadicalResult& r, const Speed& s, const Ball& z, long prec);
+/// speed, evaluated from the formulas of the pieces; `s` must be the speed r
+/// was computed for (not checkable). InvalidArgument if z misses [0, 1].
+Ball eval_speed(const RadicalResult& r, const Speed& s, const Ball& z, long prec);
 
 /// Enclosures of the components of p(r(z)), the reparameterized curve's
 /// point at z in [0, 1] (c must be the curve r was computed for); for a
-/// balanced r, evaluated as q(r_q(z)), the same point.
-std::vector<Ball> radical_eval_point(const Curve& c, const RadicalResult& r, const Ball& z, long prec);
+/// balanced r, evaluated as q(r_q(z)), the same point. InvalidArgument if z
+/// misses [0, 1].
+std::vector<Ball> eval_point(const Curve& c, const RadicalResult& r, const Ball& z, long prec);
 
 /// Independent check of the whole chain: mu^2 / int_0^1 sigma_{p o r}(z)^2 dz,
 /// integrating the reparameterized speed built from the pieces of r directly
