@@ -113,7 +113,7 @@ Ball eval_speed(const MoebiusResult& r, const Speed& sp, const Ball& s, long pre
 
 std::vector<Ball> eval_point(const Curve& c, const MoebiusResult& r, const Ball& s, long prec) {
   // p(r(s)) = q(r_q(s)) for a balanced map, without m's extreme parameters
-  if (r.balanced) return eval_point(r.balanced->q, *r.on_balanced, s, prec);
+  if (r.balanced) return eval_point(r.balanced->curve->q, *r.balanced->on, s, prec);
   const Ball t = eval_r(r, s, prec);
   return c.eval(t, prec);
 }
@@ -191,8 +191,7 @@ MoebiusResult compose_balanced(const std::shared_ptr<const BalancedCurve>& bal, 
   if (rq.exact.has_value())
     for (std::size_t i = 0; i <= N; ++i) r.exact->T[i] = r.T[i].t.rational();
   r.u_before = u_before;
-  r.balanced = bal;
-  r.on_balanced = std::make_shared<const MoebiusResult>(rq);
+  r.balanced = MoebiusResult::Balanced{bal, std::make_shared<const MoebiusResult>(rq)};
   return r;
 }
 

@@ -91,8 +91,8 @@ MoebiusResult make_rational(const Curve& c, const MoebiusResult& in, long ration
   if (in.balanced) {
     // one more digit on q: composing with m at most doubles alpha's error
     // relative to min(alpha, 1 - alpha), and keeps k_0's relative error
-    const MoebiusResult rq = make_rational(in.balanced->q, *in.on_balanced, std::min(rational_digits + 1, 100L), opt);
-    return detail::compose_balanced(in.balanced, rq, in.u_before, opt.digits);
+    const MoebiusResult rq = make_rational(in.balanced->curve->q, *in.balanced->on, std::min(rational_digits + 1, 100L), opt);
+    return detail::compose_balanced(in.balanced->curve, rq, in.u_before, opt.digits);
   }
   const Speed s(c, in.kind);
   const std::size_t N = in.pieces();
@@ -248,9 +248,9 @@ std::vector<Ball> alphas(const std::vector<PieceIntegrals>& I) {
 MoebiusResult refine_moebius_data(const Speed& sp, const MoebiusResult& in, long digits, long max_prec) {
   if (digits < 1) throw InvalidArgument("refine_moebius_data: digits must be at least 1");
   if (in.balanced) {
-    const Speed sq(in.balanced->q, sp.kind());
-    const MoebiusResult rq = refine_moebius_data(sq, *in.on_balanced, digits, max_prec);
-    return detail::compose_balanced(in.balanced, rq, in.u_before, digits);
+    const Speed sq(in.balanced->curve->q, sp.kind());
+    const MoebiusResult rq = refine_moebius_data(sq, *in.balanced->on, digits, max_prec);
+    return detail::compose_balanced(in.balanced->curve, rq, in.u_before, digits);
   }
   MoebiusResult x = in;
   if (x.identically_zero) return x;

@@ -342,7 +342,7 @@ std::vector<Ball> Nurbs::breaks() const {
 Nurbs moebius_nurbs(const Curve& c, const MoebiusResult& r, long prec) {
   // A balanced map r = m o r_q (MoebiusResult::balanced): p o r is q o r_q
   // exactly, and q's pieces are free of m's extreme parameters.
-  if (r.balanced) return moebius_nurbs(r.balanced->q, *r.on_balanced, prec);
+  if (r.balanced) return moebius_nurbs(r.balanced->curve->q, *r.balanced->on, prec);
   const std::vector<Poly> H = homogeneous(c);
   const long d = homogeneous_degree(H);
   Nurbs n;
@@ -393,8 +393,8 @@ Nurbs composite_nurbs(const CompositeCurve& c, const CompositeMap& m, long prec)
     const MoebiusResult* r = m.parts()[j].moebius_result();
     if (!r)
       throw InvalidArgument(c.label(j) + ": its map is not a Moebius map, so p o r is not a NURBS curve there");
-    parts.push_back(r->balanced ? r->on_balanced.get() : r);
-    curves.push_back(r->balanced ? &r->balanced->q : &c.segment(j));
+    parts.push_back(r->balanced ? r->balanced->on.get() : r);
+    curves.push_back(r->balanced ? &r->balanced->curve->q : &c.segment(j));
     exact = exact && r->exact.has_value();
     H.push_back(homogeneous(*curves.back()));
     D = std::max(D, homogeneous_degree(H.back()));

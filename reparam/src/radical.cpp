@@ -133,8 +133,7 @@ RadicalResult compose_balanced(const Speed& sp, const std::shared_ptr<const Bala
   r.outer_k.clear();
   for (std::size_t i = 0; i + 1 < rq.T.size(); ++i) r.outer_k.push_back(balance_local_k(*bal, rq.T[i].t, rq.T[i + 1].t, prec));
   r.u_before = u_before;
-  r.balanced = bal;
-  r.on_balanced = std::make_shared<const RadicalResult>(rq);
+  r.balanced = RadicalResult::Balanced{bal, std::make_shared<const RadicalResult>(rq)};
   return r;
 }
 
@@ -358,7 +357,7 @@ Ball eval_speed(const RadicalResult& r, const Speed& s, const Ball& z, long prec
 
 std::vector<Ball> eval_point(const Curve& c, const RadicalResult& r, const Ball& z, long prec) {
   // p(r(z)) = q(r_q(z)) for a balanced map, without m's extreme parameters
-  if (r.balanced) return eval_point(r.balanced->q, *r.on_balanced, z, prec);
+  if (r.balanced) return eval_point(r.balanced->curve->q, *r.balanced->on, z, prec);
   const Ball t = eval_r(r, z, prec);
   return c.eval(t, prec);
 }
@@ -401,9 +400,9 @@ Ball radical_direct_uniformity(const RadicalResult& r, const Speed& s, long digi
 RadicalResult refine_radical_data(const Speed& sp, const RadicalResult& in, long digits, long max_prec) {
   if (digits < 1) throw InvalidArgument("refine_radical_data: digits must be at least 1");
   if (in.balanced) {
-    const Speed sq(in.balanced->q, sp.kind());
-    const RadicalResult rq = refine_radical_data(sq, *in.on_balanced, digits, max_prec);
-    return compose_balanced(sp, in.balanced, rq, in.u_before, digits);
+    const Speed sq(in.balanced->curve->q, sp.kind());
+    const RadicalResult rq = refine_radical_data(sq, *in.balanced->on, digits, max_prec);
+    return compose_balanced(sp, in.balanced->curve, rq, in.u_before, digits);
   }
   RadicalResult x = in;
   if (x.identically_zero) return x;

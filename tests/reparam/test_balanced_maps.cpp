@@ -144,9 +144,9 @@ Rational exact_r(const MoebiusResult& r, const Rational& s) {
 void check_moebius_map(const Curve& p, SpeedKind kind, const MoebiusResult& r, const Options& o,
                        const std::string& what) {
   SCOPED_TRACE(what);
-  ASSERT_TRUE(r.balanced && r.on_balanced) << "the curve's weights grow geometrically: the map must be composed";
-  const BalancedCurve& bal = *r.balanced;
-  const MoebiusResult& rq = *r.on_balanced;
+  ASSERT_TRUE(r.balanced) << "the curve's weights grow geometrically: the map must be composed";
+  const BalancedCurve& bal = *r.balanced->curve;
+  const MoebiusResult& rq = *r.balanced->on;
   const Speed sp(p, kind), sq(bal.q, kind);
   ASSERT_EQ(r.pieces(), rq.pieces());
   // T = m(T_q) exactly, increasing from 0 to 1
@@ -245,9 +245,9 @@ TEST(BalancedMaps, RadicalMapIsPsOwn) {
     for (SpeedKind kind : {SpeedKind::Parametric, SpeedKind::Angular}) {
       SCOPED_TRACE(c.what + (kind == SpeedKind::Angular ? ", angular" : ", parametric"));
       const RadicalResult r = radical(c.p, kind, o);
-      ASSERT_TRUE(r.balanced && r.on_balanced);
-      const RadicalResult& rq = *r.on_balanced;
-      const BalancedCurve& bal = *r.balanced;
+      ASSERT_TRUE(r.balanced);
+      const RadicalResult& rq = *r.balanced->on;
+      const BalancedCurve& bal = *r.balanced->curve;
       const Speed sp(c.p, kind), sq(bal.q, kind);
       ASSERT_EQ(r.T.size(), rq.T.size());
       ASSERT_EQ(r.outer_k.size(), r.pieces());
@@ -306,10 +306,10 @@ TEST(BalancedMaps, RationalMapsComposeExactly) {
         EXPECT_TRUE(overlaps(x.alpha, r0.alpha));
         EXPECT_TRUE(overlaps(x.S, r0.S));
         const MoebiusResult r = make_rational(c.p, r0, 8, o);
-        ASSERT_TRUE(r.exact.has_value() && r.balanced && r.on_balanced && r.on_balanced->exact.has_value());
+        ASSERT_TRUE(r.exact.has_value() && r.balanced && r.balanced->on->exact.has_value());
         check_moebius_map(c.p, kind, r, o, what + ", rational");
-        const MoebiusResult& rq = *r.on_balanced;
-        const BalancedCurve& bal = *r.balanced;
+        const MoebiusResult& rq = *r.balanced->on;
+        const BalancedCurve& bal = *r.balanced->curve;
         EXPECT_EQ(r.exact->S, rq.exact->S);
         for (int j = 0; j < 8; ++j) {
           const Rational s(num(rng), 1000);

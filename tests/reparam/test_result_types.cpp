@@ -1,6 +1,7 @@
 // The engine's result types are typed: a MoebiusResult carries its optimiser,
-// target and exact data as optionals set by the method that made it, and one
-// overloaded eval_r / eval_speed / eval_point evaluates either kind of map.
+// target, exact data and balancing as optionals set by the method that made
+// it (a RadicalResult its balancing), and one overloaded eval_r / eval_speed /
+// eval_point evaluates either kind of map.
 #include <gtest/gtest.h>
 
 #include <optional>
@@ -17,6 +18,8 @@ namespace {
 static_assert(std::is_same_v<decltype(MoebiusResult::optimiser), std::optional<MoebiusResult::Optimiser>>);
 static_assert(std::is_same_v<decltype(MoebiusResult::target), std::optional<MoebiusResult::Target>>);
 static_assert(std::is_same_v<decltype(MoebiusResult::exact), std::optional<MoebiusResult::Exact>>);
+static_assert(std::is_same_v<decltype(MoebiusResult::balanced), std::optional<MoebiusResult::Balanced>>);
+static_assert(std::is_same_v<decltype(RadicalResult::balanced), std::optional<RadicalResult::Balanced>>);
 
 const Curve& cubic() {
   static const Curve c = Curve::parse("(t, t^3 - t/2)");

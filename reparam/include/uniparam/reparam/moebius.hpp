@@ -97,11 +97,14 @@ struct MoebiusResult {
   /// and u_after, mu and Phi are q's; u_before is p's (uniformity()). With
   /// exact data, exact->T and exact->alpha are m's exact images of q's
   /// rounded data. The optimiser's phi_equal and stationarity, and a C1 result's
-  /// choices, refer to q's parameter. on_balanced is r_q, from which
+  /// choices, refer to q's parameter. balanced->on is r_q, from which
   /// make_rational and refine_moebius_data work (then compose again).
-  /// Both null otherwise.
-  std::shared_ptr<const BalancedCurve> balanced;
-  std::shared_ptr<const MoebiusResult> on_balanced;
+  struct Balanced {
+    std::shared_ptr<const BalancedCurve> curve;  ///< q = p o m, with m's a and b
+    std::shared_ptr<const MoebiusResult> on;     ///< r_q, the map on q
+  };
+  /// Empty unless p's weights grow geometrically (see above).
+  std::optional<Balanced> balanced;
 
   std::size_t pieces() const { return T.size() - 1; }
 };
@@ -202,7 +205,7 @@ MoebiusResult reparam_c1_traced(const Curve& c, SpeedKind kind, const Rational& 
 /// k_0 > 0 rounded within tol * k_0 the same way, the other alphas solved
 /// exactly from the C1 condition on the rational T and S, so r' is
 /// continuous exactly. For a balanced result (r.balanced) all this happens
-/// on r.on_balanced and q, and the rounded map is composed with m exactly:
+/// on r.balanced->on and q, and the rounded map is composed with m exactly:
 /// exact->T = m(T_q rounded), exact->alpha from alpha_q rounded with one more
 /// digit (the T and S windows hold in q's parameter; composing with m keeps
 /// the map exact, C1 where r_q is, and alpha within tol * min(alpha,
@@ -224,7 +227,7 @@ MoebiusResult make_rational(const Curve& c, const MoebiusResult& r, long rationa
 /// (exact set) its exact S and alpha as balls of matching precision; so
 /// each refined ball lies in r's (up to rounding) and meets `digits`. Every
 /// other field is kept; an identically zero map is returned as is.
-/// A balanced result (r.balanced) refines r.on_balanced on q's speed and
+/// A balanced result (r.balanced) refines r.balanced->on on q's speed and
 /// composes it with m again.
 /// \pre r was computed for the speed sp (not checkable); digits >= 1
 ///      (InvalidArgument).

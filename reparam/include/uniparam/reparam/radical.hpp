@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,11 +37,15 @@ struct RadicalResult {
   /// is p's. Piece i of r is then t = t_i + Delta t_i k_i y / (k_i y + 1 - y)
   /// with y the local value of r_q's piece (in q's parameter) and k_i =
   /// outer_k[i] (balance_local_k on [T_q,i, T_q,i+1]): m restricted to the
-  /// piece. outer_k is empty otherwise (k_i = 1). on_balanced is r_q, from
+  /// piece. outer_k is empty otherwise (k_i = 1). balanced->on is r_q, from
   /// which refine_radical_data works.
   std::vector<Ball> outer_k;
-  std::shared_ptr<const BalancedCurve> balanced;
-  std::shared_ptr<const RadicalResult> on_balanced;
+  struct Balanced {
+    std::shared_ptr<const BalancedCurve> curve;  ///< q = p o m, with m's a and b
+    std::shared_ptr<const RadicalResult> on;     ///< r_q, the map on q
+  };
+  /// Empty unless p's weights grow geometrically (see above).
+  std::optional<Balanced> balanced;
 
   std::size_t pieces() const { return T.size() - 1; }
   /// Exponent of the radical in piece i: mu + 1 when one end is a zero of
@@ -59,7 +64,7 @@ RadicalResult radical(const Curve& c, SpeedKind kind, const Options& opt = {});
 /// computes them for r's breakpoints T; each refined ball therefore lies in
 /// r's (up to rounding). mu and the uniformities are kept; an identically
 /// zero map is returned as is. A balanced result (r.balanced) refines
-/// r.on_balanced on q's speed and composes it with m again.
+/// r.balanced->on on q's speed and composes it with m again.
 /// \pre r was computed for the speed sp (not checkable); digits >= 1
 ///      (InvalidArgument).
 /// \throws BudgetExceeded when `digits` cannot be met within max_prec bits or
