@@ -133,7 +133,7 @@ void run_cert(benchmark::State& st, const std::string& fam, long deg, const std:
     else {
       const auto r = uniparam::reparam_c1(c, kKind, uniparam::Rational(99, 100), o);
       st.counters["pieces"] = static_cast<double>(r.pieces());
-      st.counters["reached"] = r.target.reached ? 1 : 0;
+      st.counters["reached"] = r.target->reached ? 1 : 0;
       benchmark::DoNotOptimize(r);
     }
   }

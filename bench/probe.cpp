@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
     std::cout << "pieces " << t() - e << " s\n";
   }
   else if (op.rfind("pieces", 0) == 0) { auto r = uniparam::reparam_c0(c, uniparam::SpeedKind::Angular, atol(op.c_str() + 6), o); std::cout << r.u_after.str(20) << "\n"; }
-  else { auto r = uniparam::reparam_c1(c, uniparam::SpeedKind::Angular, uniparam::Rational(99, 100), o); std::cout << r.u_after.str(20) << " pieces " << r.pieces() << (r.target.reached ? "" : " (target not reached)") << "\n"; }
+  else { auto r = uniparam::reparam_c1(c, uniparam::SpeedKind::Angular, uniparam::Rational(99, 100), o); std::cout << r.u_after.str(20) << " pieces " << r.pieces() << (r.target->reached ? "" : " (target not reached)") << "\n"; }
   std::cout << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() << " s\n";
   }
 }

@@ -125,7 +125,7 @@ std::string method_title(const Reparameterization& r, const std::string& target)
   const auto* m = r.moebius_result();
   if (m && m->continuity == Continuity::C1)
     return "C1 piecewise M\u00f6bius reparameterization (" + pieces + ", target \u016b = " + target +
-           (m->target.reached ? " reached" : " NOT reached") + ")";
+           (m->target->reached ? " reached" : " NOT reached") + ")";
   return "Optimal C0 piecewise M\u00f6bius reparameterization (" + pieces + ")";
 }
 

@@ -71,7 +71,7 @@ int run_reparam(int argc, char** argv) {
   r = finish_moebius(c, r, a, opt);
   if (!no.replaces_report()) print_moebius(c, r, opt.digits, how);
   write_moebius_nurbs(c, r, no, opt);
-  if (r.target.used && !r.target.reached) {
+  if (r.target.has_value() && !r.target->reached) {
     warn() << "uniparam reparam: " << target_missed_message(r, max_pieces, opt.digits) << "\n";
     return 4;
   }

@@ -63,8 +63,8 @@ Reparameterization read_method(const Args& a, const Curve& c, SpeedKind kind, co
 
 int target_status(const Reparameterization& r, const std::string& command) {
   const auto* m = r.moebius_result();
-  if (!m || !m->target.used || m->target.reached) return 0;
-  warn() << "uniparam " << command << ": the target u >= " << m->target.value.str()
+  if (!m || !m->target.has_value() || m->target->reached) return 0;
+  warn() << "uniparam " << command << ": the target u >= " << m->target->value.str()
             << " was not reached (best map used: " << m->pieces() << " pieces, u = " << m->u_after.mid_decimal(6)
             << "; raise --max-pieces)\n";
   return 4;

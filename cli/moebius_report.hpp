@@ -33,7 +33,7 @@ constexpr long kMaxPiecesLimit = 1000;
 /// ("1" for 0.9999999996); the certified ball when none does.
 std::string missed_u_text(const Ball& u, const Rational& target, long digits);
 
-/// The message of a C1 map r (r.target.used, not reached) refined up to
+/// The message of a C1 map r (r.target set, not reached) refined up to
 /// `max_pieces` pieces: the target, the u reached (missed_u_text), and what
 /// to change: raise --max-pieces below kMaxPiecesLimit, else lower --target.
 std::string target_missed_message(const MoebiusResult& r, long max_pieces, long digits);

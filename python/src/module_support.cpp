@@ -177,7 +177,7 @@ Answer nurbs_answer(const Nurbs& n, const cli::NurbsOutput& o, long digits, cons
 
 /// The C1 map's message when it missed its target ("" otherwise).
 std::string missed(const MoebiusResult& r, long max_pieces, long digits) {
-  if (!r.target.used || r.target.reached) return "";
+  if (!r.target.has_value() || r.target->reached) return "";
   return cli::target_missed_message(r, max_pieces, digits);
 }
 

@@ -268,7 +268,7 @@ Ball Reparameterization::u_after() const { return wrap(p_->map ? p_->map->u_afte
 bool Reparameterization::target_reached() const {
   if (p_->map) {
     const MoebiusResult* m = p_->map->moebius_result();
-    return !(m && m->target.used) || m->target.reached;
+    return !(m && m->target) || m->target->reached;
   }
   return p_->cmethod->kind != CompositeMethod::Kind::Target || p_->cmap->target_reached();
 }
@@ -276,7 +276,7 @@ bool Reparameterization::target_reached() const {
 bool Reparameterization::is_rational() const {
   if (p_->map) {
     const MoebiusResult* m = p_->map->moebius_result();
-    return m && m->rational;
+    return m && m->exact.has_value();
   }
   return p_->cmethod->rational;
 }

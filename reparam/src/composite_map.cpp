@@ -47,7 +47,7 @@ std::size_t CompositeMap::pieces() const {
 bool CompositeMap::target_reached() const {
   for (const Reparameterization& p : parts_) {
     const MoebiusResult* m = p.moebius_result();
-    if (!m || !m->target.used || !m->target.reached) return false;
+    if (!m || !m->target.has_value() || !m->target->reached) return false;
   }
   return true;
 }

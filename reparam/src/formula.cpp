@@ -143,9 +143,9 @@ std::vector<MoebiusPieceFormulas> moebius_formulas(const Curve& c, const Moebius
     MoebiusPieceFormulas pf;
     // t = (A s + B) / (C s + D) with C = 1 - 2a, D = a ds - C s_i,
     // A = t_i C + dt (1 - a), B = t_i D - dt (1 - a) s_i.
-    if (r.rational) {
-      const Rational &ti = r.T_exact[i], &tj = r.T_exact[i + 1], &si = r.S_exact[i], &sj = r.S_exact[i + 1];
-      const Rational& a = r.alpha_exact[i];
+    if (r.exact.has_value()) {
+      const Rational &ti = r.exact->T[i], &tj = r.exact->T[i + 1], &si = r.exact->S[i], &sj = r.exact->S[i + 1];
+      const Rational& a = r.exact->alpha[i];
       const Rational dt = tj - ti, ds = sj - si, C = Rational(1) - Rational(2) * a, D = a * ds - C * si;
       const Rational A = ti * C + dt * (Rational(1) - a), B = ti * D - dt * (Rational(1) - a) * si;
       const RatFunc s = RatFunc::t();

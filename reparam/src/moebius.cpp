@@ -8,6 +8,7 @@
 #include "uniparam/core/budget.hpp"
 #include "uniparam/core/error.hpp"
 #include "moebius_detail.hpp"
+#include "moebius_map.hpp"
 
 namespace uniparam {
 
@@ -23,40 +24,25 @@ void piece_eval(Ball* t, Ball* dt, const MoebiusResult& r, std::size_t i, const 
   arb_sub(st.get(), s.get(), r.S[i].get(), prec);
   arb_div(st.get(), st.get(), ds.get(), prec);
   clamp_unit(st.get(), prec);  // only the part of s inside the piece maps through it
-  // At an exact end (s equal to an exact s_i or s_{i+1}, as s = 0 and s = 1
-  // are) the local coordinate is exactly 0 or 1, and t exactly t_i or t_{i+1}:
-  // the quotient of the correlated balls above would keep their radii.
-  const bool at_lo = s.is_exact() && r.S[i].is_exact() && arb_equal(s.get(), r.S[i].get());
-  const bool at_hi = s.is_exact() && r.S[i + 1].is_exact() && arb_equal(s.get(), r.S[i + 1].get());
-  if (at_lo) arb_zero(st.get());
-  else if (at_hi) arb_one(st.get());
+  // an exact end (s = 0, s = 1) has the local coordinate exactly 0 or 1,
+  // and maps to t_i or t_{i+1} exactly
+  detail::pin_exact_end(st.get(), s, r.S[i], r.S[i + 1]);
   arb_sub(h.get(), tb.get(), ta.get(), prec);
-  const Ball& a = r.alpha[i];
-  Ball oma, den, num, q;
-  arb_sub_si(oma.get(), a.get(), 1, prec);
-  arb_neg(oma.get(), oma.get());  // 1 - alpha
-  // den = (1 - alpha) s~ + alpha (1 - s~) = alpha + (1 - 2 alpha) s~
-  Ball c12;
-  arb_mul_2exp_si(c12.get(), a.get(), 1);
-  arb_sub_si(c12.get(), c12.get(), 1, prec);
-  arb_neg(c12.get(), c12.get());
-  arb_mul(den.get(), c12.get(), st.get(), prec);
-  arb_add(den.get(), den.get(), a.get(), prec);
-  if (t && (at_lo || at_hi)) {
-    *t = at_lo ? ta : tb;
-  } else if (t) {
-    arb_mul(num.get(), oma.get(), st.get(), prec);
-    arb_div(q.get(), num.get(), den.get(), prec);
-    arb_mul(q.get(), q.get(), h.get(), prec);
-    arb_add(t->get(), ta.get(), q.get(), prec);
+  Ball x;
+  detail::moebius_alpha_map(detail::BallMapArith{prec}, t ? x.get() : nullptr, dt ? dt->get() : nullptr, st.get(),
+                            r.alpha[i].get());
+  if (t) {
+    if (arb_is_zero(st.get())) *t = ta;
+    else if (arb_is_one(st.get())) *t = tb;
+    else {
+      arb_mul(x.get(), x.get(), h.get(), prec);
+      arb_add(t->get(), ta.get(), x.get(), prec);
+    }
   }
   if (dt) {
-    // dt/ds = (h / ds) alpha (1 - alpha) / den^2
-    arb_mul(q.get(), a.get(), oma.get(), prec);
-    arb_div(q.get(), q.get(), den.get(), prec);
-    arb_div(q.get(), q.get(), den.get(), prec);
-    arb_mul(q.get(), q.get(), h.get(), prec);
-    arb_div(dt->get(), q.get(), ds.get(), prec);
+    // dt/ds = (h / ds) dx/ds~
+    arb_mul(dt->get(), dt->get(), h.get(), prec);
+    arb_div(dt->get(), dt->get(), ds.get(), prec);
   }
 }
 
@@ -83,10 +69,10 @@ void unite(Ball& acc, bool& any, const Ball& v, long prec) {
 
 }  // namespace
 
-Ball moebius_eval_r(const MoebiusResult& r, const Ball& s, long prec) {
+Ball eval_r(const MoebiusResult& r, const Ball& s, long prec) {
   Ball out;
   bool any = false;
-  for_pieces_at(r, s, "moebius_eval_r", [&](std::size_t i) {
+  for_pieces_at(r, s, "eval_r", [&](std::size_t i) {
     Ball t;
     piece_eval(&t, nullptr, r, i, s, prec);
     unite(out, any, t, prec);
@@ -94,10 +80,10 @@ Ball moebius_eval_r(const MoebiusResult& r, const Ball& s, long prec) {
   return out;
 }
 
-Ball moebius_eval_dr(const MoebiusResult& r, const Ball& s, long prec) {
+Ball eval_dr(const MoebiusResult& r, const Ball& s, long prec) {
   Ball out;
   bool any = false;
-  for_pieces_at(r, s, "moebius_eval_dr", [&](std::size_t i) {
+  for_pieces_at(r, s, "eval_dr", [&](std::size_t i) {
     Ball d;
     piece_eval(nullptr, &d, r, i, s, prec);
     unite(out, any, d, prec);
@@ -105,10 +91,10 @@ Ball moebius_eval_dr(const MoebiusResult& r, const Ball& s, long prec) {
   return out;
 }
 
-Ball moebius_eval_speed(const MoebiusResult& r, const Speed& sp, const Ball& s, long prec) {
+Ball eval_speed(const MoebiusResult& r, const Speed& sp, const Ball& s, long prec) {
   Ball out;
   bool any = false;
-  for_pieces_at(r, s, "moebius_eval_speed", [&](std::size_t i) {
+  for_pieces_at(r, s, "eval_speed", [&](std::size_t i) {
     Ball t, d, v;
     piece_eval(&t, &d, r, i, s, prec);
     acb_t z, w;
@@ -125,10 +111,10 @@ Ball moebius_eval_speed(const MoebiusResult& r, const Speed& sp, const Ball& s, 
   return out;
 }
 
-std::vector<Ball> moebius_eval_point(const Curve& c, const MoebiusResult& r, const Ball& s, long prec) {
+std::vector<Ball> eval_point(const Curve& c, const MoebiusResult& r, const Ball& s, long prec) {
   // p(r(s)) = q(r_q(s)) for a balanced map, without m's extreme parameters
-  if (r.balanced) return moebius_eval_point(r.balanced->q, *r.on_balanced, s, prec);
-  const Ball t = moebius_eval_r(r, s, prec);
+  if (r.balanced) return eval_point(r.balanced->curve->q, *r.balanced->on, s, prec);
+  const Ball t = eval_r(r, s, prec);
   return c.eval(t, prec);
 }
 
@@ -193,20 +179,19 @@ MoebiusResult compose_balanced(const std::shared_ptr<const BalancedCurve>& bal, 
     I.alpha = compose_alpha(rq.integrals[i].alpha, k, prec);
     I.square = Ball();
     I.square_bits = 0;
-    if (rq.rational) {
-      const Rational kq = balance_local_k(*bal, rq.T_exact[i], rq.T_exact[i + 1]);
-      const Rational& a = rq.alpha_exact[i];
-      r.alpha_exact[i] = Rational(1) / (Rational(1) + kq * (Rational(1) - a) / a);
-      r.alpha[i] = Ball(r.alpha_exact[i], prec);
+    if (rq.exact.has_value()) {
+      const Rational kq = balance_local_k(*bal, rq.exact->T[i], rq.exact->T[i + 1]);
+      const Rational& a = rq.exact->alpha[i];
+      r.exact->alpha[i] = Rational(1) / (Rational(1) + kq * (Rational(1) - a) / a);
+      r.alpha[i] = Ball(r.exact->alpha[i], prec);
     } else {
       r.alpha[i] = compose_alpha(rq.alpha[i], k, prec);
     }
   }
-  if (rq.rational)
-    for (std::size_t i = 0; i <= N; ++i) r.T_exact[i] = r.T[i].t.rational();
+  if (rq.exact.has_value())
+    for (std::size_t i = 0; i <= N; ++i) r.exact->T[i] = r.T[i].t.rational();
   r.u_before = u_before;
-  r.balanced = bal;
-  r.on_balanced = std::make_shared<const MoebiusResult>(rq);
+  r.balanced = MoebiusResult::Balanced{bal, std::make_shared<const MoebiusResult>(rq)};
   return r;
 }
 

@@ -182,7 +182,7 @@ Built build(const Speed& s, const UniformityResult& base, const std::vector<Real
 // next T (and to decide when to try a certification): the same formulas as
 // build() and c1_from_pieces, in IEEE double from double-precision quadrature.
 // Nothing computed here is reported; reparam_c1 certifies the chosen T with
-// build() and decides target.reached from that certified map only.
+// build() and decides target->reached from that certified map only.
 
 // The draft C1 map of T (UNCERTIFIED, double): t, S, alpha, F and u, the same
 // quantities as build() / c1_from_pieces. u is NaN if the floating point
@@ -456,7 +456,7 @@ MoebiusResult reparam_c1_on(const Speed& s, const Rational& target, const Option
   if (s.identically_zero()) {
     MoebiusResult r = detail::moebius_c0(s, base, {RealAlgebraic(0), RealAlgebraic(1)}, opt);
     r.continuity = Continuity::C1;
-    r.target = MoebiusResult::Target{true, target, true, 0};
+    r.target = MoebiusResult::Target{target, true, 0};
     return r;
   }
   // T: 0, the zeros of sigma' in (0, 1), 1.
@@ -500,7 +500,7 @@ MoebiusResult reparam_c1_on(const Speed& s, const Rational& target, const Option
     if (static_cast<long>(T.size()) - 1 >= max_pieces) break;
     // A draft whose floating point broke down (integrals beyond double's
     // range: a huge coefficient) cannot steer the refinement: the best T so
-    // far is certified below, and target.reached says whether it is enough.
+    // far is certified below, and target->reached says whether it is enough.
     if (!std::isfinite(u)) {
       draft_failed = true;
       break;
@@ -543,11 +543,11 @@ MoebiusResult reparam_c1_on(const Speed& s, const Rational& target, const Option
                     std::equal(best.begin(), best.end(), certified_T.begin())))
     certified = build(s, base, best, opt.digits, opt);
   MoebiusResult r = certified.r;
-  r.target.used = true;
-  r.target.value = target;
-  r.target.rounds = rounds;
-  r.target.draft_failed = draft_failed;
-  r.target.reached = arb_ge(r.u_after.get(), tq.get());
+  r.target.emplace();
+  r.target->value = target;
+  r.target->rounds = rounds;
+  r.target->draft_failed = draft_failed;
+  r.target->reached = arb_ge(r.u_after.get(), tq.get());
   return r;
 }
 
@@ -568,7 +568,7 @@ MoebiusResult detail::reparam_c1_traced(const Curve& c, SpeedKind kind, const Ra
     const MoebiusResult rq = reparam_c1_on(sq, target, opt, max_pieces, trace);
     MoebiusResult r = compose_balanced(bal, rq, uniformity_balanced(s, *bal, sq, opt).u, opt.digits);
     const Ball tq(target, 2 * digits_to_bits(opt.digits) + 64);
-    r.target.reached = arb_ge(r.u_after.get(), tq.get());
+    r.target->reached = arb_ge(r.u_after.get(), tq.get());
     return r;
   }
   return reparam_c1_on(s, target, opt, max_pieces, trace);

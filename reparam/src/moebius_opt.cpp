@@ -48,8 +48,8 @@ MoebiusResult reparam_c0_on(const Speed& s, long N, const Options& opt) {
   for (long i = 0; i <= N; ++i) equal.emplace_back(Rational(i, N));
   if (N == 1 || s.identically_zero()) {
     MoebiusResult r = detail::moebius_c0(s, detail::mu_only(s, opt), equal, opt);
-    r.optimiser.used = true;
-    r.optimiser.phi = r.optimiser.phi_equal = detail::phi_of(r, 2 * digits_to_bits(opt.digits) + 64);
+    r.optimiser.emplace();
+    r.optimiser->phi = r.optimiser->phi_equal = detail::phi_of(r, 2 * digits_to_bits(opt.digits) + 64);
     return r;
   }
   // mu (its own parallel loop) and the optimised breakpoints
@@ -98,11 +98,11 @@ MoebiusResult reparam_c0_on(const Speed& s, long N, const Options& opt) {
     r = detail::moebius_c0(s, base, equal, opt);
     phi = detail::phi_of(r, prec);
   }
-  r.optimiser.used = true;
-  r.optimiser.iterations = o.iterations;
-  r.optimiser.phi = phi;
-  r.optimiser.phi_equal = phi_eq;
-  r.optimiser.stationarity = o.stationarity;
+  r.optimiser.emplace();
+  r.optimiser->iterations = o.iterations;
+  r.optimiser->phi = phi;
+  r.optimiser->phi_equal = phi_eq;
+  r.optimiser->stationarity = o.stationarity;
   return r;
 }
 

@@ -91,8 +91,8 @@ MoebiusResult make_rational(const Curve& c, const MoebiusResult& in, long ration
   if (in.balanced) {
     // one more digit on q: composing with m at most doubles alpha's error
     // relative to min(alpha, 1 - alpha), and keeps k_0's relative error
-    const MoebiusResult rq = make_rational(in.balanced->q, *in.on_balanced, std::min(rational_digits + 1, 100L), opt);
-    return detail::compose_balanced(in.balanced, rq, in.u_before, opt.digits);
+    const MoebiusResult rq = make_rational(in.balanced->curve->q, *in.balanced->on, std::min(rational_digits + 1, 100L), opt);
+    return detail::compose_balanced(in.balanced->curve, rq, in.u_before, opt.digits);
   }
   const Speed s(c, in.kind);
   const std::size_t N = in.pieces();
@@ -106,7 +106,7 @@ MoebiusResult make_rational(const Curve& c, const MoebiusResult& in, long ration
   // optimal alpha (so 0 < alpha < 1, and k = (1 - alpha) / alpha keeps the
   // relative accuracy tol). Every window is certain: the data's balls are
   // refined (the same map, more digits) until each fits its window.
-  const bool chosen = in.optimiser.used || in.target.used;
+  const bool chosen = in.optimiser.has_value() || in.target.has_value();
   bool irrational = false;
   for (std::size_t j = 1; j < N; ++j) irrational = irrational || !in.T[j].t.is_rational();
   MoebiusResult base = in;
@@ -147,14 +147,14 @@ MoebiusResult make_rational(const Curve& c, const MoebiusResult& in, long ration
   for (const auto& q : Tq) T.emplace_back(q);
 
   MoebiusResult r = in;
-  r.rational = true;
-  r.T_exact = Tq;
-  r.S_exact = Sq;
+  r.exact.emplace();
+  r.exact->T = Tq;
+  r.exact->S = Sq;
   r.T.clear();
   for (const auto& t : T) r.T.push_back(Breakpoint{t, 0, 0, 0});
   if (in.identically_zero) {
-    r.alpha_exact.assign(N, Rational(1, 2));
-    r.S_exact = Tq;
+    r.exact->alpha.assign(N, Rational(1, 2));
+    r.exact->S = Tq;
     r.S.clear();
     for (const auto& q : Tq) r.S.emplace_back(q, prec0);
     r.alpha.assign(N, Ball(Rational(1, 2), prec0));
@@ -188,14 +188,14 @@ MoebiusResult make_rational(const Curve& c, const MoebiusResult& in, long ration
         k[i + 1] = rho_i / (rho_j * k[i]);
       }
     }
-    r.alpha_exact.clear();
+    r.exact->alpha.clear();
     r.alpha.clear();
     r.S.clear();
     for (const auto& q : Sq) r.S.emplace_back(q, prec);
     Ball total(0);
     for (std::size_t i = 0; i < N; ++i) {
       const Rational a = Rational(1) / (Rational(1) + k[i]);
-      r.alpha_exact.push_back(a);
+      r.exact->alpha.push_back(a);
       r.alpha.emplace_back(a, prec);
       // the piece's int sigma_{p o m}^2 ds = (k A + B + C / k) / ds_i, exact k, ds
       const Ball kb(k[i], prec), ikb(Rational(1) / k[i], prec), ids(Rational(1) / (Sq[i + 1] - Sq[i]), prec);
@@ -214,11 +214,11 @@ MoebiusResult make_rational(const Curve& c, const MoebiusResult& in, long ration
                            " digits within " + std::to_string(opt.max_prec) +
                            " bits of working precision (raise it with --max-prec)");
   }
-  if (r.target.used) {
-    const Ball tq(r.target.value, 2 * digits_to_bits(opt.digits) + 64);
-    r.target.reached = arb_ge(r.u_after.get(), tq.get());
+  if (r.target.has_value()) {
+    const Ball tq(r.target->value, 2 * digits_to_bits(opt.digits) + 64);
+    r.target->reached = arb_ge(r.u_after.get(), tq.get());
   }
-  if (r.optimiser.used) r.optimiser.phi = Ball();  // Phi belonged to the unrounded map
+  if (r.optimiser.has_value()) r.optimiser->phi = Ball();  // Phi belonged to the unrounded map
   return r;
 }
 
@@ -248,19 +248,19 @@ std::vector<Ball> alphas(const std::vector<PieceIntegrals>& I) {
 MoebiusResult refine_moebius_data(const Speed& sp, const MoebiusResult& in, long digits, long max_prec) {
   if (digits < 1) throw InvalidArgument("refine_moebius_data: digits must be at least 1");
   if (in.balanced) {
-    const Speed sq(in.balanced->q, sp.kind());
-    const MoebiusResult rq = refine_moebius_data(sq, *in.on_balanced, digits, max_prec);
-    return detail::compose_balanced(in.balanced, rq, in.u_before, digits);
+    const Speed sq(in.balanced->curve->q, sp.kind());
+    const MoebiusResult rq = refine_moebius_data(sq, *in.balanced->on, digits, max_prec);
+    return detail::compose_balanced(in.balanced->curve, rq, in.u_before, digits);
   }
   MoebiusResult x = in;
   if (x.identically_zero) return x;
   const std::size_t N = x.pieces();
-  if (x.rational) {
+  if (x.exact.has_value()) {
     const long prec = digits_to_bits(digits) + 64;
     x.S.clear();
-    for (const auto& q : x.S_exact) x.S.emplace_back(q, prec);
+    for (const auto& q : x.exact->S) x.S.emplace_back(q, prec);
     x.alpha.clear();
-    for (const auto& q : x.alpha_exact) x.alpha.emplace_back(q, prec);
+    for (const auto& q : x.exact->alpha) x.alpha.emplace_back(q, prec);
     return x;
   }
   std::vector<RealAlgebraic> T;

@@ -10,6 +10,7 @@
 #include "uniparam/core/error.hpp"
 #include "uniparam/core/poly.hpp"
 #include "uniparam/core/ratfunc.hpp"
+#include "moebius_map.hpp"
 
 namespace uniparam {
 
@@ -258,12 +259,13 @@ std::vector<typename F::T> eval_segment(const F& f, const std::vector<std::vecto
 
 // t = r(s) on Moebius piece i, exactly.
 Rational moebius_exact(const MoebiusResult& r, std::size_t i, const Rational& s) {
-  const Rational& ta = r.T_exact[i];
-  const Rational& tb = r.T_exact[i + 1];
-  const Rational& a = r.alpha_exact[i];
-  const Rational u = (s - r.S_exact[i]) / (r.S_exact[i + 1] - r.S_exact[i]);
-  const Rational den = a + (Rational(1) - a - a) * u;
-  return ta + (tb - ta) * (Rational(1) - a) * u / den;
+  const Rational& ta = r.exact->T[i];
+  const Rational& tb = r.exact->T[i + 1];
+  const Rational& a = r.exact->alpha[i];
+  const Rational u = (s - r.exact->S[i]) / (r.exact->S[i + 1] - r.exact->S[i]);
+  Rational x;
+  detail::moebius_alpha_map(detail::RationalMapArith{}, &x, nullptr, &u, &a);
+  return ta + (tb - ta) * x;
 }
 
 void fill_balls_from_exact(Nurbs& n, long prec) {
@@ -340,20 +342,20 @@ std::vector<Ball> Nurbs::breaks() const {
 Nurbs moebius_nurbs(const Curve& c, const MoebiusResult& r, long prec) {
   // A balanced map r = m o r_q (MoebiusResult::balanced): p o r is q o r_q
   // exactly, and q's pieces are free of m's extreme parameters.
-  if (r.balanced) return moebius_nurbs(r.balanced->q, *r.on_balanced, prec);
+  if (r.balanced) return moebius_nurbs(r.balanced->curve->q, *r.balanced->on, prec);
   const std::vector<Poly> H = homogeneous(c);
   const long d = homogeneous_degree(H);
   Nurbs n;
   n.degree = d;
   n.dimension = c.dimension();
   const std::size_t N = r.pieces();
-  if (r.rational) {
+  if (r.exact.has_value()) {
     const QField f;
     std::vector<Segment<Rational>> segs;
     for (std::size_t i = 0; i < N; ++i) {
       check_time_budget();
-      Segment<Rational> s{r.S_exact[i], r.S_exact[i + 1],
-                          piece_control(f, H, d, r.T_exact[i], r.T_exact[i + 1], r.alpha_exact[i]), i};
+      Segment<Rational> s{r.exact->S[i], r.exact->S[i + 1],
+                          piece_control(f, H, d, r.exact->T[i], r.exact->T[i + 1], r.exact->alpha[i]), i};
       positive_segments(f, s, segs, n.subdivided);
     }
     assemble(f, segs, d, n.knots_exact, n.points_exact, n.weights_exact);
@@ -376,7 +378,7 @@ Nurbs moebius_nurbs(const Curve& c, const MoebiusResult& r, long prec) {
   assemble(f, segs, d, n.knots, n.points, n.weights);
   n.kind = Nurbs::Kind::Balls;
   n.segments = segs.size();
-  check_ball_nurbs(f, n, segs, prec, [&](const Ball& sv) { return moebius_eval_point(c, r, sv, prec); });
+  check_ball_nurbs(f, n, segs, prec, [&](const Ball& sv) { return eval_point(c, r, sv, prec); });
   return n;
 }
 
@@ -391,9 +393,9 @@ Nurbs composite_nurbs(const CompositeCurve& c, const CompositeMap& m, long prec)
     const MoebiusResult* r = m.parts()[j].moebius_result();
     if (!r)
       throw InvalidArgument(c.label(j) + ": its map is not a Moebius map, so p o r is not a NURBS curve there");
-    parts.push_back(r->balanced ? r->on_balanced.get() : r);
-    curves.push_back(r->balanced ? &r->balanced->q : &c.segment(j));
-    exact = exact && r->rational;
+    parts.push_back(r->balanced ? r->balanced->on.get() : r);
+    curves.push_back(r->balanced ? &r->balanced->curve->q : &c.segment(j));
+    exact = exact && r->exact.has_value();
     H.push_back(homogeneous(*curves.back()));
     D = std::max(D, homogeneous_degree(H.back()));
   }
@@ -426,10 +428,10 @@ Nurbs composite_nurbs(const CompositeCurve& c, const CompositeMap& m, long prec)
     std::vector<Segment<Rational>> segs;
     build(f, segs,
           [&](std::size_t j, std::size_t i) {
-            return m.S()[j] + (m.S()[j + 1] - m.S()[j]) * parts[j]->S_exact[i];
+            return m.S()[j] + (m.S()[j + 1] - m.S()[j]) * parts[j]->exact->S[i];
           },
           [](const MoebiusResult& r, std::size_t i) {
-            return std::make_tuple(r.T_exact[i], r.T_exact[i + 1], r.alpha_exact[i]);
+            return std::make_tuple(r.exact->T[i], r.exact->T[i + 1], r.exact->alpha[i]);
           });
     assemble(f, segs, D, n.knots_exact, n.points_exact, n.weights_exact);
     n.kind = Nurbs::Kind::Exact;
@@ -487,15 +489,11 @@ Nurbs bezier_nurbs(const BezierCurve& b, const BezierResult& r, long prec) {
       throw BudgetExceeded("the signs of the NURBS weights could not be certified at the working precision: raise --digits");
   // the check against p(r(s)), r(s) = (1 - a) s / ((1 - a) s + a (1 - s))
   const Curve c = b.to_curve();
-  const BField f{prec};
   const Ball a = r.exact ? r.alpha_exact->to_ball(prec) : r.alpha;
   for (long q = 0; q <= 8; ++q) {
-    const Ball s = f.q(Rational(q, 8));
-    const Ball oma = f.sub(f.q(Rational(1)), a);
-    const Ball num = f.mul(oma, s);
-    Ball t = f.div(num, f.add(num, f.mul(a, f.sub(f.q(Rational(1)), s))));
-    if (q == 0) t = f.q(Rational(0));
-    if (q == 8) t = f.q(Rational(1));
+    const Ball s(Rational(q, 8), prec);
+    Ball t;
+    detail::moebius_alpha_map(detail::BallMapArith{prec}, t.get(), nullptr, s.get(), a.get());
     clamp_unit(t.get(), prec);
     if (!overlaps(nurbs_eval(n, s, prec), c.eval(t, prec))) internal("at s = " + Rational(q, 8).str());
   }

@@ -9,6 +9,7 @@
 #include "uniparam/core/error.hpp"
 #include "uniparam/core/parallel.hpp"
 #include "moebius_detail.hpp"
+#include "moebius_map.hpp"
 
 namespace uniparam {
 
@@ -132,8 +133,7 @@ RadicalResult compose_balanced(const Speed& sp, const std::shared_ptr<const Bala
   r.outer_k.clear();
   for (std::size_t i = 0; i + 1 < rq.T.size(); ++i) r.outer_k.push_back(balance_local_k(*bal, rq.T[i].t, rq.T[i + 1].t, prec));
   r.u_before = u_before;
-  r.balanced = bal;
-  r.on_balanced = std::make_shared<const RadicalResult>(rq);
+  r.balanced = RadicalResult::Balanced{bal, std::make_shared<const RadicalResult>(rq)};
   return r;
 }
 
@@ -153,55 +153,22 @@ RadicalResult radical(const Curve& c, SpeedKind kind, const Options& opt) {
 
 namespace {
 
-// Clamps a real ball to [0, 1].
-
-// Local Moebius x = (1-a) zt / ((1-a) zt + a (1-zt)) and its derivative dx/dzt
-// = a (1-a) / den^2, on complex balls.
+// The local Moebius map of piece i (moebius_map.hpp) on complex balls: x
+// and dx/dzt (if non-null) at zt.
 void moebius(acb_t x, acb_t dx, const acb_t zt, const arb_t alpha, long prec) {
-  acb_t a, b, den;
-  acb_init(a);
-  acb_init(b);
-  acb_init(den);
+  AcbBox a;
   acb_set_arb(a, alpha);
-  acb_sub_ui(b, a, 1, prec);
-  acb_neg(b, b);             // 1 - a
-  acb_mul(x, b, zt, prec);   // (1-a) zt
-  acb_sub_ui(den, zt, 1, prec);
-  acb_neg(den, den);         // 1 - zt
-  acb_mul(den, den, a, prec);
-  acb_add(den, den, x, prec);
-  if (dx) {
-    acb_mul(dx, a, b, prec);
-    acb_div(dx, dx, den, prec);
-    acb_div(dx, dx, den, prec);
-  }
-  acb_div(x, x, den, prec);
-  // The map fixes 0 and 1 exactly; the ball quotient (1-a)/(1-a) would not.
-  if (acb_is_zero(zt) || acb_is_one(zt)) acb_set(x, zt);
-  acb_clear(a);
-  acb_clear(b);
-  acb_clear(den);
+  detail::moebius_alpha_map(detail::AcbMapArith{prec}, x, dx, zt, a);
 }
 
 // y -> k y / (k y + 1 - y), the balancing map m on a piece
-// (RadicalResult::outer_k), with den = k y + 1 - y where asked.
+// (RadicalResult::outer_k; moebius_map.hpp with p = k, q = 1), with den =
+// k y + 1 - y where asked.
 void outer_moebius(acb_t y, acb_t den, const arb_t k, long prec) {
-  acb_t d, ky;
-  acb_init(d);
-  acb_init(ky);
-  acb_mul_arb(ky, y, k, prec);
-  acb_sub_ui(d, y, 1, prec);
-  acb_neg(d, d);  // 1 - y
-  acb_add(d, d, ky, prec);
-  if (acb_is_zero(y) || acb_is_one(y)) {
-    acb_set(ky, y);  // m fixes the piece's ends exactly
-  } else {
-    acb_div(ky, ky, d, prec);
-  }
-  acb_swap(y, ky);
-  if (den) acb_swap(den, d);
-  acb_clear(d);
-  acb_clear(ky);
+  AcbBox kc, w;
+  acb_set_arb(kc, k);
+  detail::moebius_map(detail::AcbMapArith{prec}, w, nullptr, den, y, kc, nullptr);
+  acb_swap(y, w);
 }
 
 // Principal k-th root; for a ball containing 0 (where Arb's root is
@@ -245,20 +212,9 @@ bool psi(acb_t out, const acb_t x, ZeroSide side, int k, bool analytic, long pre
   return ok;
 }
 
-// At an exact end (z = Z_i or Z_{i+1} with that breakpoint exact, as z = 0
-// and z = 1 are) the local coordinate is exactly 0 or 1: the quotient
-// (z - Z_i) / (Z_{i+1} - Z_i) of correlated balls would keep the radius of
-// the other breakpoint, which a radical at a zero of the speed at t = 1
-// blows up to its square root whatever the precision.
-void pin_exact_end(arb_t zt, const Ball& z, const Ball& lo, const Ball& hi) {
-  if (!arb_is_exact(z.get())) return;
-  if (arb_is_exact(lo.get()) && arb_equal(z.get(), lo.get())) arb_zero(zt);
-  else if (arb_is_exact(hi.get()) && arb_equal(z.get(), hi.get())) arb_one(zt);
-}
-
 }  // namespace
 
-Ball radical_eval_r(const RadicalResult& r, const Ball& z, long prec) {
+Ball eval_r(const RadicalResult& r, const Ball& z, long prec) {
   Ball result;
   bool any = false;
   for (std::size_t i = 0; i < r.pieces(); ++i) {
@@ -270,7 +226,10 @@ Ball radical_eval_r(const RadicalResult& r, const Ball& z, long prec) {
     arb_sub(zt.get(), z.get(), lo.get(), prec);
     arb_div(zt.get(), zt.get(), dz.get(), prec);
     clamp_unit(zt.get(), prec);
-    pin_exact_end(zt.get(), z, lo, hi);
+    // an exact end keeps an exact local coordinate: the radius of the other
+    // breakpoint, which a radical at a zero of the speed at t = 1 blows up
+    // to its square root whatever the precision, stays out
+    detail::pin_exact_end(zt.get(), z, lo, hi);
     arb_sub(dt.get(), tb.get(), ta.get(), prec);
     acb_t x, y, zc;
     acb_init(x);
@@ -297,7 +256,7 @@ Ball radical_eval_r(const RadicalResult& r, const Ball& z, long prec) {
     acb_clear(y);
     acb_clear(zc);
   }
-  if (!any) throw InvalidArgument("radical_eval_r: z must lie in [0, 1]");
+  if (!any) throw InvalidArgument("eval_r: z must lie in [0, 1]");
   return result;
 }
 
@@ -360,7 +319,7 @@ bool radical_speed_sq_local(acb_t out, const RadicalResult& r, const Speed& s, s
 
 }  // namespace
 
-Ball radical_eval_speed(const RadicalResult& r, const Speed& s, const Ball& z, long prec) {
+Ball eval_speed(const RadicalResult& r, const Speed& s, const Ball& z, long prec) {
   Ball result;
   bool any = false;
   for (std::size_t i = 0; i < r.pieces(); ++i) {
@@ -371,7 +330,7 @@ Ball radical_eval_speed(const RadicalResult& r, const Speed& s, const Ball& z, l
     arb_sub(zt.get(), z.get(), lo.get(), prec);
     arb_div(zt.get(), zt.get(), dz.get(), prec);
     clamp_unit(zt.get(), prec);
-    pin_exact_end(zt.get(), z, lo, hi);
+    detail::pin_exact_end(zt.get(), z, lo, hi);
     acb_t x, dx, zc, v;
     acb_init(x);
     acb_init(dx);
@@ -392,14 +351,14 @@ Ball radical_eval_speed(const RadicalResult& r, const Speed& s, const Ball& z, l
     acb_clear(zc);
     acb_clear(v);
   }
-  if (!any) throw InvalidArgument("radical_eval_speed: z must lie in [0, 1]");
+  if (!any) throw InvalidArgument("eval_speed: z must lie in [0, 1]");
   return result;
 }
 
-std::vector<Ball> radical_eval_point(const Curve& c, const RadicalResult& r, const Ball& z, long prec) {
+std::vector<Ball> eval_point(const Curve& c, const RadicalResult& r, const Ball& z, long prec) {
   // p(r(z)) = q(r_q(z)) for a balanced map, without m's extreme parameters
-  if (r.balanced) return radical_eval_point(r.balanced->q, *r.on_balanced, z, prec);
-  const Ball t = radical_eval_r(r, z, prec);
+  if (r.balanced) return eval_point(r.balanced->curve->q, *r.balanced->on, z, prec);
+  const Ball t = eval_r(r, z, prec);
   return c.eval(t, prec);
 }
 
@@ -441,9 +400,9 @@ Ball radical_direct_uniformity(const RadicalResult& r, const Speed& s, long digi
 RadicalResult refine_radical_data(const Speed& sp, const RadicalResult& in, long digits, long max_prec) {
   if (digits < 1) throw InvalidArgument("refine_radical_data: digits must be at least 1");
   if (in.balanced) {
-    const Speed sq(in.balanced->q, sp.kind());
-    const RadicalResult rq = refine_radical_data(sq, *in.on_balanced, digits, max_prec);
-    return compose_balanced(sp, in.balanced, rq, in.u_before, digits);
+    const Speed sq(in.balanced->curve->q, sp.kind());
+    const RadicalResult rq = refine_radical_data(sq, *in.balanced->on, digits, max_prec);
+    return compose_balanced(sp, in.balanced->curve, rq, in.u_before, digits);
   }
   RadicalResult x = in;
   if (x.identically_zero) return x;

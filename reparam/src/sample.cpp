@@ -89,8 +89,8 @@ bool acts_as_identity(const Reparameterization& r) {
 Ball Reparameterization::eval_r(const Ball& s, long prec) const {
   check_unit(s, "Reparameterization::eval_r");
   if (acts_as_identity(*this)) return s;
-  if (const auto* x = radical_result()) return radical_eval_r(*x, s, prec);
-  return moebius_eval_r(*moebius_result(), s, prec);
+  if (const auto* x = radical_result()) return uniparam::eval_r(*x, s, prec);
+  return uniparam::eval_r(*moebius_result(), s, prec);
 }
 
 Ball Reparameterization::eval_speed(const Speed& sp, const Ball& s, long prec) const {
@@ -98,8 +98,8 @@ Ball Reparameterization::eval_speed(const Speed& sp, const Ball& s, long prec) c
   if (acts_as_identity(*this)) {
     return sp.eval_real(s, prec);
   }
-  if (const auto* x = radical_result()) return radical_eval_speed(*x, sp, s, prec);
-  return moebius_eval_speed(*moebius_result(), sp, s, prec);
+  if (const auto* x = radical_result()) return uniparam::eval_speed(*x, sp, s, prec);
+  return uniparam::eval_speed(*moebius_result(), sp, s, prec);
 }
 
 namespace {

@@ -5,6 +5,8 @@
 
 #include <flint/fmpz.h>
 
+#include "moebius_map.hpp"
+
 namespace uniparam {
 
 namespace {
@@ -60,8 +62,10 @@ namespace {
 
 // y = alpha x / (alpha x + beta (1 - x)) for the exact x (alpha, beta > 0).
 Rational moebius_q(const Integer& alpha, const Integer& beta, const Rational& x) {
-  const Rational ax = Rational(alpha) * x;
-  return ax / (ax + Rational(beta) * (Rational(1) - x));
+  const Rational p(alpha), q(beta);
+  Rational y;
+  detail::moebius_map(detail::RationalMapArith{}, &y, nullptr, nullptr, &x, &p, &q);
+  return y;
 }
 
 // The image of x under y = alpha x / (alpha x + beta (1 - x)): its inverse

@@ -64,8 +64,8 @@ TEST(SampleRobust, RadicalAtOnAnIllConditionedMap) {
       ASSERT_EQ(r.exit_code, 0) << r.err;
       const std::string at = r.out.substr(r.out.find("\"at\""));
       const Ball zb(Rational::parse(z), 600);
-      const Ball t = radical_eval_r(fine, zb, 600);
-      const Ball v = radical_eval_speed(fine, sp, zb, 600);
+      const Ball t = eval_r(fine, zb, 600);
+      const Ball v = eval_speed(fine, sp, zb, 600);
       ASSERT_TRUE(t.meets_digits(45) && v.meets_digits(45));
       EXPECT_TRUE(encloses(at, "r", mid_text(t).c_str(), t.rad_decimal().c_str(), digits));
       EXPECT_TRUE(encloses(at, "speed", mid_text(v).c_str(), v.rad_decimal().c_str(), digits));

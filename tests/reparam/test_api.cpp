@@ -140,7 +140,7 @@ TEST(Api, TargetBreakpointsAndLocateGiveTheEngineValues) {
   const uniparam::MoebiusResult e1 =
       uniparam::reparam_c1(ec, uniparam::SpeedKind::Parametric, uniparam::Rational(99, 100), eo, 64);
   EXPECT_EQ(c1.method(), "C1 piecewise Moebius");
-  EXPECT_EQ(c1.target_reached(), e1.target.reached);
+  EXPECT_EQ(c1.target_reached(), e1.target->reached);
   EXPECT_TRUE(same(c1.u_after(), e1.u_after));
 
   const up::Reparameterization cb = up::moebius_breakpoints(c, {up::Rational(0), up::Rational(1, 4), up::Rational(1)}, o);

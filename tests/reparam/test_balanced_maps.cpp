@@ -134,19 +134,19 @@ Ball direct_u_after(const Speed& sp, const MoebiusResult& r, const Ball& mu, std
 // t = r(s) of a rational Moebius map, exactly.
 Rational exact_r(const MoebiusResult& r, const Rational& s) {
   std::size_t i = 0;
-  while (i + 1 < r.pieces() && s > r.S_exact[i + 1]) ++i;
-  const Rational& a = r.alpha_exact[i];
-  const Rational u = (s - r.S_exact[i]) / (r.S_exact[i + 1] - r.S_exact[i]);
-  return r.T_exact[i] + (r.T_exact[i + 1] - r.T_exact[i]) * (Rational(1) - a) * u / (a + (Rational(1) - a - a) * u);
+  while (i + 1 < r.pieces() && s > r.exact->S[i + 1]) ++i;
+  const Rational& a = r.exact->alpha[i];
+  const Rational u = (s - r.exact->S[i]) / (r.exact->S[i + 1] - r.exact->S[i]);
+  return r.exact->T[i] + (r.exact->T[i + 1] - r.exact->T[i]) * (Rational(1) - a) * u / (a + (Rational(1) - a - a) * u);
 }
 
 // The checks every balanced Moebius result must pass (ball form).
 void check_moebius_map(const Curve& p, SpeedKind kind, const MoebiusResult& r, const Options& o,
                        const std::string& what) {
   SCOPED_TRACE(what);
-  ASSERT_TRUE(r.balanced && r.on_balanced) << "the curve's weights grow geometrically: the map must be composed";
-  const BalancedCurve& bal = *r.balanced;
-  const MoebiusResult& rq = *r.on_balanced;
+  ASSERT_TRUE(r.balanced) << "the curve's weights grow geometrically: the map must be composed";
+  const BalancedCurve& bal = *r.balanced->curve;
+  const MoebiusResult& rq = *r.balanced->on;
   const Speed sp(p, kind), sq(bal.q, kind);
   ASSERT_EQ(r.pieces(), rq.pieces());
   // T = m(T_q) exactly, increasing from 0 to 1
@@ -171,11 +171,11 @@ void check_moebius_map(const Curve& p, SpeedKind kind, const MoebiusResult& r, c
   // points and speeds: p(r(s)) = q(r_q(s)) and sigma_{p o r} = sigma_{q o r_q}
   for (long j = 0; j <= 12; ++j) {
     const Ball s(Rational(j, 12), kPrec);
-    const Ball t = moebius_eval_r(r, s, kPrec);
-    EXPECT_TRUE(overlaps(t, m_of(bal, moebius_eval_r(rq, s, kPrec)))) << j;
-    EXPECT_TRUE(overlaps(p.eval(t, kPrec), bal.q.eval(moebius_eval_r(rq, s, kPrec), kPrec))) << j;
-    EXPECT_TRUE(overlaps(moebius_eval_point(p, r, s, kPrec), p.eval(t, kPrec))) << j;
-    EXPECT_TRUE(overlaps(moebius_eval_speed(r, sp, s, kPrec), moebius_eval_speed(rq, sq, s, kPrec))) << j;
+    const Ball t = eval_r(r, s, kPrec);
+    EXPECT_TRUE(overlaps(t, m_of(bal, eval_r(rq, s, kPrec)))) << j;
+    EXPECT_TRUE(overlaps(p.eval(t, kPrec), bal.q.eval(eval_r(rq, s, kPrec), kPrec))) << j;
+    EXPECT_TRUE(overlaps(eval_point(p, r, s, kPrec), p.eval(t, kPrec))) << j;
+    EXPECT_TRUE(overlaps(eval_speed(r, sp, s, kPrec), eval_speed(rq, sq, s, kPrec))) << j;
   }
 }
 
@@ -245,9 +245,9 @@ TEST(BalancedMaps, RadicalMapIsPsOwn) {
     for (SpeedKind kind : {SpeedKind::Parametric, SpeedKind::Angular}) {
       SCOPED_TRACE(c.what + (kind == SpeedKind::Angular ? ", angular" : ", parametric"));
       const RadicalResult r = radical(c.p, kind, o);
-      ASSERT_TRUE(r.balanced && r.on_balanced);
-      const RadicalResult& rq = *r.on_balanced;
-      const BalancedCurve& bal = *r.balanced;
+      ASSERT_TRUE(r.balanced);
+      const RadicalResult& rq = *r.balanced->on;
+      const BalancedCurve& bal = *r.balanced->curve;
       const Speed sp(c.p, kind), sq(bal.q, kind);
       ASSERT_EQ(r.T.size(), rq.T.size());
       ASSERT_EQ(r.outer_k.size(), r.pieces());
@@ -267,10 +267,10 @@ TEST(BalancedMaps, RadicalMapIsPsOwn) {
       EXPECT_TRUE(overlaps(r.u_before, uniformity(c.p, kind, o).u));
       for (long j = 0; j <= 16; ++j) {
         const Ball z(Rational(j, 16), kPrec);
-        const Ball t = radical_eval_r(r, z, kPrec);
-        EXPECT_TRUE(overlaps(t, m_of(bal, radical_eval_r(rq, z, kPrec)))) << j;
-        EXPECT_TRUE(overlaps(c.p.eval(t, kPrec), bal.q.eval(radical_eval_r(rq, z, kPrec), kPrec))) << j;
-        EXPECT_TRUE(overlaps(radical_eval_speed(r, sp, z, kPrec), radical_eval_speed(rq, sq, z, kPrec))) << j;
+        const Ball t = eval_r(r, z, kPrec);
+        EXPECT_TRUE(overlaps(t, m_of(bal, eval_r(rq, z, kPrec)))) << j;
+        EXPECT_TRUE(overlaps(c.p.eval(t, kPrec), bal.q.eval(eval_r(rq, z, kPrec), kPrec))) << j;
+        EXPECT_TRUE(overlaps(eval_speed(r, sp, z, kPrec), eval_speed(rq, sq, z, kPrec))) << j;
       }
       // refining keeps the composition
       const RadicalResult x = refine_radical_data(sp, r, o.digits + 10, o.max_prec);
@@ -306,11 +306,11 @@ TEST(BalancedMaps, RationalMapsComposeExactly) {
         EXPECT_TRUE(overlaps(x.alpha, r0.alpha));
         EXPECT_TRUE(overlaps(x.S, r0.S));
         const MoebiusResult r = make_rational(c.p, r0, 8, o);
-        ASSERT_TRUE(r.rational && r.balanced && r.on_balanced && r.on_balanced->rational);
+        ASSERT_TRUE(r.exact.has_value() && r.balanced && r.balanced->on->exact.has_value());
         check_moebius_map(c.p, kind, r, o, what + ", rational");
-        const MoebiusResult& rq = *r.on_balanced;
-        const BalancedCurve& bal = *r.balanced;
-        EXPECT_EQ(r.S_exact, rq.S_exact);
+        const MoebiusResult& rq = *r.balanced->on;
+        const BalancedCurve& bal = *r.balanced->curve;
+        EXPECT_EQ(r.exact->S, rq.exact->S);
         for (int j = 0; j < 8; ++j) {
           const Rational s(num(rng), 1000);
           const Rational t = exact_r(r, s), tau = exact_r(rq, s);
@@ -321,9 +321,9 @@ TEST(BalancedMaps, RationalMapsComposeExactly) {
         }
         if (r.continuity == Continuity::C1)
           for (std::size_t i = 0; i + 1 < r.pieces(); ++i) {
-            auto k = [&](std::size_t j) { return (Rational(1) - r.alpha_exact[j]) / r.alpha_exact[j]; };
+            auto k = [&](std::size_t j) { return (Rational(1) - r.exact->alpha[j]) / r.exact->alpha[j]; };
             auto rho = [&](std::size_t j) {
-              return (r.T_exact[j + 1] - r.T_exact[j]) / (r.S_exact[j + 1] - r.S_exact[j]);
+              return (r.exact->T[j + 1] - r.exact->T[j]) / (r.exact->S[j + 1] - r.exact->S[j]);
             };
             EXPECT_EQ(rho(i) / k(i), rho(i + 1) * k(i + 1)) << i;
           }
@@ -392,8 +392,8 @@ TEST(BalancedMaps, HugeRatiosFinishCertified) {
       EXPECT_TRUE(overlaps(rad.mu, arc)) << rad.mu.str(20);
       for (long j = 0; j <= 10; ++j) {
         const Ball s(Rational(j, 10), kPrec);
-        std::vector<std::vector<Ball>> pts{radical_eval_point(c.p, rad, s, kPrec)};
-        for (const MoebiusResult& r : maps) pts.push_back(moebius_eval_point(c.p, r, s, kPrec));
+        std::vector<std::vector<Ball>> pts{eval_point(c.p, rad, s, kPrec)};
+        for (const MoebiusResult& r : maps) pts.push_back(eval_point(c.p, r, s, kPrec));
         for (const auto& x : pts) {
           Ball rr, y2;
           arb_sqr(rr.get(), x[0].get(), kPrec);

@@ -175,7 +175,7 @@ TEST(Composite, MethodsImproveAndCountPieces) {
   m.kind = CompositeMethod::Kind::Moebius;
   m.rational = true;
   const CompositeMap q = composite_map(cc, sp, m);
-  for (const Reparameterization& part : q.parts()) EXPECT_TRUE(part.moebius_result()->rational);
+  for (const Reparameterization& part : q.parts()) EXPECT_TRUE(part.moebius_result()->exact.has_value());
 }
 
 TEST(Composite, StraightSegmentRefusedForAngularMaps) {

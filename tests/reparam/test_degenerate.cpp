@@ -301,12 +301,12 @@ TEST(Degenerate, RadicalEvaluatesExactlyAtAZeroAtTheRightEnd) {
   const Speed sp(p, SpeedKind::Angular), sq(q, SpeedKind::Angular);
   for (long prec : {128L, 256L}) {
     const Ball one(1), zero(0);
-    const Ball r1 = radical_eval_r(rp, one, prec);
+    const Ball r1 = eval_r(rp, one, prec);
     EXPECT_TRUE(r1.contains(Rational(1)));
-    const Ball v1 = radical_eval_speed(rp, sp, one, prec), v0 = radical_eval_speed(rq, sq, zero, prec);
+    const Ball v1 = eval_speed(rp, sp, one, prec), v0 = eval_speed(rq, sq, zero, prec);
     EXPECT_TRUE(agrees(v1, v0));
     EXPECT_TRUE(v1.meets_digits(15)) << v1.str(30);
-    for (const auto& b : radical_eval_point(p, rp, one, prec)) EXPECT_TRUE(b.meets_digits(15)) << b.str(30);
+    for (const auto& b : eval_point(p, rp, one, prec)) EXPECT_TRUE(b.meets_digits(15)) << b.str(30);
   }
 }
 

@@ -61,12 +61,12 @@ TEST(EvalRobust, RationalAlphaNearZeroOrOneStaysInsideWithRelativeAccuracy) {
         SCOPED_TRACE(rd);
         MoebiusResult q;
         ASSERT_NO_THROW(q = make_rational(c, moebius_optimal(c, SpeedKind::Parametric, o), rd, o));
-        ASSERT_EQ(q.alpha_exact.size(), 1u);
-        EXPECT_GT(q.alpha_exact[0], Rational(0));
-        EXPECT_LT(q.alpha_exact[0], Rational(1));
+        ASSERT_EQ(q.exact->alpha.size(), 1u);
+        EXPECT_GT(q.exact->alpha[0], Rational(0));
+        EXPECT_LT(q.exact->alpha[0], Rational(1));
         const MoebiusResult exact = moebius_optimal(c, SpeedKind::Parametric, ref);
-        EXPECT_TRUE(within_relative(q.alpha_exact[0], exact.alpha[0], pow10_inv(rd)))
-            << q.alpha_exact[0].str() << " vs " << exact.alpha[0].str(45);
+        EXPECT_TRUE(within_relative(q.exact->alpha[0], exact.alpha[0], pow10_inv(rd)))
+            << q.exact->alpha[0].str() << " vs " << exact.alpha[0].str(45);
         EXPECT_TRUE(q.u_after.meets_digits(o.digits));
       }
     }
@@ -90,8 +90,8 @@ TEST(EvalRobust, RationalAlphaOfChosenBreakpointsHasRelativeAccuracy) {
       SCOPED_TRACE(rd);
       const MoebiusResult q = make_rational(c, r, rd, o);
       for (std::size_t i = 0; i < q.pieces(); ++i)
-        EXPECT_TRUE(within_relative(q.alpha_exact[i], exact.alpha[i], pow10_inv(rd)))
-            << "piece " << i << ": " << q.alpha_exact[i].str() << " vs " << exact.alpha[i].str(45);
+        EXPECT_TRUE(within_relative(q.exact->alpha[i], exact.alpha[i], pow10_inv(rd)))
+            << "piece " << i << ": " << q.exact->alpha[i].str() << " vs " << exact.alpha[i].str(45);
     }
   }
 }
@@ -116,13 +116,13 @@ TEST(EvalRobust, IllConditionedMapIsSampledByRefiningItsData) {
     SCOPED_TRACE(k);
     const SamplePoint& p = smp.after[static_cast<std::size_t>(k)];
     const Ball z(Rational(k, K - 1), prec);
-    const Ball t = radical_eval_r(fine, z, prec);
+    const Ball t = eval_r(fine, z, prec);
     ASSERT_TRUE(t.meets_digits(25));  // at the joint z = 1/2, r is Hoelder-1/2: half the 60 digits
     EXPECT_TRUE(p.t.contains(t)) << p.t.str() << " vs " << t.str(45);
     const std::vector<Ball> pt = c.eval(t, prec);
     for (std::size_t j = 0; j < pt.size(); ++j) EXPECT_TRUE(p.point[j].contains(pt[j])) << j;
     if (!p.at_joint) {
-      const Ball v = radical_eval_speed(fine, sp, z, prec);
+      const Ball v = eval_speed(fine, sp, z, prec);
       ASSERT_TRUE(v.meets_digits(30));
       EXPECT_TRUE(p.speed.contains(v)) << p.speed.str() << " vs " << v.str(35);
     }
@@ -151,11 +151,11 @@ TEST(EvalRobust, RationalMapSamplesContainTheExactValues) {
       const Rational s(k, K - 1);
       const SamplePoint& p = smp.after[static_cast<std::size_t>(k)];
       std::size_t i = 0;
-      while (i + 1 < q.pieces() && s > q.S_exact[i + 1]) ++i;
-      const Rational ds = q.S_exact[i + 1] - q.S_exact[i], dt = q.T_exact[i + 1] - q.T_exact[i];
-      const Rational u = (s - q.S_exact[i]) / ds, a = q.alpha_exact[i];
+      while (i + 1 < q.pieces() && s > q.exact->S[i + 1]) ++i;
+      const Rational ds = q.exact->S[i + 1] - q.exact->S[i], dt = q.exact->T[i + 1] - q.exact->T[i];
+      const Rational u = (s - q.exact->S[i]) / ds, a = q.exact->alpha[i];
       const Rational den = a + (Rational(1) - Rational(2) * a) * u;
-      const Rational t = q.T_exact[i] + dt * (Rational(1) - a) * u / den;
+      const Rational t = q.exact->T[i] + dt * (Rational(1) - a) * u / den;
       const Rational dr = dt / ds * a * (Rational(1) - a) / (den * den);
       EXPECT_TRUE(p.t.contains(t)) << p.t.str() << " vs " << t.str();
       for (std::size_t j = 0; j < c.dimension(); ++j) EXPECT_TRUE(p.point[j].contains(c.components()[j](t))) << j;
@@ -291,14 +291,14 @@ TEST(EvalRobust, RationalJointsAreWithinTheRelativeAccuracyOfTheTrueJoints) {
     const Ball tol(pow10_inv(rd), 512);
     for (std::size_t j = 1; j < q.pieces(); ++j) {
       Ball d, left, right, gap;
-      const Ball sq(q.S_exact[j], 512);
+      const Ball sq(q.exact->S[j], 512);
       arb_sub(d.get(), sq.get(), exact.S[j].get(), 512);
       arb_abs(d.get(), d.get());
       arb_sub(left.get(), exact.S[j].get(), exact.S[j - 1].get(), 512);
       arb_sub(right.get(), exact.S[j + 1].get(), exact.S[j].get(), 512);
       arb_min(gap.get(), left.get(), right.get(), 512);
       arb_mul(gap.get(), gap.get(), tol.get(), 512);
-      EXPECT_TRUE(arb_le(d.get(), gap.get())) << "s_" << j << " = " << q.S_exact[j].str() << " vs "
+      EXPECT_TRUE(arb_le(d.get(), gap.get())) << "s_" << j << " = " << q.exact->S[j].str() << " vs "
                                               << exact.S[j].str(65);
     }
   }

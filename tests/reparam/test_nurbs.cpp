@@ -57,24 +57,24 @@ MoebiusResult random_map(std::mt19937_64& rng, long N, long prec) {
   };
   MoebiusResult r;
   r.kind = SpeedKind::Parametric;
-  r.rational = true;
-  r.T_exact = sorted_points(N);
-  r.S_exact = sorted_points(N);
-  for (long i = 0; i < N; ++i) r.alpha_exact.push_back(random_unit(rng, 31));
-  for (const auto& t : r.T_exact) r.T.push_back(Breakpoint{RealAlgebraic(t), 0, 0, 0});
-  for (const auto& s : r.S_exact) r.S.emplace_back(s, prec);
-  for (const auto& a : r.alpha_exact) r.alpha.emplace_back(a, prec);
+  r.exact.emplace();
+  r.exact->T = sorted_points(N);
+  r.exact->S = sorted_points(N);
+  for (long i = 0; i < N; ++i) r.exact->alpha.push_back(random_unit(rng, 31));
+  for (const auto& t : r.exact->T) r.T.push_back(Breakpoint{RealAlgebraic(t), 0, 0, 0});
+  for (const auto& s : r.exact->S) r.S.emplace_back(s, prec);
+  for (const auto& a : r.exact->alpha) r.alpha.emplace_back(a, prec);
   return r;
 }
 
 // r(s) from the map's formula (2.1).
 Rational r_exact(const MoebiusResult& r, const Rational& s) {
   std::size_t i = 0;
-  while (i + 1 < r.pieces() && s > r.S_exact[i + 1]) ++i;
-  const Rational u = (s - r.S_exact[i]) / (r.S_exact[i + 1] - r.S_exact[i]);
-  const Rational& a = r.alpha_exact[i];
+  while (i + 1 < r.pieces() && s > r.exact->S[i + 1]) ++i;
+  const Rational u = (s - r.exact->S[i]) / (r.exact->S[i + 1] - r.exact->S[i]);
+  const Rational& a = r.exact->alpha[i];
   const Rational num = (Rational(1) - a) * u;
-  return r.T_exact[i] + (r.T_exact[i + 1] - r.T_exact[i]) * num / (num + a * (Rational(1) - u));
+  return r.exact->T[i] + (r.exact->T[i + 1] - r.exact->T[i]) * num / (num + a * (Rational(1) - u));
 }
 
 // De Boor's algorithm, exactly (tests/support/de_boor.hpp).
@@ -114,7 +114,7 @@ TEST(Nurbs, ExactNurbsEqualsPComposedWithRAtRandomParameters) {
     ASSERT_EQ(n.kind, Nurbs::Kind::Exact);
     expect_valid(n);
     std::vector<Rational> ss{Rational(0), Rational(1)};
-    for (const auto& s : r.S_exact) ss.push_back(s);
+    for (const auto& s : r.exact->S) ss.push_back(s);
     for (int k = 0; k < 10; ++k) ss.push_back(random_unit(rng, 1009));
     for (const Rational& s : ss) {
       const Rational t = r_exact(r, s);
@@ -137,7 +137,7 @@ TEST(Nurbs, BallNurbsContainsPComposedWithR) {
     const Curve c = random_curve(rng);
     MoebiusResult r = random_map(rng, pieces(rng), prec);
     const MoebiusResult exact = r;
-    r.rational = false;  // the same map, built in ball arithmetic
+    r.exact.reset();  // the same map, built in ball arithmetic
     const Nurbs n = moebius_nurbs(c, r, prec);
     ASSERT_EQ(n.kind, Nurbs::Kind::Balls);
     const Nurbs q = moebius_nurbs(c, exact, prec);
@@ -162,11 +162,11 @@ TEST(Nurbs, NonPositiveBernsteinWeightsAreSubdividedAway) {
   const Curve c = Curve::parse("(t/(10*t^2-10*t+3), 1/(10*t^2-10*t+3))");
   MoebiusResult r;
   r.kind = SpeedKind::Parametric;
-  r.rational = true;
-  r.T_exact = {Rational(0), Rational(1)};
-  r.S_exact = {Rational(0), Rational(1)};
-  r.alpha_exact = {Rational(1, 2)};
-  for (const auto& t : r.T_exact) r.T.push_back(Breakpoint{RealAlgebraic(t), 0, 0, 0});
+  r.exact.emplace();
+  r.exact->T = {Rational(0), Rational(1)};
+  r.exact->S = {Rational(0), Rational(1)};
+  r.exact->alpha = {Rational(1, 2)};
+  for (const auto& t : r.exact->T) r.T.push_back(Breakpoint{RealAlgebraic(t), 0, 0, 0});
   r.S = {Ball(0), Ball(1)};
   r.alpha = {Ball(Rational(1, 2), 64)};
   const Nurbs n = moebius_nurbs(c, r, 64);
@@ -191,9 +191,9 @@ TEST(Nurbs, OptimalRationalMapOfTheCommandsIsExact) {
   expect_valid(n);
   EXPECT_EQ(n.segments, 3u);
   for (std::size_t i = 0; i <= 3; ++i) {
-    const std::vector<Rational> v = de_boor(n, r.S_exact[i]);
-    EXPECT_EQ(v[0], c.components()[0](r.T_exact[i]));
-    EXPECT_EQ(v[1], c.components()[1](r.T_exact[i]));
+    const std::vector<Rational> v = de_boor(n, r.exact->S[i]);
+    EXPECT_EQ(v[0], c.components()[0](r.exact->T[i]));
+    EXPECT_EQ(v[1], c.components()[1](r.exact->T[i]));
   }
 }
 

@@ -237,7 +237,7 @@ TEST(Parametric, OptimalMoebiusAgainstDirectIntegration) {
     // the map's own speed, integrated directly in s
     const Speed sp(curve, SpeedKind::Parametric);
     const LD u = direct_u(x.mu, r.S, {1}, {ZeroSide::None},
-                          [&](const Ball& s) { return moebius_eval_speed(r, sp, s, 128); });
+                          [&](const Ball& s) { return eval_speed(r, sp, s, 128); });
     EXPECT_TRUE(close(r.u_after, u, 1e-12L)) << c.curve << ": " << r.u_after.str(20) << " vs " << static_cast<double>(u);
   }
 }
@@ -253,7 +253,7 @@ TEST(Parametric, PiecewiseMoebiusAgainstDirectIntegration) {
       const Oracle x = oracle(curve, c);
       const Speed sp(curve, SpeedKind::Parametric);
       const LD u = direct_u(x.mu, r.S, std::vector<int>(N, 1), std::vector<ZeroSide>(N, ZeroSide::None),
-                            [&](const Ball& s) { return moebius_eval_speed(r, sp, s, 128); });
+                            [&](const Ball& s) { return eval_speed(r, sp, s, 128); });
       EXPECT_TRUE(close(r.u_after, u, 1e-11L)) << c.curve << " N = " << N;
       EXPECT_TRUE(arb_ge(r.u_after.get(), r.u_before.get()) || arb_overlaps(r.u_after.get(), r.u_before.get()));
     }
@@ -285,7 +285,7 @@ TEST(Parametric, RadicalLiftsCuspsAgainstDirectIntegration) {
       q.push_back(r.root_index(i));
       side.push_back(r.side(i));
     }
-    const LD u = direct_u(x.mu, r.Z, q, side, [&](const Ball& z) { return radical_eval_speed(r, sp, z, 128); });
+    const LD u = direct_u(x.mu, r.Z, q, side, [&](const Ball& z) { return eval_speed(r, sp, z, 128); });
     EXPECT_TRUE(close(r.u_after, u, 1e-12L)) << c.curve << ": " << r.u_after.str(20) << " vs " << static_cast<double>(u);
     // A cusp is lifted: the reparameterized speed does not vanish there
     // (a rational map keeps the zero: sigma_{p o m} = 0 at the cusp).
@@ -293,7 +293,7 @@ TEST(Parametric, RadicalLiftsCuspsAgainstDirectIntegration) {
       EXPECT_TRUE(arb_gt(r.u_after.get(), moebius_optimal(curve, SpeedKind::Parametric, o).u_after.get())) << c.curve;
       for (std::size_t i = 0; i < r.T.size(); ++i)
         if (r.T[i].multiplicity > 0) {
-          const Ball v = radical_eval_speed(r, sp, r.Z[i], 128);
+          const Ball v = eval_speed(r, sp, r.Z[i], 128);
           EXPECT_TRUE(v.certainly_positive()) << c.curve << " at z = " << r.Z[i].str(10);
         }
     }

@@ -83,10 +83,10 @@ TEST(Radical, RunningExampleReproducesThePapersPrintedDigits) {
   // Example 16: phi = 0.688 sqrt(s) on the first piece: phi(s) at s = S_1 is t_1,
   // and r(z) = phi(m(z)) maps the joints to the breakpoints.
   const Speed s(parse_curve("(t, t^3)"), SpeedKind::Angular);
-  Ball at = radical_eval_r(r, r.Z[1], 128);
+  Ball at = eval_r(r, r.Z[1], 128);
   EXPECT_TRUE(arb_overlaps(at.get(), r.T[1].t.to_ball(128).get()));
-  EXPECT_TRUE(radical_eval_r(r, Ball(0), 128).contains(Rational(0)));
-  EXPECT_TRUE(radical_eval_r(r, Ball(1), 128).contains(Rational(1)));
+  EXPECT_TRUE(eval_r(r, Ball(0), 128).contains(Rational(0)));
+  EXPECT_TRUE(eval_r(r, Ball(1), 128).contains(Rational(1)));
 }
 
 struct Case {
@@ -137,7 +137,7 @@ TEST_P(RadicalFamily, FormulasAgreeWithDirectIntegrationOfTheReparameterizedSpee
   // The reparameterized speed has no zero: sampled, it is certainly positive.
   for (int k = 0; k <= 16; ++k) {
     Ball z(Rational(k, 16), 128);
-    Ball v = radical_eval_speed(r, s, z, 128);
+    Ball v = eval_speed(r, s, z, 128);
     EXPECT_TRUE(arb_is_positive(v.get())) << c.what << " at z = " << k << "/16: " << v.str(10);
   }
 }
@@ -176,7 +176,7 @@ TEST(Radical, PointsOfTheReparameterizedCurveAreCertified) {
   const RadicalResult r = radical(c, SpeedKind::Angular);
   // r maps the joints z_i to the breakpoints t_i, so p(r(z_i)) = p(t_i).
   for (std::size_t i = 0; i < r.T.size(); ++i) {
-    auto pt = radical_eval_point(c, r, r.Z[i], 128);
+    auto pt = eval_point(c, r, r.Z[i], 128);
     ASSERT_EQ(pt.size(), 2u);
     Ball t = r.T[i].t.to_ball(128), t3;
     arb_pow_ui(t3.get(), t.get(), 3, 128);
@@ -184,9 +184,9 @@ TEST(Radical, PointsOfTheReparameterizedCurveAreCertified) {
     EXPECT_TRUE(arb_overlaps(pt[1].get(), t3.get()));
   }
   // r is increasing: certified at sample points.
-  Ball prev = radical_eval_r(r, Ball(0), 128);
+  Ball prev = eval_r(r, Ball(0), 128);
   for (int k = 1; k <= 32; ++k) {
-    Ball cur = radical_eval_r(r, Ball(Rational(k, 32), 128), 128);
+    Ball cur = eval_r(r, Ball(Rational(k, 32), 128), 128);
     EXPECT_TRUE(arb_lt(prev.get(), cur.get())) << k;
     prev = cur;
   }

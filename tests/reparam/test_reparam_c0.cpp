@@ -43,17 +43,17 @@ TEST(ReparamC0, SlideCurveThreePiecesBeatsEqualSpacing) {
   o.digits = 15;
   const MoebiusResult r = reparam_c0(c, SpeedKind::Angular, 3, o);
   ASSERT_EQ(r.pieces(), 3u);
-  EXPECT_TRUE(r.optimiser.used);
+  EXPECT_TRUE(r.optimiser.has_value());
   EXPECT_EQ(r.continuity, Continuity::C0);
   const MoebiusResult eq = moebius_c0(c, SpeedKind::Angular, equal_T(3), o);
   EXPECT_TRUE(not_above(eq.u_after, r.u_after));
   EXPECT_TRUE(arb_gt(r.u_after.get(), r.u_before.get()));
-  EXPECT_LT(r.optimiser.stationarity, 1e-6);
+  EXPECT_LT(r.optimiser->stationarity, 1e-6);
   // certified phi is consistent with u = mu^2 / phi^2
   Ball u;
   arb_mul(u.get(), r.mu.get(), r.mu.get(), 256);
-  arb_div(u.get(), u.get(), r.optimiser.phi.get(), 256);
-  arb_div(u.get(), u.get(), r.optimiser.phi.get(), 256);
+  arb_div(u.get(), u.get(), r.optimiser->phi.get(), 256);
+  arb_div(u.get(), u.get(), r.optimiser->phi.get(), 256);
   EXPECT_TRUE(arb_overlaps(u.get(), r.u_after.get()));
 }
 
@@ -62,7 +62,7 @@ TEST(ReparamC0, ReturnsACertifiedLocalOptimum) {
   Options o;
   o.digits = 15;
   const MoebiusResult r = reparam_c0(c, SpeedKind::Angular, 3, o);
-  EXPECT_LT(r.optimiser.stationarity, 1e-6);
+  EXPECT_LT(r.optimiser->stationarity, 1e-6);
   // local optimality: moving one breakpoint by +-1e-3 never raises the certified u
   const std::vector<RealAlgebraic> T = rational_T(r);
   for (std::size_t j = 1; j + 1 < T.size(); ++j)
@@ -97,7 +97,7 @@ TEST(ReparamC0, NeverWorseThanEqualSpacingOnRandomCurves) {
     const MoebiusResult r = reparam_c0(c, kind, N, {});
     const MoebiusResult eq = moebius_c0(c, kind, equal_T(N), {});
     EXPECT_TRUE(not_above(eq.u_after, r.u_after)) << c.str() << " N = " << N;
-    EXPECT_TRUE(not_above(r.optimiser.phi, r.optimiser.phi_equal));
+    EXPECT_TRUE(not_above(r.optimiser->phi, r.optimiser->phi_equal));
     // u_before from the pieces (sum L_i / Delta t_i for int sigma^2, at the
     // optimised and at the equal T) against the uniformity's own integrals
     const UniformityResult u = uniformity(s);
@@ -121,7 +121,7 @@ TEST(ReparamC0, StationaryLocalOptimaNearACusp) {
       const std::string w = std::string("(t - ") + a + ")";
       const Curve c = parse_curve("(" + w + "^2, " + w + "^3 + " + e + " " + w + ")");
       const MoebiusResult r = reparam_c0(c, SpeedKind::Angular, 3, {});
-      EXPECT_LT(r.optimiser.stationarity, 1e-6) << c.str() << " after " << r.optimiser.iterations << " iterations";
+      EXPECT_LT(r.optimiser->stationarity, 1e-6) << c.str() << " after " << r.optimiser->iterations << " iterations";
       const std::vector<RealAlgebraic> T = rational_T(r);
       for (std::size_t j = 1; j + 1 < T.size(); ++j)
         for (long sgn : {-1L, 1L}) {

@@ -214,16 +214,16 @@ void check_slides_rule(long n, unsigned long seed_base, const Rational& target, 
     }
     const MoebiusResult q = make_rational(*c, r, 8, {});
     for (std::size_t i = 0; i + 1 < q.pieces(); ++i) {
-      const Rational rl = (q.T_exact[i + 1] - q.T_exact[i]) / (q.S_exact[i + 1] - q.S_exact[i]);
-      const Rational rr = (q.T_exact[i + 2] - q.T_exact[i + 1]) / (q.S_exact[i + 2] - q.S_exact[i + 1]);
-      EXPECT_EQ(rl * q.alpha_exact[i] / (Rational(1) - q.alpha_exact[i]),
-                rr * (Rational(1) - q.alpha_exact[i + 1]) / q.alpha_exact[i + 1])
+      const Rational rl = (q.exact->T[i + 1] - q.exact->T[i]) / (q.exact->S[i + 1] - q.exact->S[i]);
+      const Rational rr = (q.exact->T[i + 2] - q.exact->T[i + 1]) / (q.exact->S[i + 2] - q.exact->S[i + 1]);
+      EXPECT_EQ(rl * q.exact->alpha[i] / (Rational(1) - q.exact->alpha[i]),
+                rr * (Rational(1) - q.exact->alpha[i + 1]) / q.exact->alpha[i + 1])
           << name << " exact joint " << i + 1;
     }
 
     // honest about the target
     const bool certified = arb_ge(r.u_after.get(), Ball(target, 128).get());
-    EXPECT_EQ(r.target.reached, certified) << name << " u = " << r.u_after.str(15);
+    EXPECT_EQ(r.target->reached, certified) << name << " u = " << r.u_after.str(15);
   }
   std::printf("[ slides ] %ld curves, %ld slides breakpoints checked, %ld bisections; max |root - t| / h = %.3g, "
               "min h = %.3g, max |draft alpha - certified alpha| = %.3g\n",

@@ -37,7 +37,7 @@ struct MoebiusPieceFormulas {
   bool exact = false;                  ///< rational data: every formula is exact
 };
 
-/// Formulas of every piece of r. With r.rational the coefficients are exact
+/// Formulas of every piece of r. With exact data (r.exact) the coefficients are exact
 /// rationals and p(r_i(s)) is expanded exactly (same degree as p); otherwise
 /// they are midpoints of certified balls with `digits` digits and p(r_i(s))
 /// is p with t replaced by r_i(s).

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "uniparam/algebra/algebraic.hpp"
@@ -49,9 +50,8 @@ struct MoebiusResult {
   /// the optimal C0 piecewise Moebius map for T, but u_after stays below 1.
   bool speed_vanishes = false;
 
-  /// Set by reparam_c0 (N pieces): how the local optimiser over T ended.
+  /// How reparam_c0's local optimiser over T ended (reparam_c0 sets it).
   struct Optimiser {
-    bool used = false;
     long iterations = 0;
     Ball phi_equal;   ///< Phi = sum sqrt M_i at the equally spaced T (certified)
     Ball phi;         ///< Phi at the returned T (certified); never certainly above phi_equal
@@ -59,12 +59,13 @@ struct MoebiusResult {
     /// relative measure of how far from stationary the optimiser stopped
     /// (floating point, uncertified, for information).
     double stationarity = 0;
-  } optimiser;
+  };
+  /// Set by reparam_c0 only.
+  std::optional<Optimiser> optimiser;
 
-  /// Set by reparam_c1: the target uniformity and whether u_after >= target
-  /// is certified (u_after's lower bound is at least the target).
+  /// reparam_c1's target uniformity and whether u_after >= target is
+  /// certified (u_after's lower bound is at least the target).
   struct Target {
-    bool used = false;
     Rational value;
     bool reached = false;
     long rounds = 0;  ///< refinement rounds of T after the first construction
@@ -72,12 +73,18 @@ struct MoebiusResult {
     /// (integrals beyond double's range, e.g. a huge coefficient), so the
     /// refinement stopped early; the map is still certified.
     bool draft_failed = false;
-  } target;
+  };
+  /// Set by reparam_c1 only.
+  std::optional<Target> target;
 
-  /// Set by make_rational: r has exactly these rational data (T, S, alpha);
-  /// every Ball above then describes this exact map.
-  bool rational = false;
-  std::vector<Rational> T_exact, S_exact, alpha_exact;
+  /// The exact rational data of the map: breakpoints T (t_0..t_N), joints S
+  /// (s_0..s_N) and the Moebius parameter alpha of each piece.
+  struct Exact {
+    std::vector<Rational> T, S, alpha;
+  };
+  /// Set by make_rational only: r has exactly these data, and every Ball
+  /// above describes this exact map.
+  std::optional<Exact> exact;
 
   /// Set when p's weights grow geometrically (balance(p) not empty,
   /// scaling.hpp): the method ran on the balanced curve q = p o m, and this
@@ -88,13 +95,16 @@ struct MoebiusResult {
   /// balance_bits extra bits so that 1 - alpha stays resolvable), the
   /// integrals A / k, B, k C (L = A + B + C, M the same), so p o r = q o r_q
   /// and u_after, mu and Phi are q's; u_before is p's (uniformity()). With
-  /// rational, T_exact and alpha_exact are m's exact images of q's rounded
-  /// data. The optimiser's phi_equal and stationarity, and a C1 result's
-  /// choices, refer to q's parameter. on_balanced is r_q, from which
+  /// exact data, exact->T and exact->alpha are m's exact images of q's
+  /// rounded data. The optimiser's phi_equal and stationarity, and a C1 result's
+  /// choices, refer to q's parameter. balanced->on is r_q, from which
   /// make_rational and refine_moebius_data work (then compose again).
-  /// Both null otherwise.
-  std::shared_ptr<const BalancedCurve> balanced;
-  std::shared_ptr<const MoebiusResult> on_balanced;
+  struct Balanced {
+    std::shared_ptr<const BalancedCurve> curve;  ///< q = p o m, with m's a and b
+    std::shared_ptr<const MoebiusResult> on;     ///< r_q, the map on q
+  };
+  /// Empty unless p's weights grow geometrically (see above).
+  std::optional<Balanced> balanced;
 
   std::size_t pieces() const { return T.size() - 1; }
 };
@@ -125,7 +135,7 @@ MoebiusResult moebius_optimal(const Curve& c, SpeedKind kind, const Options& opt
 /// \pre 1 <= N <= 1000 (checked: InvalidArgument).
 /// \post as moebius_c0 for the returned T (rational breakpoints); u_after is
 ///       at least the u_after of the equally spaced T up to the balls' radii;
-///       optimiser.used is true.
+///       optimiser is set.
 /// \throws as moebius_c0.
 MoebiusResult reparam_c0(const Curve& c, SpeedKind kind, long N, const Options& opt = {});
 
@@ -139,8 +149,8 @@ MoebiusResult reparam_c0(const Curve& c, SpeedKind kind, long N, const Options& 
 /// on each piece (the critical points of the reparameterized speed); when
 /// that adds nothing, the piece with the largest excess is bisected.
 /// \pre 0 < target < 1, 1 <= max_pieces <= 1000 (checked: InvalidArgument).
-/// \post continuity == C1; target.used; the result is the best map found
-///       (largest u); target.reached iff u_after >= target is certified.
+/// \post continuity == C1; target is set; the result is the best map found
+///       (largest u); target->reached iff u_after >= target is certified.
 ///       The balls meet Options::digits. Not reaching the target is not an
 ///       error here: callers decide (the CLI exits with status 4).
 /// \throws as moebius_c0.
@@ -195,16 +205,16 @@ MoebiusResult reparam_c1_traced(const Curve& c, SpeedKind kind, const Rational& 
 /// k_0 > 0 rounded within tol * k_0 the same way, the other alphas solved
 /// exactly from the C1 condition on the rational T and S, so r' is
 /// continuous exactly. For a balanced result (r.balanced) all this happens
-/// on r.on_balanced and q, and the rounded map is composed with m exactly:
-/// T_exact = m(T_q rounded), alpha_exact from alpha_q rounded with one more
+/// on r.balanced->on and q, and the rounded map is composed with m exactly:
+/// exact->T = m(T_q rounded), exact->alpha from alpha_q rounded with one more
 /// digit (the T and S windows hold in q's parameter; composing with m keeps
 /// the map exact, C1 where r_q is, and alpha within tol * min(alpha,
 /// 1 - alpha), within twice that for rational_digits = 100).
 /// \pre r was computed for c; 1 <= rational_digits <= 100 (InvalidArgument).
-/// \post rational == true; T_exact, S_exact, alpha_exact are the map's data;
+/// \post exact is set: exact->T, exact->S, exact->alpha are the map's data;
 ///       T, S, alpha, integrals and u_after describe that exact map (u_after
-///       meets Options::digits); target.reached re-checked; optimiser.phi is
-///       cleared (it described the unrounded map).
+///       meets Options::digits); target->reached re-checked (if target is
+///       set); optimiser->phi is cleared (it described the unrounded map).
 /// \throws as moebius_c0 (BudgetExceeded also when alpha or k_0 cannot be
 ///         certified to the relative accuracy within Options::max_prec).
 MoebiusResult make_rational(const Curve& c, const MoebiusResult& r, long rational_digits = 8,
@@ -214,10 +224,10 @@ MoebiusResult make_rational(const Curve& c, const MoebiusResult& r, long rationa
 /// integrals) meet `digits`. The map is the one r's method defines for r's
 /// breakpoints: for C0 the optimal alpha and S (moebius_c0), for C1 the S of
 /// the arc length and the C1 optimum (reparam_c1), for an exact rational map
-/// (rational == true) its exact S and alpha as balls of matching precision; so
+/// (exact set) its exact S and alpha as balls of matching precision; so
 /// each refined ball lies in r's (up to rounding) and meets `digits`. Every
 /// other field is kept; an identically zero map is returned as is.
-/// A balanced result (r.balanced) refines r.on_balanced on q's speed and
+/// A balanced result (r.balanced) refines r.balanced->on on q's speed and
 /// composes it with m again.
 /// \pre r was computed for the speed sp (not checkable); digits >= 1
 ///      (InvalidArgument).
@@ -225,19 +235,23 @@ MoebiusResult make_rational(const Curve& c, const MoebiusResult& r, long rationa
 ///         the thread's TimeBudget.
 MoebiusResult refine_moebius_data(const Speed& sp, const MoebiusResult& r, long digits, long max_prec);
 
+/// Evaluation of a piecewise Moebius map (the overloads for a RadicalResult
+/// are in radical.hpp).
 /// Enclosure of r(s) for s in [0, 1] (a real ball; where s overlaps a joint
 /// s_i, the union of both pieces' values). An exact s equal to an exact joint
 /// s_i (s = 0, s = 1) gives t_i's ball, exact for a dyadic t_i: r(0) = 0 and
 /// r(1) = 1 exactly. The accuracy is limited by r's data (S, alpha: balls);
 /// see Reparameterization::refined. InvalidArgument if s misses [0, 1].
-Ball moebius_eval_r(const MoebiusResult& r, const Ball& s, long prec);
+Ball eval_r(const MoebiusResult& r, const Ball& s, long prec);
 /// Enclosure of r'(s) (the union of one-sided values at a C0 joint).
-Ball moebius_eval_dr(const MoebiusResult& r, const Ball& s, long prec);
+/// InvalidArgument if s misses [0, 1].
+Ball eval_dr(const MoebiusResult& r, const Ball& s, long prec);
 /// Enclosure of sigma_{p o r}(s) = sigma_p(r(s)) r'(s); `sp` must be the speed
-/// r was computed for.
-Ball moebius_eval_speed(const MoebiusResult& r, const Speed& sp, const Ball& s, long prec);
+/// r was computed for (not checkable). InvalidArgument if s misses [0, 1].
+Ball eval_speed(const MoebiusResult& r, const Speed& sp, const Ball& s, long prec);
 /// Enclosures of the components of p(r(s)) (c must be the curve of r); for
-/// a balanced r, evaluated as q(r_q(s)), the same point.
-std::vector<Ball> moebius_eval_point(const Curve& c, const MoebiusResult& r, const Ball& s, long prec);
+/// a balanced r, evaluated as q(r_q(s)), the same point. InvalidArgument if
+/// s misses [0, 1].
+std::vector<Ball> eval_point(const Curve& c, const MoebiusResult& r, const Ball& s, long prec);
 
 }  // namespace uniparam

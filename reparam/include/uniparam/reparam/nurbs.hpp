@@ -59,11 +59,11 @@ struct Nurbs {
   std::vector<Ball> breaks() const;
 };
 
-/// p o r as a NURBS (see the file comment), exact when r.rational (kind
+/// p o r as a NURBS (see the file comment), exact when r.exact is set (kind
 /// Exact, rational arithmetic throughout), otherwise in ball arithmetic at
 /// `prec` bits (kind Balls). Before returning, the NURBS is evaluated at
 /// u = 0, 1/4, 1/2, 3/4, 1 of every segment and compared with p(r(s))
-/// evaluated from the map (moebius_eval_point, or exactly for a rational map):
+/// evaluated from the map (eval_point, or exactly for a rational map):
 /// equal (exact) or overlapping (balls), else std::logic_error (an internal
 /// error).
 /// \pre r was computed for c (not checkable); prec >= 16.

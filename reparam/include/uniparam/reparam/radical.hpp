@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,11 +37,15 @@ struct RadicalResult {
   /// is p's. Piece i of r is then t = t_i + Delta t_i k_i y / (k_i y + 1 - y)
   /// with y the local value of r_q's piece (in q's parameter) and k_i =
   /// outer_k[i] (balance_local_k on [T_q,i, T_q,i+1]): m restricted to the
-  /// piece. outer_k is empty otherwise (k_i = 1). on_balanced is r_q, from
+  /// piece. outer_k is empty otherwise (k_i = 1). balanced->on is r_q, from
   /// which refine_radical_data works.
   std::vector<Ball> outer_k;
-  std::shared_ptr<const BalancedCurve> balanced;
-  std::shared_ptr<const RadicalResult> on_balanced;
+  struct Balanced {
+    std::shared_ptr<const BalancedCurve> curve;  ///< q = p o m, with m's a and b
+    std::shared_ptr<const RadicalResult> on;     ///< r_q, the map on q
+  };
+  /// Empty unless p's weights grow geometrically (see above).
+  std::optional<Balanced> balanced;
 
   std::size_t pieces() const { return T.size() - 1; }
   /// Exponent of the radical in piece i: mu + 1 when one end is a zero of
@@ -59,27 +64,31 @@ RadicalResult radical(const Curve& c, SpeedKind kind, const Options& opt = {});
 /// computes them for r's breakpoints T; each refined ball therefore lies in
 /// r's (up to rounding). mu and the uniformities are kept; an identically
 /// zero map is returned as is. A balanced result (r.balanced) refines
-/// r.on_balanced on q's speed and composes it with m again.
+/// r.balanced->on on q's speed and composes it with m again.
 /// \pre r was computed for the speed sp (not checkable); digits >= 1
 ///      (InvalidArgument).
 /// \throws BudgetExceeded when `digits` cannot be met within max_prec bits or
 ///         the thread's TimeBudget.
 RadicalResult refine_radical_data(const Speed& sp, const RadicalResult& r, long digits, long max_prec);
 
+/// Evaluation of a piecewise radical map (the overloads for a MoebiusResult
+/// are in moebius.hpp).
 /// Enclosure of r(z) for z in [0, 1] (the ball may straddle a joint: both
 /// pieces are evaluated and the union returned). An exact z equal to an exact
 /// joint z_i (z = 0, z = 1) gives t_i's ball, exact for a dyadic t_i. The
 /// accuracy is limited by r's data (Z, alpha: balls); see
-/// Reparameterization::refined.
-Ball radical_eval_r(const RadicalResult& r, const Ball& z, long prec);
+/// Reparameterization::refined. InvalidArgument if z misses [0, 1].
+Ball eval_r(const RadicalResult& r, const Ball& z, long prec);
 /// Enclosure of sigma_{p o r}(z) = sigma_p(r(z)) r'(z), the reparameterized
-/// speed, evaluated from the formulas of the pieces.
-Ball radical_eval_speed(const RadicalResult& r, const Speed& s, const Ball& z, long prec);
+/// speed, evaluated from the formulas of the pieces; `s` must be the speed r
+/// was computed for (not checkable). InvalidArgument if z misses [0, 1].
+Ball eval_speed(const RadicalResult& r, const Speed& s, const Ball& z, long prec);
 
 /// Enclosures of the components of p(r(z)), the reparameterized curve's
 /// point at z in [0, 1] (c must be the curve r was computed for); for a
-/// balanced r, evaluated as q(r_q(z)), the same point.
-std::vector<Ball> radical_eval_point(const Curve& c, const RadicalResult& r, const Ball& z, long prec);
+/// balanced r, evaluated as q(r_q(z)), the same point. InvalidArgument if z
+/// misses [0, 1].
+std::vector<Ball> eval_point(const Curve& c, const RadicalResult& r, const Ball& z, long prec);
 
 /// Independent check of the whole chain: mu^2 / int_0^1 sigma_{p o r}(z)^2 dz,
 /// integrating the reparameterized speed built from the pieces of r directly
