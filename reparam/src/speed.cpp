@@ -140,6 +140,9 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
   }
   // The double-word path for the nodes (eval_double_word), where it applies.
   dd_ = detail::make_speed_dd(comps, kind);
+  // A Bezier curve whose power basis loses too many bits for it (degree
+  // above ~20) takes it from its Bernstein sums, which lose few.
+  if (!dd_ && bern) dd_ = detail::make_speed_dd_bernstein(*bern);
   // Two independent halves, side by side (the construction is serial
   // otherwise, ~10% of radical's time at degree 150): D and (parametric
   // speed) the check that it has no root in [0, 1]; the numerators N,

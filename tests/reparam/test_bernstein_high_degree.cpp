@@ -3,8 +3,10 @@
 // enclosures of the components, their derivatives and the speed's square
 // contain the exact values (exact rational arithmetic at rational points)
 // on exact, narrow and wide, real and complex balls; at an exact point they
-// are as tight as the power-basis model's; and Speed takes the Bernstein
-// model exactly up to kBernsteinMaxDegree.
+// are as tight as the power-basis model's; Speed takes the Bernstein
+// model exactly up to kBernsteinMaxDegree; and the double-word tier at the
+// quadrature's nodes, from the Bernstein sums, serves Bezier curves of
+// degree 20-64 with enclosures of the exact sigma and sigma^2.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -13,7 +15,9 @@
 #include "../../reparam/src/curve_model.hpp"
 #include "../../reparam/src/speed_enclosure.hpp"
 #include "../../reparam/src/speed_formula.hpp"
+#include "uniparam/core/dd_ball.hpp"
 #include "uniparam/reparam/bezier.hpp"
+#include "uniparam/reparam/speed.hpp"
 
 using namespace uniparam;
 
@@ -192,4 +196,68 @@ TEST(BernsteinHighDegree, SpeedTakesTheBernsteinModelUpToItsDegreeLimit) {
   }
   EXPECT_EQ(bern, 3);  // degrees 2, 9, 16
   EXPECT_EQ(pow, 19);
+}
+
+TEST(BernsteinHighDegree, DoubleWordNodesFromTheBernsteinSumsHoldTheExactSpeed) {
+  std::mt19937 rng(3638);
+  int tried = 0, served = 0;
+  const long degrees[] = {20, 33, 50, 64};
+  for (const long n : degrees)
+    for (int shape = 0; shape < 3; ++shape) {
+      // plane integral, plane rational, space rational
+      const Curve c = random_bezier(rng, n, shape == 2 ? 3 : 2, shape > 0).to_curve();
+      std::vector<RatFunc> x1, x2;
+      for (const RatFunc& x : c.components()) {
+        x1.push_back(x.derivative());
+        x2.push_back(x1.back().derivative());
+      }
+      for (SpeedKind kind : {SpeedKind::Angular, SpeedKind::Parametric}) {
+        std::unique_ptr<Speed> s;
+        try {
+          s = std::make_unique<Speed>(c, kind);
+        } catch (const std::exception&) {
+          continue;  // not regular on [0, 1]
+        }
+        for (int p = 0; p < 8; ++p) {
+          const Rational t(static_cast<long>(rng() % 1999) + 1, 2000);
+          std::vector<Rational> d1, d2;
+          for (std::size_t i = 0; i < x1.size(); ++i) {
+            d1.push_back(x1[i](t));
+            d2.push_back(x2[i](t));
+          }
+          Rational s2(0);
+          for (const Rational& v : d1) s2 = s2 + v * v;
+          if (s2 == Rational(0)) continue;
+          const Rational exact2 = exact_sigma2(d1, d2, kind);
+          for (const long prec : {64L, 90L}) {
+            // a node: a narrow real ball around t
+            Ball tb;
+            arb_set_fmpq(tb.get(), t.get(), 256);
+            arb_add_error_2exp_si(tb.get(), -prec - 4);
+            DDBall x, out;
+            ASSERT_TRUE(dd_set_arb(x, tb.get()));
+            ++tried;
+            if (!s->eval_dd(out, x, Speed::PieceSigns{}, true, prec)) continue;
+            ++served;
+            Ball r;
+            dd_get_arb(r.get(), out);
+            EXPECT_TRUE(arb_contains_fmpq(r.get(), exact2.get())) << "degree " << n << " t = " << t.str();
+            // sigma itself: a plane curve's signed angular speed
+            // (x'y'' - x''y') / |x'|^2 with the sign +1, else sqrt(sigma^2)
+            if (s->eval_dd(out, x, Speed::PieceSigns{}, false, prec)) {
+              dd_get_arb(r.get(), out);
+              if (kind == SpeedKind::Angular && d1.size() == 2) {
+                const Rational signed_speed = (d1[0] * d2[1] - d2[0] * d1[1]) / s2;
+                EXPECT_TRUE(arb_contains_fmpq(r.get(), signed_speed.get())) << "degree " << n;
+              } else {
+                arb_mul(r.get(), r.get(), r.get(), 2 * prec);
+                EXPECT_TRUE(arb_contains_fmpq(r.get(), exact2.get())) << "degree " << n;
+              }
+            }
+          }
+        }
+      }
+    }
+  EXPECT_GT(tried, 300);
+  EXPECT_GT(served, tried * 3 / 4) << "served " << served << " of " << tried;
 }
