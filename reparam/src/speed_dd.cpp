@@ -1,7 +1,7 @@
 // speed_dd.cpp -- the speed at the quadrature's nodes in double-word ball
 // arithmetic (Speed::eval_dd, Speed::eval_double_word): the components over
-// one common denominator by Horner's rule, the arithmetic of
-// speed_formula.hpp on DDArith. Compiled with -ffp-contract=off
+// one common denominator by Horner's rule (or a Bezier curve's Bernstein
+// sums), the arithmetic of speed_formula.hpp on DDArith. Compiled with -ffp-contract=off
 // (reparam/CMakeLists.txt: core/dd_inline.hpp's proof).
 #include <cmath>
 #include <memory>
@@ -36,8 +36,8 @@ namespace detail {
 std::shared_ptr<const SpeedDD> make_speed_dd(const std::vector<RatFunc>& comps, SpeedKind kind) {
   // The double-word path for the nodes (eval_double_word): only where
   // Horner's rule on the power basis keeps enough bits on [0, 1] (high
-  // degree Bezier curves lose more than 24; the local expansions serve
-  // them). The components over one common denominator L (the lcm of the
+  // degree Bezier curves lose more than 24: their Bernstein sums serve
+  // them, make_speed_dd_bernstein; other curves the local expansions). The components over one common denominator L (the lcm of the
   // Q_i; L = 1 for a polynomial curve): x_i = M_i / L, M_i = N_i L / Q_i.
   auto dd = std::make_shared<SpeedDD>();
   bool ok = comps.size() <= 3;  // eval_dd's bound

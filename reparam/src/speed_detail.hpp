@@ -40,8 +40,9 @@ struct SpeedDD {
 /// (exact) and speed kind, or null where the path does not apply: more than
 /// 3 components, the common denominator L or some M_i = N_i L / Q_i of
 /// degree above 64, or not double words losing at most 24 bits in Horner's
-/// rule on [0, 1] (high-degree Bezier curves' power bases lose more; the
-/// local expansions serve them).
+/// rule on [0, 1] (high-degree Bezier curves' power bases lose more:
+/// make_speed_dd_bernstein serves Bezier input, the local expansions the
+/// rest).
 std::shared_ptr<const SpeedDD> make_speed_dd(const std::vector<RatFunc>& comps, SpeedKind kind);
 
 /// The double-word path's data for a Bezier curve's Bernstein form b (its
