@@ -28,6 +28,10 @@ namespace {
 constexpr long kDDMaxPrec = 110;
 constexpr double kDDMaxLoss = 24;
 constexpr long kDDMaxDegree = 64;
+// make_speed_dd_bernstein: the significant bits kept of each coefficient of
+// a Bernstein sum H (times (k + 1) (k + 2) <= 2^16 for H'', within a double
+// word's 106).
+constexpr long kBernKeepBits = 88;
 
 }  // namespace
 
@@ -100,7 +104,22 @@ std::shared_ptr<const SpeedDD> make_speed_dd_bernstein(const BernsteinForm& b) {
       }
       r.assign(h.rbegin(), h.rend());
       for (const auto* v : {&h, &r}) {
-        dd->bern.emplace_back(Poly(*v));
+        // H's coefficients cut to kBernKeepBits significant bits (so that H,
+        // H', H'' are exact double words), the rest bounded: drop_k >= |h_k - cut h_k|
+        std::vector<Integer> cut;
+        std::vector<double> drop;
+        for (const Integer& a : *v) {
+          const long e = static_cast<long>(fmpz_bits(a.get())) - kBernKeepBits;
+          Integer t = a;
+          if (e > 0) {
+            fmpz_tdiv_q_2exp(t.get(), t.get(), static_cast<ulong>(e));
+            fmpz_mul_2exp(t.get(), t.get(), static_cast<ulong>(e));
+          }
+          drop.push_back(e > 0 ? std::ldexp(1.0, static_cast<int>(e)) : 0.0);
+          cut.push_back(std::move(t));
+        }
+        dd->bern_drop.push_back(std::move(drop));
+        dd->bern.emplace_back(Poly(cut));
         const DDPoly& q = dd->bern.back();
         if (!q.usable() || q.cancellation_bits() > kDDMaxLoss) return nullptr;
         std::vector<double> sl;  // (k + 1) |h_(k+1)|, rounded up (fmpz_get_d rounds towards 0)
@@ -227,14 +246,14 @@ template <bool F>
       lo[k++] = &v[p][j];
     }
   // Horner at s's midpoint (the Bernstein terms' rounding), plus s's radius
-  // times a bound of |H'| on s's ball
+  // times a bound of |H'| on s's ball, plus the cut coefficients' part
   if (!DDPoly::eval_lanes<F>(k, lp, lj, lo, DDBall{s.hi, s.lo, 0})) return false;
   const double mr = up(mag_up(s) + s.rad);
   k = 0;
   for (std::size_t p = 0; p < np; ++p)
     for (int j = 0; j <= top; ++j, ++k) {
       const std::size_t idx = (3 * p + static_cast<std::size_t>(j)) * 2 + static_cast<std::size_t>(side);
-      v[p][j].rad = up(v[p][j].rad + s.rad * horner_abs(dd.bern_slope[idx], mr));
+      v[p][j].rad = up(v[p][j].rad + s.rad * horner_abs(dd.bern_slope[idx], mr) + horner_abs(dd.bern_drop[idx], mr));
     }
   // base^(n - top) by squaring, then base^(n - j) for j = top .. 0
   DDBall pw{1, 0, 0}, sq = base;

@@ -33,6 +33,9 @@ struct SpeedDD {
   // upper bounds of the absolute coefficients of each bern[i]'s derivative
   // H' (the slope of H over s's ball)
   std::vector<std::vector<double>> bern_slope;
+  // bern[i] holds H's coefficients cut to double words; bern_drop[i][k]
+  // bounds what was cut from the k-th (0 where nothing)
+  std::vector<std::vector<double>> bern_drop;
   long bern_n = -1;
 };
 
