@@ -32,6 +32,11 @@ constexpr long kDDMaxDegree = 64;
 // a Bernstein sum H (times (k + 1) (k + 2) <= 2^16 for H'', within a double
 // word's 106).
 constexpr long kBernKeepBits = 88;
+// make_speed_dd_bernstein: the highest degree. The Bernstein sums cost O(n)
+// double-word operations a node, the cells O(K) balls with K ~ 40: measured
+// (callgrind, one thread, 15 digits, docs/stable-evaluation.md) the gain
+// shrinks with n, to about 0 at degree 150 (plane radical -1%).
+constexpr long kBernDDMaxDegree = 160;
 
 }  // namespace
 
@@ -85,7 +90,8 @@ std::shared_ptr<const SpeedDD> make_speed_dd(const std::vector<RatFunc>& comps, 
 }
 
 std::shared_ptr<const SpeedDD> make_speed_dd_bernstein(const BernsteinForm& b) {
-  if (b.num.size() > 3 || b.den.size() < 3) return nullptr;  // up to 3 components, degree >= 2
+  // up to 3 components, degree 2 .. kBernDDMaxDegree
+  if (b.num.size() > 3 || b.den.size() < 3 || static_cast<long>(b.den.size()) - 1 > kBernDDMaxDegree) return nullptr;
   auto dd = std::make_shared<SpeedDD>();
   const long n = static_cast<long>(b.den.size()) - 1;
   std::vector<const std::vector<Integer>*> rows;

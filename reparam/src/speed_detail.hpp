@@ -51,9 +51,10 @@ std::shared_ptr<const SpeedDD> make_speed_dd(const std::vector<RatFunc>& comps, 
 /// The double-word path's data for a Bezier curve's Bernstein form b (its
 /// components N_i / Q, every row of one length n + 1), evaluated as
 /// Bernstein sums (SpeedDD::bern), or null where the path does not apply:
-/// more than 3 components, degree n < 2, or some H not exactly a double-word
-/// polynomial (its coefficients c_k binom(n - j, k) need more than ~106
-/// bits from degree ~80 on) losing at most 24 bits in Horner's rule on
+/// more than 3 components, degree n < 2 or n > 160 (where the local
+/// expansions cost less), or some H (its coefficients c_k binom(n - j, k)
+/// cut to 88 significant bits, SpeedDD::bern_drop bounding the rest) not a
+/// double-word polynomial losing at most 24 bits in Horner's rule on
 /// [0, 1]. Bernstein sums lose few bits where the power basis loses ~n.
 std::shared_ptr<const SpeedDD> make_speed_dd_bernstein(const BernsteinForm& b);
 
