@@ -88,6 +88,26 @@ inline Curve bezier_rat_space(long d) {
                 RatFunc(Poly(bernstein_to_power(wz)), W)});
 }
 
+/// The curves of bezier_plane (rational: bezier_rat_space) as Bezier input
+/// (BezierCurve::to_curve): the same curves, which also keep their Bernstein
+/// coefficients (Curve::bernstein), so Speed may evaluate them in the
+/// Bernstein basis.
+inline Curve bezier_input(long d, bool rational) {
+  std::vector<std::vector<Rational>> pts;
+  std::vector<Rational> w;
+  const auto y = wave(d, 40.0 * static_cast<double>(d) / 6.0, waves_for(d), 0.3);
+  const auto z = wave(d, 30.0 * static_cast<double>(d) / 6.0, waves_for(d) - 1.0, 1.1);
+  for (long k = 0; k <= d; ++k) {
+    std::vector<Rational> p{Rational(100 * k), Rational(y[static_cast<std::size_t>(k)])};
+    if (rational) {
+      p.push_back(Rational(z[static_cast<std::size_t>(k)]));
+      w.push_back(Rational(3 + (k * 7) % 5));
+    }
+    pts.push_back(std::move(p));
+  }
+  return BezierCurve(std::move(pts), std::move(w)).to_curve();
+}
+
 /// Plane polynomial curve with random dense integer coefficients in [-9, 9]
 /// (a fixed linear congruential sequence; no zero coefficient), degree d.
 inline Curve dense_plane(long d) {
@@ -106,11 +126,14 @@ inline Curve dense_plane(long d) {
   return Curve({RatFunc(Poly(x)), RatFunc(Poly(y))});
 }
 
-/// The family by name ("bez-plane", "bez-rat-space", "dense-plane").
+/// The family by name ("bez-plane", "bez-rat-space", "dense-plane"; and
+/// "bern-plane", "bern-rat-space": bezier_input).
 inline Curve make_curve(const std::string& family, long d) {
   if (family == "bez-plane") return bezier_plane(d);
   if (family == "bez-rat-space") return bezier_rat_space(d);
   if (family == "dense-plane") return dense_plane(d);
+  if (family == "bern-plane") return bezier_input(d, false);
+  if (family == "bern-rat-space") return bezier_input(d, true);
   throw InvalidArgument("unknown benchmark curve family '" + family + "'");
 }
 

@@ -218,4 +218,8 @@ std::shared_ptr<const CurveModel> bernstein_curve_model(const BernsteinForm& b) 
   return std::make_shared<const BernsteinModel>(b);
 }
 
+bool bernstein_model_serves(const BernsteinForm& b) {
+  return !b.den.empty() && static_cast<long>(b.den.size()) - 1 <= kBernsteinMaxDegree;
+}
+
 }  // namespace uniparam

@@ -68,4 +68,18 @@ std::shared_ptr<const CurveModel> power_curve_model(std::vector<PowerComponent> 
 /// of one length n + 1 >= 2.
 std::shared_ptr<const CurveModel> bernstein_curve_model(const BernsteinForm& b);
 
+/// The highest degree of a Bezier curve that Speed evaluates in the Bernstein
+/// basis (bernstein_curve_model); higher degrees take the power basis's local
+/// expansions (power_curve_model), whose exact Taylor shifts give the same
+/// cells whatever basis the curve came in, and whose truncated cells cost
+/// O(K) per narrow ball (K ~ 30-55 terms on the narrow cells at degree
+/// 50-150) where the Bernstein sum costs O(n) (docs/stable-evaluation.md,
+/// "Bezier input: the Bernstein basis", has the measurements).
+constexpr long kBernsteinMaxDegree = 16;
+
+/// Whether Speed evaluates a Bezier curve with Bernstein form b in the
+/// Bernstein basis: its degree is at most kBernsteinMaxDegree (and b has
+/// coefficients). \pre every row of b of one length.
+bool bernstein_model_serves(const BernsteinForm& b);
+
 }  // namespace uniparam

@@ -28,14 +28,6 @@ SpeedKind parse_speed_kind(const std::string& s) {
 
 namespace {
 
-// The highest degree of a Bezier curve evaluated from its Bernstein form.
-// Horner's rule on the Bernstein coefficients costs more than the power
-// basis's cached local expansions, and more so at higher degree (radical,
-// angular speed, random plane curves, instructions: degree 12 +15%,
-// degree 30 x2.7, degree 60 x4, with the same certified digits), so higher
-// degrees keep the power basis.
-constexpr long kBernsteinMaxDegree = 16;
-
 Poly gcd_all(const std::vector<Poly>& ps) {
   Poly g;
   for (const auto& p : ps) g = gcd(g, p);
@@ -137,10 +129,9 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
   }
   // The evaluation tiers' curve model: a Bezier curve's own components
   // (not the direction curve) from their Bernstein coefficients, up to
-  // kBernsteinMaxDegree (a wide ball may take de Casteljau's O(n^2)
-  // operations: curve_model.cpp); else the power basis.
+  // kBernsteinMaxDegree (bernstein_model_serves); else the power basis.
   const BernsteinForm* bern = reduced.empty() ? c.bernstein() : nullptr;
-  if (bern && !bern->den.empty() && static_cast<long>(bern->den.size()) - 1 <= kBernsteinMaxDegree) {
+  if (bern && bernstein_model_serves(*bern)) {
     model_ = bernstein_curve_model(*bern);
   } else {
     std::vector<PowerComponent> pc;
@@ -149,6 +140,9 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
   }
   // The double-word path for the nodes (eval_double_word), where it applies.
   dd_ = detail::make_speed_dd(comps, kind);
+  // A Bezier curve whose power basis loses too many bits for it (degree
+  // above ~20) takes it from its Bernstein sums, which lose few.
+  if (!dd_ && bern) dd_ = detail::make_speed_dd_bernstein(*bern);
   // Two independent halves, side by side (the construction is serial
   // otherwise, ~10% of radical's time at degree 150): D and (parametric
   // speed) the check that it has no root in [0, 1]; the numerators N,

@@ -1,7 +1,7 @@
 // speed_dd.cpp -- the speed at the quadrature's nodes in double-word ball
 // arithmetic (Speed::eval_dd, Speed::eval_double_word): the components over
-// one common denominator by Horner's rule, the arithmetic of
-// speed_formula.hpp on DDArith. Compiled with -ffp-contract=off
+// one common denominator by Horner's rule (or a Bezier curve's Bernstein
+// sums), the arithmetic of speed_formula.hpp on DDArith. Compiled with -ffp-contract=off
 // (reparam/CMakeLists.txt: core/dd_inline.hpp's proof).
 #include <cmath>
 #include <memory>
@@ -28,6 +28,15 @@ namespace {
 constexpr long kDDMaxPrec = 110;
 constexpr double kDDMaxLoss = 24;
 constexpr long kDDMaxDegree = 64;
+// make_speed_dd_bernstein: the significant bits kept of each coefficient of
+// a Bernstein sum H (times (k + 1) (k + 2) <= 2^16 for H'', within a double
+// word's 106).
+constexpr long kBernKeepBits = 88;
+// make_speed_dd_bernstein: the highest degree. The Bernstein sums cost O(n)
+// double-word operations a node, the cells O(K) balls with K ~ 40: measured
+// (callgrind, one thread, 15 digits, docs/stable-evaluation.md) the gain
+// shrinks with n, to about 0 at degree 150 (plane radical -1%).
+constexpr long kBernDDMaxDegree = 160;
 
 }  // namespace
 
@@ -36,8 +45,8 @@ namespace detail {
 std::shared_ptr<const SpeedDD> make_speed_dd(const std::vector<RatFunc>& comps, SpeedKind kind) {
   // The double-word path for the nodes (eval_double_word): only where
   // Horner's rule on the power basis keeps enough bits on [0, 1] (high
-  // degree Bezier curves lose more than 24; the local expansions serve
-  // them). The components over one common denominator L (the lcm of the
+  // degree Bezier curves lose more than 24: their Bernstein sums serve
+  // them, make_speed_dd_bernstein; other curves the local expansions). The components over one common denominator L (the lcm of the
   // Q_i; L = 1 for a polynomial curve): x_i = M_i / L, M_i = N_i L / Q_i.
   auto dd = std::make_shared<SpeedDD>();
   bool ok = comps.size() <= 3;  // eval_dd's bound
@@ -77,6 +86,62 @@ std::shared_ptr<const SpeedDD> make_speed_dd(const std::vector<RatFunc>& comps, 
     }
   }
   if (!ok) return nullptr;
+  return dd;
+}
+
+std::shared_ptr<const SpeedDD> make_speed_dd_bernstein(const BernsteinForm& b) {
+  // up to 3 components, degree 2 .. kBernDDMaxDegree
+  if (b.num.size() > 3 || b.den.size() < 3 || static_cast<long>(b.den.size()) - 1 > kBernDDMaxDegree) return nullptr;
+  auto dd = std::make_shared<SpeedDD>();
+  const long n = static_cast<long>(b.den.size()) - 1;
+  std::vector<const std::vector<Integer>*> rows;
+  for (const auto& r : b.num) rows.push_back(&r);
+  rows.push_back(&b.den);
+  for (const std::vector<Integer>* row : rows) {
+    std::vector<Integer> c = *row;  // (n)_j Delta^j of the coefficients, degree m = n - j
+    for (int j = 0; j <= 2; ++j) {
+      const long m = n - j;
+      std::vector<Integer> h, r;  // h_k = c_k binom(m, k); r reversed
+      Integer bin(1);
+      for (long k = 0; k <= m; ++k) {
+        h.push_back(c[static_cast<std::size_t>(k)] * bin);
+        fmpz_mul_si(bin.get(), bin.get(), m - k);
+        fmpz_divexact_si(bin.get(), bin.get(), k + 1);
+      }
+      r.assign(h.rbegin(), h.rend());
+      for (const auto* v : {&h, &r}) {
+        // H's coefficients cut to kBernKeepBits significant bits (so that H,
+        // H', H'' are exact double words), the rest bounded: drop_k >= |h_k - cut h_k|
+        std::vector<Integer> cut;
+        std::vector<double> drop;
+        for (const Integer& a : *v) {
+          const long e = static_cast<long>(fmpz_bits(a.get())) - kBernKeepBits;
+          Integer t = a;
+          if (e > 0) {
+            fmpz_tdiv_q_2exp(t.get(), t.get(), static_cast<ulong>(e));
+            fmpz_mul_2exp(t.get(), t.get(), static_cast<ulong>(e));
+          }
+          drop.push_back(e > 0 ? std::ldexp(1.0, static_cast<int>(e)) : 0.0);
+          cut.push_back(std::move(t));
+        }
+        dd->bern_drop.push_back(std::move(drop));
+        dd->bern.emplace_back(Poly(cut));
+        const DDPoly& q = dd->bern.back();
+        if (!q.usable() || q.cancellation_bits() > kDDMaxLoss) return nullptr;
+        std::vector<double> sl;  // (k + 1) |h_(k+1)|, rounded up (fmpz_get_d rounds towards 0)
+        for (std::size_t k = 1; k < v->size(); ++k) {
+          Integer a = (*v)[k] * Integer(static_cast<long>(k));
+          sl.push_back(std::fabs(fmpz_get_d(a.get())) * (1 + 0x1p-50));
+        }
+        dd->bern_slope.push_back(std::move(sl));
+      }
+      std::vector<Integer> next;
+      for (long k = 0; k < m; ++k)
+        next.push_back((c[static_cast<std::size_t>(k) + 1] - c[static_cast<std::size_t>(k)]) * Integer(m));
+      c = std::move(next);
+    }
+  }
+  dd->bern_n = n;
   return dd;
 }
 
@@ -160,6 +225,74 @@ template <bool F>
   return dd_is_finite(r);
 }
 
+// speed_dd for Bezier input (SpeedDD::bern): N_i, Q and their derivatives
+// as Bernstein sums, (1 - t)^(n - j) H(t / (1 - t)) where t <= 1/2 (about
+// x's midpoint), else t^(n - j) H((1 - t) / t), s and the powers in ball
+// arithmetic; then A_i, B_i, S, C_ij as speed_dd's general case.
+template <bool F>
+[[gnu::always_inline]] inline bool speed_dd_bern(DDBall& out, const detail::SpeedDD& dd, bool angular, int sign,
+                                                 bool squared, const DDBall& x) {
+  const std::size_t np = dd.bern.size() / 6, n = np - 1;  // polynomials (Q last), components
+  const int top = angular ? 2 : 1;
+  const bool left = x.hi <= 0.5;
+  const int side = left ? 0 : 1;
+  const DDBall omx = ball_sub(DDBall{1, 0, 0}, x);
+  const DDBall& base = left ? omx : x;
+  DDBall s;
+  if (!ball_div<F>(s, left ? x : omx, base)) return false;
+  DDBall v[4][3];
+  const DDPoly* lp[DDPoly::kMaxLanes];
+  int lj[DDPoly::kMaxLanes];
+  DDBall* lo[DDPoly::kMaxLanes];
+  int k = 0;
+  for (std::size_t p = 0; p < np; ++p)
+    for (int j = 0; j <= top; ++j) {
+      lp[k] = &dd.bern[(3 * p + static_cast<std::size_t>(j)) * 2 + static_cast<std::size_t>(side)];
+      lj[k] = 0;
+      lo[k++] = &v[p][j];
+    }
+  // Horner at s's midpoint (the Bernstein terms' rounding), plus s's radius
+  // times a bound of |H'| on s's ball, plus the cut coefficients' part
+  if (!DDPoly::eval_lanes<F>(k, lp, lj, lo, DDBall{s.hi, s.lo, 0})) return false;
+  const double mr = up(mag_up(s) + s.rad);
+  k = 0;
+  for (std::size_t p = 0; p < np; ++p)
+    for (int j = 0; j <= top; ++j, ++k) {
+      const std::size_t idx = (3 * p + static_cast<std::size_t>(j)) * 2 + static_cast<std::size_t>(side);
+      v[p][j].rad = up(v[p][j].rad + s.rad * horner_abs(dd.bern_slope[idx], mr) + horner_abs(dd.bern_drop[idx], mr));
+    }
+  // base^(n - top) by squaring, then base^(n - j) for j = top .. 0
+  DDBall pw{1, 0, 0}, sq = base;
+  for (unsigned long e = static_cast<unsigned long>(dd.bern_n - top); e; e >>= 1) {
+    if (e & 1) pw = ball_mul<F>(pw, sq);
+    if (e > 1) sq = ball_mul<F>(sq, sq);
+  }
+  for (int j = top; j >= 0; --j) {
+    for (std::size_t p = 0; p < np; ++p) v[p][j] = ball_mul<F>(v[p][j], pw);
+    if (j) pw = ball_mul<F>(pw, base);
+  }
+  using namespace speed_formula;
+  DDArith<F> ar;
+  DDBall A[3], B[3];
+  const DDBall* q = v[n];
+  for (std::size_t i = 0; i < n; ++i)
+    scaled_derivatives(ar, A[i], angular ? B + i : nullptr, v[i][0], v[i][1], &v[i][2], q[0], q[1], &q[2]);
+  DDBall S, Fs{0, 0, 0}, r, l2;
+  sum_of_squares(ar, S, n, [&A](std::size_t i) -> const DDBall& { return A[i]; });
+  const Form form = !angular ? Form::Parametric : n == 2 ? Form::Plane : Form::Space;
+  if (angular) cross_terms(ar, Fs, A, B, n);
+  if (!angular) ar.mul(l2, q[0], q[0]);
+  if (squared) speed_squared(ar, r, S, Fs, form, angular ? nullptr : &l2);
+  else speed_value(ar, r, S, Fs, form, sign, angular ? nullptr : &l2);
+  out = r;
+  return dd_is_finite(r);
+}
+
+UNIPARAM_DD_FMA bool speed_dd_bern_fma(DDBall& out, const detail::SpeedDD& dd, bool angular, int sign, bool squared,
+                                       const DDBall& x) {
+  return speed_dd_bern<kHaveFmaTarget>(out, dd, angular, sign, squared, x);
+}
+
 UNIPARAM_DD_FMA bool speed_dd_fma(DDBall& out, const detail::SpeedDD& dd, bool angular, int sign, bool squared,
                                   const DDBall& x) {
   return speed_dd<kHaveFmaTarget>(out, dd, angular, sign, squared, x);
@@ -171,8 +304,13 @@ bool Speed::eval_dd(DDBall& out, const DDBall& x, const PieceSigns& p, bool squa
   if (!dd_ || zero_ || prec > kDDMaxPrec || !dd_is_finite(x) || !(x.rad < std::ldexp(1.0, kRegionBallLog2))) return false;
   const bool angular = kind_ == SpeedKind::Angular;
   DDBall r;
-  const bool ok = dd_fma_in_use() ? speed_dd_fma(r, *dd_, angular, p.component, squared, x)
-                                  : speed_dd<false>(r, *dd_, angular, p.component, squared, x);
+  bool ok;
+  if (dd_->bern_n >= 0)
+    ok = dd_fma_in_use() ? speed_dd_bern_fma(r, *dd_, angular, p.component, squared, x)
+                         : speed_dd_bern<false>(r, *dd_, angular, p.component, squared, x);
+  else
+    ok = dd_fma_in_use() ? speed_dd_fma(r, *dd_, angular, p.component, squared, x)
+                         : speed_dd<false>(r, *dd_, angular, p.component, squared, x);
   if (!ok || !(dd_rel_rad(r) <= std::ldexp(1.0, -static_cast<int>(prec - kNodeFastSlackBits)))) return false;
   out = r;
   return true;
