@@ -14,6 +14,7 @@
 #include "uniparam/core/budget.hpp"
 #include "uniparam/core/decimal.hpp"
 #include "uniparam/core/error.hpp"
+#include "uniparam/reparam/scaling.hpp"
 #include "arc_model.hpp"
 #include "track.hpp"
 
@@ -638,9 +639,54 @@ double sigma_estimate(const Speed& s, const Rational& x) {
   return std::isfinite(v) && v > 0 ? std::sqrt(v) : 0.0;
 }
 
+namespace {
+
+// The point of the balanced curve q = p o m (scaling.hpp) located at s
+// carried to p: t = m(s), and p(t) = q(s) as located, except at the ends
+// s = 0, 1 (t = s exactly), where p is evaluated as on the unbalanced path
+// (q's coefficients may be far larger than p's). Whether t meets `digits`
+// is the caller's check (m stretches s where m' > 1).
+LocatedPoint mapped_point(const Curve& p, const BalancedCurve& bal, const LocatedPoint& on_q, long digits) {
+  LocatedPoint out = on_q;
+  if (on_q.t.is_exact() && (arb_is_zero(on_q.t.get()) || arb_is_one(on_q.t.get()))) {
+    out.point = p.eval(on_q.t, 128);
+    return out;
+  }
+  out.t = balance_map_ball(bal, on_q.t, 2 * digits_to_bits(digits) + 64);
+  return out;
+}
+
+// The digits to ask of q's parameter s so that t = m(s) meets `digits`,
+// after a try with `asked` gave t with the radius of `t`.
+long more_digits(const Ball& t, long digits, long asked) {
+  const double excess = static_cast<double>(mag_get_d_log2_approx(arb_radref(t.get()))) / 3.3219280948873623 +
+                        static_cast<double>(digits);
+  return asked + std::max(1L, static_cast<long>(std::ceil(excess)) + 1);
+}
+
+// locate() on the balanced curve: G_q(s) = G_p(m(s)) (sigma_q ds = sigma_p
+// dt), so t = m(s) for q's s, with s to more digits where m stretches it.
+LocateResult locate_balanced(const Curve& p, const BalancedCurve& bal, const Speed& sq, const Rational& value,
+                             LocateTarget target, const Options& opt) {
+  Options o = opt;
+  for (;;) {
+    LocateResult r = locate_on(CurveTrack(bal.q, sq, o.max_prec), value, target, o);
+    r.at = mapped_point(p, bal, r.at, opt.digits);
+    if (meets(r.at.t, opt.digits)) return r;
+    o.digits = more_digits(r.at.t, opt.digits, o.digits);
+    if (digits_to_bits(o.digits) > opt.max_prec) throw_budget("the located parameter", opt);
+  }
+}
+
+}  // namespace
+
 LocateResult locate(const Curve& c, const Speed& s, const Rational& value, LocateTarget target,
                     const Options& opt) {
   validate(opt);
+  // A speed concentrated next to one end (huge coefficients, weights
+  // growing geometrically): located on the balanced curve q = p o m.
+  if (const std::optional<BalancedCurve> bal = balance(c, s))
+    return locate_balanced(c, *bal, Speed(bal->q, s.kind()), value, target, opt);
   return locate_on(CurveTrack(c, s, opt.max_prec), value, target, opt);
 }
 
@@ -696,6 +742,18 @@ LocateResult locate_on(const Track& tr, const Rational& value, LocateTarget targ
 void exact_samples_each(const Curve& c, const Speed& s, long K, const Options& opt, Ball& mu,
                         const LocatedSink& sink) {
   validate(opt);
+  if (const std::optional<BalancedCurve> bal = balance(c, s)) {
+    // On the balanced curve q = p o m, each point carried by t = m(s); a
+    // point whose t misses the digits (where m stretches s) is located
+    // again alone, with s to more digits.
+    const Speed sq(bal->q, s.kind());
+    exact_samples_on(CurveTrack(bal->q, sq, opt.max_prec), K, opt, mu, [&](long k, const LocatedPoint& on_q) {
+      LocatedPoint pt = mapped_point(c, *bal, on_q, opt.digits);
+      if (!meets(pt.t, opt.digits)) pt = locate_balanced(c, *bal, sq, Rational(k, K - 1), LocateTarget::Fraction, opt).at;
+      sink(k, pt);
+    });
+    return;
+  }
   exact_samples_on(CurveTrack(c, s, opt.max_prec), K, opt, mu, sink);
 }
 

@@ -7,6 +7,7 @@
 #include <flint/fmpz.h>
 #include <flint/fmpz_poly.h>
 
+#include "uniparam/core/error.hpp"
 #include "uniparam/reparam/speed.hpp"
 
 namespace uniparam {
@@ -208,6 +209,35 @@ Ball weight_at(const BalancedCurve& bal, const Ball& s, long prec) {
 }
 
 }  // namespace
+
+Ball balance_map_ball(const BalancedCurve& bal, const Ball& s, long prec) {
+  if (!s.is_finite()) throw DomainError("balance_map_ball: the parameter is not finite");
+  arf_t lo, hi;
+  arf_init(lo);
+  arf_init(hi);
+  arb_get_lbound_arf(lo, s.get(), prec);
+  arb_get_ubound_arf(hi, s.get(), prec);
+  const bool outside = arf_cmp_si(hi, 0) < 0 || arf_cmp_si(lo, 1) > 0;
+  if (arf_sgn(lo) < 0) arf_zero(lo);
+  if (arf_cmp_si(hi, 1) > 0) arf_one(hi);
+  auto m_at = [&](const arf_t x) {
+    Ball as, bs, d;
+    arb_set_arf(as.get(), x);
+    arb_sub_si(bs.get(), as.get(), 1, prec);
+    arb_neg(bs.get(), bs.get());
+    arb_mul_fmpz(bs.get(), bs.get(), bal.b.get(), prec);
+    arb_mul_fmpz(as.get(), as.get(), bal.a.get(), prec);
+    arb_add(d.get(), as.get(), bs.get(), prec);
+    arb_div(as.get(), as.get(), d.get(), prec);
+    return as;
+  };
+  Ball out;
+  if (!outside) arb_union(out.get(), m_at(lo).get(), m_at(hi).get(), prec);
+  arf_clear(lo);
+  arf_clear(hi);
+  if (outside) throw DomainError("balance_map_ball: the parameter is outside [0, 1]");
+  return out;
+}
 
 Ball balance_local_k(const BalancedCurve& bal, const RealAlgebraic& s0, const RealAlgebraic& s1, long prec) {
   if (s0.is_rational() && s1.is_rational()) return Ball(balance_local_k(bal, s0.rational(), s1.rational()), prec);

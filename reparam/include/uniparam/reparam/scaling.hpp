@@ -70,6 +70,13 @@ RealAlgebraic balance_map(const BalancedCurve& bal, const RealAlgebraic& s);
 /// [0, 1].
 RealAlgebraic balance_unmap(const BalancedCurve& bal, const RealAlgebraic& t);
 
+/// An enclosure of m over the ball s clipped to [0, 1]: m is increasing,
+/// so the hull of m at s's clipped ends, each computed as a s / (a s + b
+/// (1 - s)), a quotient of sums of non-negative terms (relative accuracy
+/// about 2^-prec, however small m(s) or 1 - m(s) is).
+/// \pre s finite and meeting [0, 1] (DomainError otherwise).
+Ball balance_map_ball(const BalancedCurve& bal, const Ball& s, long prec);
+
 /// The restriction of m to a piece [s0, s1] (0 <= s0 < s1 <= 1) in local
 /// coordinates is the Moebius map t~ = k s~ / (k s~ + 1 - s~) of [0, 1]
 /// onto itself, with k = D(s1) / D(s0), D(s) = a s + b (1 - s) > 0: an
