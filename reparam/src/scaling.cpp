@@ -88,6 +88,9 @@ struct Tropical {
       if (slope >= 0) out.push_back(slope);
     }
   }
+  // The largest breakpoint (0 if none is positive): about -log2 of the
+  // smallest modulus of P's nonzero roots (Newton polygon).
+  double deepest() const { return i.size() >= 2 ? std::max(0.0, (L[1] - L[0]) / (i[1] - i[0])) : 0.0; }
   // T(x), for x not below the previous call's (amortised O(1)).
   double operator()(double x) {
     while (at > 0 && L[at - 1] - i[at - 1] * x >= L[at] - i[at] * x) --at;
@@ -132,6 +135,22 @@ Poly shifted_to_one(const Poly& P) {
   return r;
 }
 
+// How close to 0 or to 1 the nearest complex singularity of sigma's
+// analytic continuation lies, as -log2 of the distance (Newton polygons of
+// D, whose roots are poles, and of sum K_k^2, whose roots are branch
+// points, at both ends): the depth a quadrature bisects to there.
+double singularity_depth(const Speed& s) {
+  Poly K2(0);
+  for (const Poly& k : s.cofactors()) K2 = K2 + k * k;
+  double depth = 0;
+  for (const Poly* P : {&s.denominator(), static_cast<const Poly*>(&K2)}) {
+    if (P->is_zero()) continue;
+    depth = std::max(depth, Tropical(*P).deepest());
+    depth = std::max(depth, Tropical(shifted_to_one(*P)).deepest());
+  }
+  return depth;
+}
+
 }  // namespace
 
 std::optional<BalancedCurve> balance(const Curve& p) {
@@ -162,7 +181,13 @@ std::optional<BalancedCurve> balance(const Curve& p, const Speed& s) {
   const double x = at0 ? x0 : x1;
   if (!std::isfinite(x) || x > 1e15) return std::nullopt;
   const long k = std::lround(x);
-  return balanced_by(p, at0 ? k : -k);
+  BalancedCurve bal = balanced_by(p, at0 ? k : -k);
+  // m takes t = infinity to s = b / (b - a), within 2^-|k| of an end:
+  // features of p far from [0, 1] (a root of D or sum K^2 at |t| ~ 2^j)
+  // come within about 2^-(|k| + j) of that end. Balanced only where q's
+  // nearest singularity is farther from the ends than p's.
+  if (!(singularity_depth(Speed(bal.q, s.kind())) + kMinBits <= singularity_depth(s))) return std::nullopt;
+  return bal;
 }
 
 namespace {

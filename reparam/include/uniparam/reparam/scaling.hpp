@@ -54,7 +54,13 @@ std::optional<BalancedCurve> balance(const Curve& p);
 /// [2^-x-1, 2^-x] about 2^(that - x), and |k| the smallest x >= 0 maximising
 /// it, rounded (the same in 1 - t with the Taylor shifts of g, K_k, D about
 /// 1). Empty where |k| < 16 at both ends, where both ends are concentrated
-/// (one Moebius map cannot spread both), or for an identically zero speed.
+/// (one Moebius map cannot spread both), for an identically zero speed, and
+/// where q's speed would have a complex singularity (a root of D or of
+/// sum K_k^2, Newton-polygon estimate at both ends) not at least 2^16 times
+/// farther from 0 and 1 than p's nearest: m brings t = infinity within
+/// 2^-|k| of an end, and with it p's far singularities (a space curve such
+/// as (t, C t^2, t^3) has some at |t| ~ C), which would make q costlier to
+/// integrate than p.
 /// Which m is chosen only affects the cost, never a result's correctness:
 /// every use composes with m exactly.
 /// \pre s is the speed of p (not checkable).
