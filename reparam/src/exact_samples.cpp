@@ -3,6 +3,7 @@
 // bracket elsewhere.
 #include <arb.h>
 
+#include <optional>
 #include <string>
 
 #include "uniparam/core/budget.hpp"
@@ -16,6 +17,18 @@ using namespace locate_detail;
 void exact_samples_each(const Curve& c, const Speed& s, long K, const Options& opt, Ball& mu,
                         const LocatedSink& sink) {
   validate(opt);
+  if (const std::optional<BalancedCurve> bal = balance(c, s)) {
+    // On the balanced curve q = p o m, each point carried by t = m(s); a
+    // point whose t misses the digits (where m stretches s) is located
+    // again alone, with s to more digits.
+    const Speed sq(bal->q, s.kind());
+    exact_samples_on(CurveTrack(bal->q, sq, opt.max_prec), K, opt, mu, [&](long k, const LocatedPoint& on_q) {
+      LocatedPoint pt = mapped_point(c, *bal, on_q, opt.digits);
+      if (!meets(pt.t, opt.digits)) pt = locate_balanced(c, *bal, sq, Rational(k, K - 1), LocateTarget::Fraction, opt).at;
+      sink(k, pt);
+    });
+    return;
+  }
   exact_samples_on(CurveTrack(c, s, opt.max_prec), K, opt, mu, sink);
 }
 

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "uniparam/core/budget.hpp"
@@ -72,6 +73,10 @@ double sigma_estimate(const Speed& s, const Rational& x) {
 LocateResult locate(const Curve& c, const Speed& s, const Rational& value, LocateTarget target,
                     const Options& opt) {
   validate(opt);
+  // A speed concentrated next to one end (huge coefficients, weights
+  // growing geometrically): located on the balanced curve q = p o m.
+  if (const std::optional<BalancedCurve> bal = balance(c, s))
+    return locate_balanced(c, *bal, Speed(bal->q, s.kind()), value, target, opt);
   return locate_on(CurveTrack(c, s, opt.max_prec), value, target, opt);
 }
 

@@ -14,16 +14,14 @@
 
 namespace uniparam::locate_detail {
 
-namespace {
-
-// b.meets_digits(digits), first by a cheap sufficient test (rad <=
-// 2^-e <= 10^-digits, so rad <= 10^-digits max(1, |mid|)).
 bool meets(const Ball& b, long digits) {
   if (!b.is_finite()) return false;
   const long e = static_cast<long>(std::ceil(static_cast<double>(digits) * 3.3219280948873623)) + 1;
   if (mag_cmp_2exp_si(arb_radref(b.get()), -e) <= 0) return true;
   return b.meets_digits(digits);
 }
+
+namespace {
 
 // N within [x - rho, x + rho] (x = x0's exact double midpoint), or
 // within *X when given (a clipped interval).

@@ -14,6 +14,7 @@
 #include "uniparam/core/number.hpp"
 #include "uniparam/reparam/curve.hpp"
 #include "uniparam/reparam/locate.hpp"
+#include "uniparam/reparam/scaling.hpp"
 #include "uniparam/reparam/speed.hpp"
 #include "uniparam/reparam/uniformity.hpp"
 #include "arc_model.hpp"
@@ -49,6 +50,27 @@ std::string shown(const Rational& x);
 long next_bits(long bits);
 /// The point at the exact parameter t (0 or 1): t exact, p(t) at 128 bits.
 LocatedPoint exact_point(const Track& tr, long t);
+
+/// b.meets_digits(digits), first by a cheap sufficient test (rad <=
+/// 2^-e <= 10^-digits, so rad <= 10^-digits max(1, |mid|)); false for a
+/// ball that is not finite. (locate_cover.cpp)
+bool meets(const Ball& b, long digits);
+
+// ---- locate_balanced.cpp: locating on a balanced curve ----
+
+/// The point of the balanced curve q = p o m (scaling.hpp) located at s,
+/// carried to p: t = m(s), and p(t) = q(s) as located, except at the ends
+/// s = 0, 1 (t = s exactly), where p is evaluated as on the unbalanced path
+/// (q's coefficients may be far larger than p's). Whether t meets `digits`
+/// is the caller's check (m stretches s where m' > 1).
+LocatedPoint mapped_point(const Curve& p, const BalancedCurve& bal, const LocatedPoint& on_q, long digits);
+/// locate() on the balanced curve: G_q(s) = G_p(m(s)) (sigma_q ds =
+/// sigma_p dt), so t = m(s) for q's s, located to more digits where m
+/// stretches it. \pre sq is q's speed of the caller's kind.
+/// 	hrows as locate(); BudgetExceeded when the digits s needs exceed
+///         opt.max_prec.
+LocateResult locate_balanced(const Curve& p, const BalancedCurve& bal, const Speed& sq, const Rational& value,
+                             LocateTarget target, const Options& opt);
 
 // ---- locate_chain.cpp: the chain of certified integrals ----
 

@@ -139,7 +139,7 @@ namespace detail {
 
 std::shared_ptr<const BalancedCurve> balanced_for(const Curve& c, const Speed& s) {
   if (s.identically_zero()) return nullptr;
-  std::optional<BalancedCurve> b = balance(c);
+  std::optional<BalancedCurve> b = balance(c, s);
   if (!b) return nullptr;
   return std::make_shared<const BalancedCurve>(std::move(*b));
 }

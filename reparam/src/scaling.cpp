@@ -1,9 +1,14 @@
 #include "uniparam/reparam/scaling.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
 #include <flint/fmpz.h>
+#include <flint/fmpz_poly.h>
+
+#include "uniparam/core/error.hpp"
+#include "uniparam/reparam/speed.hpp"
 
 #include "moebius_map.hpp"
 
@@ -33,6 +38,123 @@ Poly homogenized(const Poly& p, long n, const Poly& as, const Poly& L) {
 
 }  // namespace
 
+namespace {
+
+// q = p o m with m(s) = a s / (a s + b (1 - s)), lambda = b / a = 2^k (k != 0).
+BalancedCurve balanced_by(const Curve& p, long k) {
+  Integer a(1), b(1), two_k(1);
+  fmpz_mul_2exp(two_k.get(), two_k.get(), static_cast<ulong>(std::labs(k)));
+  (k > 0 ? b : a) = two_k;
+  const Poly as(std::vector<Integer>{Integer(0), a});
+  const Poly L(std::vector<Integer>{b, a - b});
+  std::vector<RatFunc> q;
+  for (const RatFunc& c : p.components()) {
+    const long nc = std::max(c.num().degree(), c.den().degree());
+    q.emplace_back(homogenized(c.num(), nc, as, L), homogenized(c.den(), nc, as, L));
+  }
+  return BalancedCurve{Curve(std::move(q)), a, b};
+}
+
+// The tropical polynomial T(x) = max_i (log2 |P_i| - i x) of a nonzero P,
+// kept as the vertices of the upper hull of the points (i, log2 |P_i|),
+// i increasing: T is convex and piecewise linear, its breakpoints are the
+// slopes of the hull's edges, and the maximising index falls as x grows.
+struct Tropical {
+  std::vector<double> i, L;  // hull vertices
+  std::size_t at = 0;        // the vertex maximising at the last x asked
+
+  explicit Tropical(const Poly& P) {
+    for (long k = 0; k <= P.degree(); ++k) {
+      const fmpz* c = P.get()->coeffs + k;
+      if (fmpz_is_zero(c)) continue;
+      slong e = 0;
+      const double m = fmpz_get_d_2exp(&e, c);
+      const double Lk = std::log2(std::fabs(m)) + static_cast<double>(e);
+      // drop vertices below the edge to (k, Lk) (upper hull, monotone chain)
+      while (i.size() >= 2) {
+        const std::size_t n = i.size();
+        if ((L[n - 1] - L[n - 2]) * (k - i[n - 2]) > (Lk - L[n - 2]) * (i[n - 1] - i[n - 2])) break;
+        i.pop_back();
+        L.pop_back();
+      }
+      i.push_back(static_cast<double>(k));
+      L.push_back(Lk);
+    }
+    // the maximiser at x = 0: the first vertex after which the hull falls
+    while (at + 1 < i.size() && L[at + 1] >= L[at]) ++at;
+  }
+  // The edges' slopes >= 0: where the maximiser changes for x >= 0.
+  void breakpoints(std::vector<double>& out) const {
+    for (std::size_t v = 0; v + 1 < i.size(); ++v) {
+      const double slope = (L[v + 1] - L[v]) / (i[v + 1] - i[v]);
+      if (slope >= 0) out.push_back(slope);
+    }
+  }
+  // The largest breakpoint (0 if none is positive): about -log2 of the
+  // smallest modulus of P's nonzero roots (Newton polygon).
+  double deepest() const { return i.size() >= 2 ? std::max(0.0, (L[1] - L[0]) / (i[1] - i[0])) : 0.0; }
+  // T(x), for x not below the previous call's (amortised O(1)).
+  double operator()(double x) {
+    while (at > 0 && L[at - 1] - i[at - 1] * x >= L[at] - i[at] * x) --at;
+    return L[at] - i[at] * x;
+  }
+};
+
+// The x >= 0 maximising the estimated mass 2^(T_g(x) + max_k T_K_k(x) -
+// T_D(x) - x) of the band [2^-x-1, 2^-x] (the smallest maximiser among the
+// breakpoints and 0, where a piecewise linear function takes its maximum;
+// the last slope is negative: sigma is integrable at 0).
+double mass_peak(const Poly& g, const std::vector<Poly>& K, const Poly& D) {
+  Tropical Tg(g), TD(D);
+  std::vector<Tropical> TK;
+  for (const Poly& k : K)
+    if (!k.is_zero()) TK.emplace_back(k);
+  std::vector<double> xs{0.0};
+  Tg.breakpoints(xs);
+  TD.breakpoints(xs);
+  for (const Tropical& t : TK) t.breakpoints(xs);
+  std::sort(xs.begin(), xs.end());
+  double best_x = 0, best = -HUGE_VAL;
+  for (const double x : xs) {
+    double k_max = -HUGE_VAL;
+    for (Tropical& t : TK) k_max = std::max(k_max, t(x));
+    const double m = Tg(x) + k_max - TD(x) - x;
+    if (m > best) {
+      best = m;
+      best_x = x;
+    }
+  }
+  return best_x;
+}
+
+// P(1 + t), whose coefficients' sizes are those of P(1 - t).
+Poly shifted_to_one(const Poly& P) {
+  Poly r;
+  fmpz_t one;
+  fmpz_init_set_ui(one, 1);
+  fmpz_poly_taylor_shift(r.get(), P.get(), one);
+  fmpz_clear(one);
+  return r;
+}
+
+// How close to 0 or to 1 the nearest complex singularity of sigma's
+// analytic continuation lies, as -log2 of the distance (Newton polygons of
+// D, whose roots are poles, and of sum K_k^2, whose roots are branch
+// points, at both ends): the depth a quadrature bisects to there.
+double singularity_depth(const Speed& s) {
+  Poly K2(0);
+  for (const Poly& k : s.cofactors()) K2 = K2 + k * k;
+  double depth = 0;
+  for (const Poly* P : {&s.denominator(), static_cast<const Poly*>(&K2)}) {
+    if (P->is_zero()) continue;
+    depth = std::max(depth, Tropical(*P).deepest());
+    depth = std::max(depth, Tropical(shifted_to_one(*P)).deepest());
+  }
+  return depth;
+}
+
+}  // namespace
+
 std::optional<BalancedCurve> balance(const Curve& p) {
   // W: the least common denominator of the components.
   Poly W(1);
@@ -45,17 +167,29 @@ std::optional<BalancedCurve> balance(const Curve& p) {
   if (w0.sign() == 0 || w1.sign() == 0) return std::nullopt;  // a pole at an end: not a curve
   const double k = std::nearbyint((log2_abs(w1) - log2_abs(w0)) / static_cast<double>(n));
   if (!(std::fabs(k) >= 16) || !std::isfinite(k)) return std::nullopt;
-  Integer a(1), b(1), two_k(1);
-  fmpz_mul_2exp(two_k.get(), two_k.get(), static_cast<ulong>(std::fabs(k)));
-  (k > 0 ? b : a) = two_k;
-  const Poly as(std::vector<Integer>{Integer(0), a});
-  const Poly L(std::vector<Integer>{b, a - b});
-  std::vector<RatFunc> q;
-  for (const RatFunc& c : p.components()) {
-    const long nc = std::max(c.num().degree(), c.den().degree());
-    q.emplace_back(homogenized(c.num(), nc, as, L), homogenized(c.den(), nc, as, L));
-  }
-  return BalancedCurve{Curve(std::move(q)), a, b};
+  return balanced_by(p, static_cast<long>(k));
+}
+
+std::optional<BalancedCurve> balance(const Curve& p, const Speed& s) {
+  if (std::optional<BalancedCurve> w = balance(p)) return w;
+  if (s.identically_zero()) return std::nullopt;
+  constexpr double kMinBits = 16;
+  const double x0 = mass_peak(s.g(), s.cofactors(), s.denominator());
+  std::vector<Poly> K1;
+  for (const Poly& k : s.cofactors()) K1.push_back(shifted_to_one(k));
+  const double x1 = mass_peak(shifted_to_one(s.g()), K1, shifted_to_one(s.denominator()));
+  const bool at0 = x0 >= kMinBits, at1 = x1 >= kMinBits;
+  if (at0 == at1) return std::nullopt;
+  const double x = at0 ? x0 : x1;
+  if (!std::isfinite(x) || x > 1e15) return std::nullopt;
+  const long k = std::lround(x);
+  BalancedCurve bal = balanced_by(p, at0 ? k : -k);
+  // m takes t = infinity to s = b / (b - a), within 2^-|k| of an end:
+  // features of p far from [0, 1] (a root of D or sum K^2 at |t| ~ 2^j)
+  // come within about 2^-(|k| + j) of that end. Balanced only where q's
+  // nearest singularity is farther from the ends than p's.
+  if (!(singularity_depth(Speed(bal.q, s.kind())) + kMinBits <= singularity_depth(s))) return std::nullopt;
+  return bal;
 }
 
 namespace {
@@ -104,6 +238,35 @@ Ball weight_at(const BalancedCurve& bal, const Ball& s, long prec) {
 }
 
 }  // namespace
+
+Ball balance_map_ball(const BalancedCurve& bal, const Ball& s, long prec) {
+  if (!s.is_finite()) throw DomainError("balance_map_ball: the parameter is not finite");
+  arf_t lo, hi;
+  arf_init(lo);
+  arf_init(hi);
+  arb_get_lbound_arf(lo, s.get(), prec);
+  arb_get_ubound_arf(hi, s.get(), prec);
+  const bool outside = arf_cmp_si(hi, 0) < 0 || arf_cmp_si(lo, 1) > 0;
+  if (arf_sgn(lo) < 0) arf_zero(lo);
+  if (arf_cmp_si(hi, 1) > 0) arf_one(hi);
+  auto m_at = [&](const arf_t x) {
+    Ball as, bs, d;
+    arb_set_arf(as.get(), x);
+    arb_sub_si(bs.get(), as.get(), 1, prec);
+    arb_neg(bs.get(), bs.get());
+    arb_mul_fmpz(bs.get(), bs.get(), bal.b.get(), prec);
+    arb_mul_fmpz(as.get(), as.get(), bal.a.get(), prec);
+    arb_add(d.get(), as.get(), bs.get(), prec);
+    arb_div(as.get(), as.get(), d.get(), prec);
+    return as;
+  };
+  Ball out;
+  if (!outside) arb_union(out.get(), m_at(lo).get(), m_at(hi).get(), prec);
+  arf_clear(lo);
+  arf_clear(hi);
+  if (outside) throw DomainError("balance_map_ball: the parameter is outside [0, 1]");
+  return out;
+}
 
 Ball balance_local_k(const BalancedCurve& bal, const RealAlgebraic& s0, const RealAlgebraic& s1, long prec) {
   if (s0.is_rational() && s1.is_rational()) return Ball(balance_local_k(bal, s0.rational(), s1.rational()), prec);

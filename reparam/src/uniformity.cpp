@@ -410,7 +410,7 @@ UniformityResult uniformity(const Curve& c, SpeedKind kind, const Options& opt) 
   // 1, 8e40, 1e82): the integrals of the balanced curve q = p o m, whose
   // speed is spread over [0, 1] instead of within 1 / lambda of one end.
   if (!s.identically_zero())
-    if (const std::optional<BalancedCurve> bal = balance(c)) return uniformity_balanced(s, *bal, Speed(bal->q, kind), opt);
+    if (const std::optional<BalancedCurve> bal = balance(c, s)) return uniformity_balanced(s, *bal, Speed(bal->q, kind), opt);
   return uniformity_of(s, s, nullptr, opt);
 }
 

@@ -1,6 +1,8 @@
 // uniparam/reparam/scaling.hpp -- an exact change of parameter that balances
-// a rational curve whose weights grow geometrically, for the integrals of
-// the uniformity (docs/math.md §1, (1.1) and (1.2)).
+// a rational curve whose speed is concentrated next to one end of [0, 1]
+// (weights growing geometrically, or huge coefficients such as (t, C t^2)),
+// for the integrals of the uniformity and every method (docs/math.md §1,
+// (1.1) and (1.2)).
 #pragma once
 
 #include <optional>
@@ -11,6 +13,8 @@
 #include "uniparam/reparam/curve.hpp"
 
 namespace uniparam {
+
+class Speed;  // speed.hpp
 
 /// The Moebius map of [0, 1] onto itself t = m(s) = a s / (a s + b (1 - s))
 /// (a, b > 0 integers; m(0) = 0, m(1) = 1, increasing) and the curve
@@ -38,6 +42,31 @@ struct BalancedCurve {
 ///         [0, 1], so q has p's poles, none in [0, 1]).
 std::optional<BalancedCurve> balance(const Curve& p);
 
+/// balance(p) where that balances; otherwise, where the speed s of p has its
+/// mass concentrated within 2^-16 of one end of [0, 1] and not of the other
+/// (e.g. the angular speed of (t, C t^2) for a huge C, a peak of width
+/// 1/(2C) at t = 0), the balanced curve q = p o m with lambda = b / a = 2^k
+/// (k > 0 for the end t = 0, k < 0 for t = 1) putting that mass near
+/// s = 1/2. The mass's place is a tropical estimate from the sizes of the
+/// coefficients of s's factored form g, K_k, D (speed.hpp) about the end,
+/// exact input and no evaluation: sigma(2^-x) ~ 2^(T_g(x) + max_k T_K_k(x)
+/// - T_D(x)) with T_P(x) = max_i (log2 |P_i| - i x), the mass of the band
+/// [2^-x-1, 2^-x] about 2^(that - x), and |k| the smallest x >= 0 maximising
+/// it, rounded (the same in 1 - t with the Taylor shifts of g, K_k, D about
+/// 1). Empty where |k| < 16 at both ends, where both ends are concentrated
+/// (one Moebius map cannot spread both), for an identically zero speed, and
+/// where q's speed would have a complex singularity (a root of D or of
+/// sum K_k^2, Newton-polygon estimate at both ends) not at least 2^16 times
+/// farther from 0 and 1 than p's nearest: m brings t = infinity within
+/// 2^-|k| of an end, and with it p's far singularities (a space curve such
+/// as (t, C t^2, t^3) has some at |t| ~ C), which would make q costlier to
+/// integrate than p.
+/// Which m is chosen only affects the cost, never a result's correctness:
+/// every use composes with m exactly.
+/// \pre s is the speed of p (not checkable).
+/// 	hrows nothing beyond allocation.
+std::optional<BalancedCurve> balance(const Curve& p, const Speed& s);
+
 /// t = m(s) = a s / (a s + b (1 - s)) exactly, for s in [0, 1]: a rational
 /// for a rational s; else the root of the Moebius transform of s's
 /// polynomial, f(b t / (b t + a (1 - t))) (b t + a (1 - t))^deg f, in the
@@ -46,6 +75,13 @@ RealAlgebraic balance_map(const BalancedCurve& bal, const RealAlgebraic& s);
 /// The inverse s = m^-1(t) = b t / (b t + a (1 - t)) the same way, for t in
 /// [0, 1].
 RealAlgebraic balance_unmap(const BalancedCurve& bal, const RealAlgebraic& t);
+
+/// An enclosure of m over the ball s clipped to [0, 1]: m is increasing,
+/// so the hull of m at s's clipped ends, each computed as a s / (a s + b
+/// (1 - s)), a quotient of sums of non-negative terms (relative accuracy
+/// about 2^-prec, however small m(s) or 1 - m(s) is).
+/// \pre s finite and meeting [0, 1] (DomainError otherwise).
+Ball balance_map_ball(const BalancedCurve& bal, const Ball& s, long prec);
 
 /// The restriction of m to a piece [s0, s1] (0 <= s0 < s1 <= 1) in local
 /// coordinates is the Moebius map t~ = k s~ / (k s~ + 1 - s~) of [0, 1]

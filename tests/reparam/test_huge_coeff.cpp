@@ -1,0 +1,118 @@
+// balance(p, speed) (reparam/scaling.hpp) on curves whose speed is
+// concentrated next to one end because of a huge coefficient: which curves
+// it balances (and to which side), that q = p o m exactly, and that the
+// uniformity computed through q is the closed form.
+#include <gtest/gtest.h>
+
+#include <arb.h>
+
+#include <string>
+#include <vector>
+
+#include "uniparam/core/budget.hpp"
+#include "uniparam/reparam/all.hpp"
+#include "uniparam/reparam/scaling.hpp"
+
+using namespace uniparam;
+
+namespace {
+
+constexpr double kBudgetSeconds = 300;
+
+std::string pow2(long e) {
+  Integer x(1);
+  for (long i = 0; i < e; ++i) x = x * Integer(2);
+  return x.str();
+}
+
+std::optional<BalancedCurve> balanced(const std::string& text, SpeedKind kind) {
+  const Curve c = Curve::parse(text);
+  return balance(c, Speed(c, kind));
+}
+
+// log2 (b / a) of a balanced curve (b / a is a power of 2 either way).
+long log2_lambda(const BalancedCurve& bal) {
+  return static_cast<long>(fmpz_bits(bal.b.get())) - static_cast<long>(fmpz_bits(bal.a.get()));
+}
+
+}  // namespace
+
+// Must show: the angular speed 2C / (1 + 4 C^2 t^2) of (t, C t^2) with
+// C = 2^60 is a peak of width 2^-61 at t = 0, balanced with lambda = b / a
+// near 2C (m(1/2) = 1 / (1 + lambda) ~ 2^-61); mirrored at t = 1 the
+// other way; and left alone: the parametric speed of the same curve
+// (spread over [0, 1]), ordinary curves, and a space curve whose balanced
+// curve would bring its singularities at |t| ~ C next to s = 1.
+TEST(HugeCoeff, BalanceFollowsTheSpeedsMass) {
+  const std::string C = pow2(60);
+  const auto b0 = balanced("(t, " + C + "*t^2)", SpeedKind::Angular);
+  ASSERT_TRUE(b0.has_value());
+  EXPECT_GE(log2_lambda(*b0), 59);
+  EXPECT_LE(log2_lambda(*b0), 63);
+  const auto b1 = balanced("(t, " + C + "*(1-t)^2)", SpeedKind::Angular);
+  ASSERT_TRUE(b1.has_value());
+  EXPECT_LE(log2_lambda(*b1), -59);
+  EXPECT_GE(log2_lambda(*b1), -63);
+  EXPECT_FALSE(balanced("(t, " + C + "*t^2)", SpeedKind::Parametric).has_value());
+  for (const char* ordinary : {"(t, t^2)", "(t, t^3)", "((1-t^2)/(1+t^2), 2t/(1+t^2))", "(t, 1000*t^2)",
+                               "(t^2, t^3 + t)", "(t, t^2, t^3)"})
+    for (SpeedKind k : {SpeedKind::Angular, SpeedKind::Parametric})
+      EXPECT_FALSE(balanced(ordinary, k).has_value()) << ordinary << " " << to_string(k);
+  EXPECT_FALSE(balanced("(t, " + C + "*t^2, t^3)", SpeedKind::Angular).has_value());
+}
+
+// Must show: q = p o m exactly at rational s (p(m(s)) == q(s) in Q), and
+// balance_map_ball encloses m(s) at s = 1/3 and over a ball.
+TEST(HugeCoeff, BalancedPolynomialCurveIsExactComposition) {
+  const Curve p = Curve::parse("(t, " + pow2(80) + "*t^2 + t)");
+  const auto bal = balance(p, Speed(p, SpeedKind::Angular));
+  ASSERT_TRUE(bal.has_value());
+  const Rational a(bal->a), b(bal->b);
+  for (const Rational s : {Rational(1, 3), Rational(5, 7), Rational(0), Rational(1)}) {
+    const Rational t = a * s / (a * s + b * (Rational(1) - s));
+    for (std::size_t i = 0; i < p.dimension(); ++i) {
+      const RatFunc& pc = p.components()[i];
+      const RatFunc& qc = bal->q.components()[i];
+      EXPECT_EQ(pc.num()(t) / pc.den()(t), qc.num()(s) / qc.den()(s)) << i;
+    }
+    const Ball m = balance_map_ball(*bal, Ball(s, 256), 256);
+    EXPECT_TRUE(arb_contains(m.get(), Ball(t, 512).get())) << m.str(20);
+  }
+  Ball s(Rational(1, 3), 256);
+  arb_add_error_2exp_si(s.get(), -30);
+  const Ball m = balance_map_ball(*bal, s, 256);
+  for (const Rational x : {Rational(1, 3) - Rational(1, 1L << 31), Rational(1, 3) + Rational(1, 1L << 31)}) {
+    const Rational t = a * x / (a * x + b * (Rational(1) - x));
+    EXPECT_TRUE(arb_contains(m.get(), Ball(t, 512).get())) << m.str(20);
+  }
+}
+
+// Must show: the uniformity of (t, C t^2), C = 7^300 (balanced), contains the
+// closed form: mu = atan K, int sigma^2 = (K / 2)(atan K + K / (1 + K^2)),
+// K = 2C.
+TEST(HugeCoeff, BalancedUniformityMatchesClosedForm) {
+  TimeBudget budget(kBudgetSeconds);
+  Integer C(1);
+  for (int i = 0; i < 300; ++i) C = C * Integer(7);
+  const Curve p = Curve::parse("(t, " + C.str() + "*t^2)");
+  ASSERT_TRUE(balance(p, Speed(p, SpeedKind::Angular)).has_value());
+  Options o;
+  o.digits = 30;
+  const UniformityResult r = uniformity(p, SpeedKind::Angular, o);
+  const long prec = 4096;
+  Ball k, at, t, sq, u;
+  arb_set_fmpz(k.get(), C.get());
+  arb_mul_2exp_si(k.get(), k.get(), 1);
+  arb_atan(at.get(), k.get(), prec);
+  arb_sqr(t.get(), k.get(), prec);
+  arb_add_ui(t.get(), t.get(), 1, prec);
+  arb_div(t.get(), k.get(), t.get(), prec);
+  arb_add(sq.get(), at.get(), t.get(), prec);
+  arb_mul(sq.get(), sq.get(), k.get(), prec);
+  arb_mul_2exp_si(sq.get(), sq.get(), -1);
+  arb_sqr(u.get(), at.get(), prec);
+  arb_div(u.get(), u.get(), sq.get(), prec);
+  EXPECT_TRUE(arb_overlaps(r.mu.get(), at.get())) << r.mu.str(35);
+  EXPECT_TRUE(arb_overlaps(r.u.get(), u.get())) << r.u.str(35) << " vs " << u.str(35);
+  EXPECT_TRUE(r.u.meets_digits(o.digits)) << r.u.str(35);
+}
