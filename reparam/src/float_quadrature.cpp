@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "uniparam/core/budget.hpp"
 
@@ -84,24 +85,25 @@ FloatPiece panel(const Speed& s, double a, double h, double l, double r) {
   return out;
 }
 
-// Refines until the estimate of [l, r] changes by at most 1e-12 of `scale`
-// or the budget of panel pairs runs out (an integrand whose double
-// evaluation is noisier than the tolerance, e.g. rational space curves, would
-// otherwise bisect everywhere to depth 30; the result only steers the
-// optimiser, which certifies what it chooses)
-// (the size of the whole piece's first estimate), so tiny panels stop early.
-FloatPiece adapt(const Speed& s, double a, double h, double l, double r, const FloatPiece& whole, double scale,
-                 int depth, int& budget) {
+// Adaptive bisection of [l, r] within the piece [a, a + h], from `whole`,
+// its panel's estimate: stops where the two halves change the sigma^2
+// moments by at most tol * scale2 and, with kLength, the length by at most
+// tol * scale1; at 30 levels, at panels narrower than 1e-15, or when the
+// budget of panel pairs runs out (the halves' estimate is returned). The
+// left half is refined before the right, so the budget goes left to right.
+// The time budget is checked every 4 levels: at most 31 calls between checks.
+template <bool kLength>
+FloatPiece refine(const Speed& s, double a, double h, double l, double r, const FloatPiece& whole, double tol,
+                  double scale2, double scale1, int depth, long& budget) {
+  if (depth % 4 == 0) check_time_budget();
   --budget;
   const double m = (l + r) / 2;
-  const FloatPiece left = panel<false>(s, a, h, l, m), right = panel<false>(s, a, h, m, r);
-  const double diff = std::fabs(left.A + right.A - whole.A) + std::fabs(left.B + right.B - whole.B) +
-                      std::fabs(left.C + right.C - whole.C);
-  if (depth >= 30 || budget <= 0 || diff <= 1e-12 * scale || r - l < 1e-15) {
-    return left + right;
-  }
-  const FloatPiece x = adapt(s, a, h, l, m, left, scale, depth + 1, budget);
-  const FloatPiece y = adapt(s, a, h, m, r, right, scale, depth + 1, budget);
+  const FloatPiece left = panel<kLength>(s, a, h, l, m), right = panel<kLength>(s, a, h, m, r), both = left + right;
+  const double d2 = std::fabs(both.A - whole.A) + std::fabs(both.B - whole.B) + std::fabs(both.C - whole.C);
+  const bool settled = d2 <= tol * scale2 && (!kLength || std::fabs(both.len - whole.len) <= tol * scale1);
+  if (depth >= 30 || budget <= 0 || r - l < 1e-15 || settled) return both;
+  const FloatPiece x = refine<kLength>(s, a, h, l, m, left, tol, scale2, scale1, depth + 1, budget);
+  const FloatPiece y = refine<kLength>(s, a, h, m, r, right, tol, scale2, scale1, depth + 1, budget);
   return x + y;
 }
 
@@ -118,35 +120,19 @@ FloatABC float_abc(const Speed& s, double a, double b) {
   const double h = b - a;
   const FloatPiece whole = panel<false>(s, a, h, a, b);
   const double scale = std::fabs(whole.A) + std::fabs(whole.B) + std::fabs(whole.C);
-  int budget = 256;  // panel pairs: 10240 evaluations of sigma^2 at most
-  const FloatPiece v = adapt(s, a, h, a, b, whole, scale, 0, budget);
+  // Tolerance 1e-12 and at most 256 panel pairs (10240 evaluations of
+  // sigma^2): an integrand whose double evaluation is noisier than the
+  // tolerance (e.g. rational space curves) would otherwise bisect everywhere
+  // to depth 30; the result only steers the optimiser, which certifies what
+  // it chooses.
+  long budget = 256;
+  const FloatPiece v = refine<false>(s, a, h, a, b, whole, 1e-12, scale, 0, 0, budget);
   return FloatABC{v.A, v.B, v.C};
 }
 
 FloatPiece operator+(const FloatPiece& x, const FloatPiece& y) {
   return FloatPiece{x.A + y.A, x.B + y.B, x.C + y.C, x.len + y.len};
 }
-
-namespace {
-
-// Adaptive bisection until both the sigma^2 moments and the length of [l, r]
-// change by at most 1e-13 of the piece's first estimates. sigma is smooth on
-// [l, r] (zeros of sigma, where |g| has a kink, are panel ends). Next to a
-// zero of sigma the bisection can go 30 levels deep (up to 2^30 panels), so
-// the time budget is checked every 4 levels: at most 31 calls between checks.
-FloatPiece adapt_piece(const Speed& s, double a, double h, double l, double r, const FloatPiece& whole,
-                       double scale2, double scale1, int depth) {
-  if (depth % 4 == 0) check_time_budget();
-  const double m = (l + r) / 2;
-  const FloatPiece left = panel<true>(s, a, h, l, m), right = panel<true>(s, a, h, m, r), both = left + right;
-  const double d2 = std::fabs(both.A - whole.A) + std::fabs(both.B - whole.B) + std::fabs(both.C - whole.C);
-  const double d1 = std::fabs(both.len - whole.len);
-  if (depth >= 30 || r - l < 1e-15 || (d2 <= 1e-13 * scale2 && d1 <= 1e-13 * scale1)) return both;
-  return adapt_piece(s, a, h, l, m, left, scale2, scale1, depth + 1) +
-         adapt_piece(s, a, h, m, r, right, scale2, scale1, depth + 1);
-}
-
-}  // namespace
 
 double midpoint_double(const RealAlgebraic& x) {
   return arf_get_d(arb_midref(x.to_ball(64).get()), ARF_RND_NEAR);
@@ -173,7 +159,8 @@ const FloatPiece& FloatPieces::get(double a, double b) {
   const double scale1 = std::fabs(first.len) + 1e-300;
   for (std::size_t j = 0; j + 1 < ends.size(); ++j) {
     const FloatPiece w = panel<true>(s_, a, h, ends[j], ends[j + 1]);
-    total = total + adapt_piece(s_, a, h, ends[j], ends[j + 1], w, scale2, scale1, 0);
+    long budget = std::numeric_limits<long>::max();  // no budget: 30 levels at most
+    total = total + refine<true>(s_, a, h, ends[j], ends[j + 1], w, 1e-13, scale2, scale1, 0, budget);
   }
   return cache_.emplace(key, total).first->second;
 }

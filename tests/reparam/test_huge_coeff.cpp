@@ -19,11 +19,8 @@ namespace {
 
 constexpr double kBudgetSeconds = 300;
 
-std::string pow2(long e) {
-  Integer x(1);
-  for (long i = 0; i < e; ++i) x = x * Integer(2);
-  return x.str();
-}
+// 2^e as the decimal integer a curve's text takes.
+std::string pow2_text(long e) { return pow2(e).str(); }
 
 std::optional<BalancedCurve> balanced(const std::string& text, SpeedKind kind) {
   const Curve c = Curve::parse(text);
@@ -44,7 +41,7 @@ long log2_lambda(const BalancedCurve& bal) {
 // (spread over [0, 1]), ordinary curves, and a space curve whose balanced
 // curve would bring its singularities at |t| ~ C next to s = 1.
 TEST(HugeCoeff, BalanceFollowsTheSpeedsMass) {
-  const std::string C = pow2(60);
+  const std::string C = pow2_text(60);
   const auto b0 = balanced("(t, " + C + "*t^2)", SpeedKind::Angular);
   ASSERT_TRUE(b0.has_value());
   EXPECT_GE(log2_lambda(*b0), 59);
@@ -64,7 +61,7 @@ TEST(HugeCoeff, BalanceFollowsTheSpeedsMass) {
 // Must show: q = p o m exactly at rational s (p(m(s)) == q(s) in Q), and
 // balance_map_ball encloses m(s) at s = 1/3 and over a ball.
 TEST(HugeCoeff, BalancedPolynomialCurveIsExactComposition) {
-  const Curve p = Curve::parse("(t, " + pow2(80) + "*t^2 + t)");
+  const Curve p = Curve::parse("(t, " + pow2_text(80) + "*t^2 + t)");
   const auto bal = balance(p, Speed(p, SpeedKind::Angular));
   ASSERT_TRUE(bal.has_value());
   const Rational a(bal->a), b(bal->b);
