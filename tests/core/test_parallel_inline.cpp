@@ -11,23 +11,13 @@
 #include <vector>
 
 #include "uniparam/core/parallel.hpp"
+#include "support/cpu_burn.hpp"
 
 namespace uniparam {
 namespace {
 
-std::int64_t thread_cpu_ns() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<std::int64_t>(ts.tv_sec) * 1000000000 + ts.tv_nsec;
-}
-
-// Busy work for about `ns` of this thread's CPU time.
-void burn(std::int64_t ns) {
-  const std::int64_t until = thread_cpu_ns() + ns;
-  volatile std::uint64_t x = 1;
-  while (thread_cpu_ns() < until)
-    for (int i = 0; i < 100; ++i) x = x * 6364136223846793005ULL + 1;
-}
+using test_support::burn;
+using test_support::thread_cpu_ns;
 
 // Many jobs of about a tenth of a millisecond each (the low-degree case): every item on
 // the calling thread, and no pool thread ever woken.
