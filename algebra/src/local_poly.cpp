@@ -139,6 +139,21 @@ void centred_eval(acb_t v, acb_t d1, acb_t d2, const BallPoly& p, const BallPoly
 
 }  // namespace
 
+// p, p', p'' in the power basis as balls.
+struct LocalPoly::PowerBasis {
+  BallPoly p, p1, p2;
+};
+
+namespace {
+
+// Guard bits of the rounded power basis (LocalPoly::power_at) over the
+// working precision: Horner at prec already commits errors of 2^-prec times
+// sum |c_k| |z|^k, so coefficients rounded to prec + 32 bits widen an
+// enclosure by a factor of at most 1 + 2^-32.
+constexpr long kRoundGuard = 32;
+
+}  // namespace
+
 struct LocalPoly::Cache {
   // the cells of p and of its deflations: variant i is p / (t - roots[i].value)
   detail::LocalCells cells;
@@ -152,6 +167,10 @@ struct LocalPoly::Cache {
   std::vector<Root> roots;
   // fallback for p / (t - roots[i]): the deflated power basis, per (i, prec)
   std::map<std::pair<int, long>, std::shared_ptr<const BallPoly>> deflated;
+  // the power basis and its two derivatives with coefficients rounded to
+  // prec + kRoundGuard bits, per prec, for coefficients wider than that
+  // (power_at)
+  std::map<long, std::shared_ptr<const PowerBasis>> rounded;
   // Set once, at construction (from horner_loss_bits, core/horner_loss.hpp):
   // eval_double may take Horner's rule on the power basis
   bool double_horner = false;
@@ -184,9 +203,14 @@ constexpr double kDoubleCentredMaxError = 0x1p-10;
 
 }  // namespace
 
-LocalPoly::LocalPoly() : cache_(std::make_shared<Cache>()) {}
+LocalPoly::LocalPoly()
+    : exact_(std::make_shared<const PowerBasis>()), cache_(std::make_shared<Cache>()) {}
 LocalPoly::LocalPoly(const Poly& p)
-    : p_(p), b_(p), b1_(p.derivative()), b2_(p.derivative().derivative()), cache_(std::make_shared<Cache>()) {
+    : p_(p),
+      exact_(std::make_shared<const PowerBasis>(PowerBasis{BallPoly(p), BallPoly(p.derivative()),
+                                                           BallPoly(p.derivative().derivative())})),
+      bits_(p.max_bits()),
+      cache_(std::make_shared<Cache>()) {
   const long n = p.degree();
   if (n < 0 || n > std::max(kDoubleHornerMaxDegree, DoubleCentredForm::kMaxDegree)) return;
   const double loss = horner_loss_bits(p, 0, 1, 2);
@@ -207,7 +231,7 @@ std::size_t LocalPoly::builds() const { return cache_ ? cache_->cells.builds() :
 void LocalPoly::eval_double(double t, double* v, double* d1, double* d2) const {
   double c[3] = {0, 0, 0};
   const long n = p_.degree();
-  if (n + 1 <= kMinLength || cache_->double_horner || !(t >= 0 && t <= 1)) {
+  if (n < 1 || cache_->double_horner || !(t >= 0 && t <= 1)) {
     for (long k = n; k >= 0; --k) {  // Horner with two derivatives
       c[2] = c[2] * t + c[1];
       c[1] = c[1] * t + c[0];
@@ -235,7 +259,7 @@ void LocalPoly::eval_double_taylor(double t, int order, double* b) const {
   std::vector<double> a;  // coefficients in w around a centre, then shifted by w
   double w = t;
   const long n = p_.degree();
-  if (n + 1 <= kMinLength || !(t >= 0 && t <= 1)) {
+  if (n < 1 || (n + 1 <= kMinLength && cache_->double_horner) || !(t >= 0 && t <= 1)) {
     for (long k = 0; k <= n; ++k) a.push_back(fmpz_get_d(p_.get()->coeffs + k));
   } else {
     const detail::CellPtr cp = cache_->cells.point_cell(p_, t);  // eval_double's cells
@@ -257,14 +281,37 @@ void LocalPoly::eval_double_taylor(double t, int order, double* b) const {
 
 void LocalPoly::eval(acb_t v, acb_t d1, acb_t d2, const acb_t z, long prec) const {
   if (p_.degree() + 1 <= kMinLength || !acb_is_finite(z)) {
-    centred_eval(v, d1, d2, b_, b1_, b2_, z, prec);
+    const std::shared_ptr<const PowerBasis> b = power_at(prec);
+    centred_eval(v, d1, d2, b->p, b->p1, b->p2, z, prec);
     return;
   }
   // Wide balls of low degree: the centred form in double, cheaper than a
   // cell's build and centred at the ball's own midpoint.
   if (cache_->centred.usable() && is_wide_ball(z) && cache_->centred.eval(v, d1, d2, z, kDoubleCentredMaxError))
     return;
-  if (!cache_->cells.eval(p_, -1, v, d1, d2, z, prec)) centred_eval(v, d1, d2, b_, b1_, b2_, z, prec);
+  if (!cache_->cells.eval(p_, -1, v, d1, d2, z, prec)) {
+    const std::shared_ptr<const PowerBasis> b = power_at(prec);
+    centred_eval(v, d1, d2, b->p, b->p1, b->p2, z, prec);
+  }
+}
+
+std::shared_ptr<const LocalPoly::PowerBasis> LocalPoly::power_at(long prec) const {
+  if (bits_ <= prec + kRoundGuard) return exact_;
+  Cache& cache = *cache_;
+  {
+    std::lock_guard<std::mutex> lock(cache.mu);
+    auto it = cache.rounded.find(prec);
+    if (it != cache.rounded.end()) return it->second;
+  }
+  auto round = [prec](const BallPoly& e) {
+    BallPoly r;
+    arb_poly_set_round(r.get(), e.get(), prec + kRoundGuard);
+    return r;
+  };
+  auto b = std::make_shared<const PowerBasis>(PowerBasis{round(exact_->p), round(exact_->p1), round(exact_->p2)});
+  std::lock_guard<std::mutex> lock(cache.mu);
+  if (cache.rounded.size() > 16) cache.rounded.clear();
+  return cache.rounded.emplace(prec, std::move(b)).first->second;
 }
 
 bool LocalPoly::has_disk_form() const { return cache_->centred.usable(); }

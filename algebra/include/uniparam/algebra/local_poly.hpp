@@ -136,8 +136,16 @@ class LocalPoly {
 
  private:
   struct Cache;
+  struct PowerBasis;  // p, p', p'' as ball polynomials
+  // The power basis (the fallback, and lengths <= 3) at working precision
+  // prec: exact_ where p's coefficients have at most prec + 32 bits, else
+  // a cached copy rounded to prec + 32 bits (exact coefficients of
+  // thousands of bits would make every product cost as much as they do,
+  // for no accuracy: each product is rounded to prec anyway).
+  std::shared_ptr<const PowerBasis> power_at(long prec) const;
   Poly p_;
-  BallPoly b_, b1_, b2_;  // power basis: the fallback
+  std::shared_ptr<const PowerBasis> exact_;
+  long bits_ = 0;  // p_.max_bits()
   std::shared_ptr<Cache> cache_;  // shared by copies; locked inside
 };
 
