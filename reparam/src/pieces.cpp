@@ -108,13 +108,15 @@ constexpr long kUnscaledExpBound = 64;
 // 4 <= j < scale_bits + 8. Only steers the exact scaling of piece_integrals
 // (an estimate off by 2^d moves the quadrature's absolute tolerance by
 // 2^d against the integral: more work, or a retry at higher precision).
-// Curves whose speed has coefficients below kUnscaledExpBound bits are not
-// sampled (all e_k = 0): the samples cost as much as a low-degree piece's
-// quadrature, and such pieces are integrated unscaled.
-std::vector<long> piece_scale_exponents(const Integrand& f, std::size_t count, PieceEnds& ends, long scale_bits) {
+// Curves whose speed has coefficients below kUnscaledExpBound bits
+// (coefficient_bits, speed_coefficient_bits) are not sampled (all e_k = 0):
+// the samples cost as much as a low-degree piece's quadrature, and such
+// pieces are integrated unscaled.
+std::vector<long> piece_scale_exponents(const Integrand& f, std::size_t count, PieceEnds& ends, long scale_bits,
+                                        long coefficient_bits) {
   constexpr long kPrec = 64;
   std::vector<long> exps(count, 0);
-  if (scale_bits < kUnscaledExpBound) return exps;
+  if (coefficient_bits < kUnscaledExpBound) return exps;
   std::vector<Ball> sums(count, Ball(0));
   acb_t ta, dt, z;
   acb_ptr w = _acb_vec_init(static_cast<slong>(count));
@@ -350,7 +352,7 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
   // 2^-prec then stands for the relative one, whatever the size (a piece
   // where sigma^2 is 2^-6650 would otherwise be accepted at once and
   // certified only once prec passes 6650 bits).
-  std::vector<long> exps = piece_scale_exponents(raw, count, ends, scale_bits);
+  std::vector<long> exps = piece_scale_exponents(raw, count, ends, scale_bits, speed_coefficient_bits(s));
   bool scaled = false;
   for (long e : exps) scaled = scaled || e != 0;
   Integrand f = [&raw, &exps, count](acb_ptr out, const acb_t z, bool analytic, long prec) {

@@ -7,6 +7,7 @@
 #include <flint/fmpz.h>
 #include <flint/fmpz_poly.h>
 
+#include "uniparam/algebra/newton_polygon.hpp"
 #include "uniparam/core/error.hpp"
 #include "uniparam/reparam/speed.hpp"
 
@@ -55,50 +56,8 @@ BalancedCurve balanced_by(const Curve& p, long k) {
   return BalancedCurve{Curve(std::move(q)), a, b};
 }
 
-// The tropical polynomial T(x) = max_i (log2 |P_i| - i x) of a nonzero P,
-// kept as the vertices of the upper hull of the points (i, log2 |P_i|),
-// i increasing: T is convex and piecewise linear, its breakpoints are the
-// slopes of the hull's edges, and the maximising index falls as x grows.
-struct Tropical {
-  std::vector<double> i, L;  // hull vertices
-  std::size_t at = 0;        // the vertex maximising at the last x asked
-
-  explicit Tropical(const Poly& P) {
-    for (long k = 0; k <= P.degree(); ++k) {
-      const fmpz* c = P.get()->coeffs + k;
-      if (fmpz_is_zero(c)) continue;
-      slong e = 0;
-      const double m = fmpz_get_d_2exp(&e, c);
-      const double Lk = std::log2(std::fabs(m)) + static_cast<double>(e);
-      // drop vertices below the edge to (k, Lk) (upper hull, monotone chain)
-      while (i.size() >= 2) {
-        const std::size_t n = i.size();
-        if ((L[n - 1] - L[n - 2]) * (k - i[n - 2]) > (Lk - L[n - 2]) * (i[n - 1] - i[n - 2])) break;
-        i.pop_back();
-        L.pop_back();
-      }
-      i.push_back(static_cast<double>(k));
-      L.push_back(Lk);
-    }
-    // the maximiser at x = 0: the first vertex after which the hull falls
-    while (at + 1 < i.size() && L[at + 1] >= L[at]) ++at;
-  }
-  // The edges' slopes >= 0: where the maximiser changes for x >= 0.
-  void breakpoints(std::vector<double>& out) const {
-    for (std::size_t v = 0; v + 1 < i.size(); ++v) {
-      const double slope = (L[v + 1] - L[v]) / (i[v + 1] - i[v]);
-      if (slope >= 0) out.push_back(slope);
-    }
-  }
-  // The largest breakpoint (0 if none is positive): about -log2 of the
-  // smallest modulus of P's nonzero roots (Newton polygon).
-  double deepest() const { return i.size() >= 2 ? std::max(0.0, (L[1] - L[0]) / (i[1] - i[0])) : 0.0; }
-  // T(x), for x not below the previous call's (amortised O(1)).
-  double operator()(double x) {
-    while (at > 0 && L[at - 1] - i[at - 1] * x >= L[at] - i[at] * x) --at;
-    return L[at] - i[at] * x;
-  }
-};
+// The tropical polynomials of the speed's factors (Newton polygons).
+using Tropical = NewtonPolygon;
 
 // The x >= 0 maximising the estimated mass 2^(T_g(x) + max_k T_K_k(x) -
 // T_D(x) - x) of the band [2^-x-1, 2^-x] (the smallest maximiser among the

@@ -1,10 +1,15 @@
-// speed_hints.cpp -- Speed::singularity_hints: approximate poles and branch
-// points of sigma for the quadrature (uncertified hints only).
+// speed_hints.cpp -- where sigma's singularities lie, for the quadrature:
+// Speed::singularity_hints (approximate poles and branch points, uncertified
+// hints only) and Speed::scale_bits (a certified bound on how close to the
+// ends of [0, 1] they come).
 #include <algorithm>
 #include <complex>
 #include <mutex>
 
+#include <flint/fmpz_poly.h>
+
 #include "uniparam/algebra/approx_roots.hpp"
+#include "uniparam/algebra/newton_polygon.hpp"
 #include "uniparam/core/parallel.hpp"
 #include "uniparam/reparam/speed.hpp"
 
@@ -84,6 +89,23 @@ const std::vector<std::complex<double>>& Speed::singularity_hints(bool squared) 
     else lazy_->hints_sigma.insert(lazy_->hints_sigma.end(), branch.begin(), branch.end());
   });
   return squared ? lazy_->hints_squared : lazy_->hints_sigma;
+}
+
+long Speed::scale_bits() const {
+  std::call_once(lazy_->scale_once, [this] {
+    if (zero_) return;
+    Poly sumK2(0);
+    for (const auto& c : K_) sumK2 = sumK2 + c * c;
+    long d = 0;
+    for (const Poly* p : {&g_, &D_, static_cast<const Poly*>(&sumK2)}) {
+      if (p->degree() < 1) continue;
+      Poly at1;  // p(1 + t): its roots are p's minus 1
+      fmpz_poly_taylor_shift(at1.get(), p->get(), Integer(1).get());
+      d = std::max({d, root_depth_bits(*p), root_depth_bits(at1)});
+    }
+    lazy_->scale_bits = d;
+  });
+  return lazy_->scale_bits;
 }
 
 }  // namespace uniparam

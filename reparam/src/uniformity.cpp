@@ -27,7 +27,9 @@ long digits_to_bits(long digits) { return static_cast<long>(std::ceil(digits * 3
 
 long default_max_prec(long digits) { return std::max(Options{}.max_prec, 2 * digits_to_bits(digits)); }
 
-long speed_scale_bits(const Speed& s) {
+long speed_scale_bits(const Speed& s) { return s.scale_bits(); }
+
+long speed_coefficient_bits(const Speed& s) {
   long b = std::max(s.denominator().max_bits(), s.g().max_bits());
   for (const Poly& k : s.cofactors()) b = std::max(b, k.max_bits());
   return b;

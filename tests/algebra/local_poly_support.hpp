@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "support/balls.hpp"
+#include "support/curves.hpp"
 #include "uniparam/core/poly.hpp"
 
 namespace uniparam::local_poly_test {

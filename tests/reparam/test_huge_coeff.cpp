@@ -4,11 +4,17 @@
 // uniformity computed through q is the closed form.
 #include <gtest/gtest.h>
 
+#include <acb.h>
 #include <arb.h>
+#include <arb_fmpz_poly.h>
+#include <flint/fmpz_poly.h>
 
+#include <random>
 #include <string>
 #include <vector>
 
+#include "support/curves.hpp"
+#include "support/iterations.hpp"
 #include "uniparam/core/budget.hpp"
 #include "uniparam/reparam/all.hpp"
 #include "uniparam/reparam/scaling.hpp"
@@ -112,4 +118,86 @@ TEST(HugeCoeff, BalancedUniformityMatchesClosedForm) {
   EXPECT_TRUE(arb_overlaps(r.mu.get(), at.get())) << r.mu.str(35);
   EXPECT_TRUE(arb_overlaps(r.u.get(), u.get())) << r.u.str(35) << " vs " << u.str(35);
   EXPECT_TRUE(r.u.meets_digits(o.digits)) << r.u.str(35);
+}
+
+namespace {
+
+// Whether every nonzero complex root of p lies at distance >= 2^-d from 0
+// and (roots of p(1 + t)) from 1, by Arb's certified roots.
+::testing::AssertionResult roots_at_least(const Poly& p, long d) {
+  if (p.degree() < 1) return ::testing::AssertionSuccess();
+  for (int end = 0; end < 2; ++end) {
+    Poly q = p;
+    if (end == 1) {
+      fmpz_t one;
+      fmpz_init_set_ui(one, 1);
+      fmpz_poly_taylor_shift(q.get(), p.get(), one);
+      fmpz_clear(one);
+    }
+    long v = 0;
+    while (v <= q.degree() && q.coeff(v).sign() == 0) ++v;
+    std::vector<Integer> c;
+    for (long k = v; k <= q.degree(); ++k) c.push_back(q.coeff(k));
+    const Poly r(c);
+    if (r.degree() < 1) continue;
+    acb_ptr roots = _acb_vec_init(r.degree());
+    arb_fmpz_poly_complex_roots(roots, r.get(), 0, 512);
+    Ball m, bound(1);
+    arb_mul_2exp_si(bound.get(), bound.get(), -d);
+    bool ok = true;
+    for (long i = 0; i < r.degree() && ok; ++i) {
+      acb_abs(m.get(), roots + i, 512);
+      ok = arb_ge(m.get(), bound.get()) != 0;
+    }
+    _acb_vec_clear(roots, r.degree());
+    if (!ok) return ::testing::AssertionFailure() << "a root of " << p.str() << " within 2^-" << d << " of " << end;
+  }
+  return ::testing::AssertionSuccess();
+}
+
+}  // namespace
+
+// Must show: the scale on which the speed varies next to the ends
+// (speed_scale_bits) follows its roots and poles, not the size of its
+// coefficients: (t, 2^k t^2) has its peak of width 2^-k at t = 0 (scale
+// about k bits) while its balanced curve, whose coefficients have ~2k
+// bits, has its features at distances of order 1 (a few bits whatever k:
+// the quadrature's samples and budgets no longer grow with the numbers);
+// and on random curves the scale is certified: no zero, pole or branch
+// point of sigma (roots of g, D, sum K^2) lies within 2^-scale of 0 or 1.
+TEST(HugeCoeff, ScaleBitsFollowTheRootsNotTheCoefficients) {
+  for (long k : {60L, 600L, 6000L}) {
+    SCOPED_TRACE(k);
+    const Curve p = Curve::parse("(t, " + pow2_text(k) + "*t^2)");
+    const Speed s(p, SpeedKind::Angular);
+    EXPECT_GE(speed_scale_bits(s), k);
+    EXPECT_LE(speed_scale_bits(s), k + 8);
+    const auto bal = balance(p, s);
+    ASSERT_TRUE(bal.has_value());
+    const Speed sq(bal->q, SpeedKind::Angular);
+    EXPECT_LE(speed_scale_bits(sq), 8);
+    EXPECT_GE(speed_coefficient_bits(sq), k);  // the sizes stay: only the scale is small
+  }
+  std::mt19937_64 rng(test_support::test_seed(8104));
+  for (long it = 0; it < test_support::iterations(40); ++it) {
+    std::vector<RatFunc> comps;
+    for (int i = 0; i < 2 + static_cast<int>(it % 2); ++i)
+      comps.emplace_back(test_support::random_poly(rng, 1 + static_cast<long>(rng() % 4), 1000));
+    Curve c = Curve::parse("(t, t^2)");
+    try {
+      c = Curve(comps);
+    } catch (const std::exception&) {
+      continue;  // constant: not a curve
+    }
+    for (SpeedKind kind : {SpeedKind::Angular, SpeedKind::Parametric}) {
+      const Speed s(c, kind);
+      if (s.identically_zero()) continue;
+      const long d = speed_scale_bits(s);
+      Poly K2(0);
+      for (const Poly& q : s.cofactors()) K2 = K2 + q * q;
+      EXPECT_TRUE(roots_at_least(s.g(), d)) << c.str();
+      EXPECT_TRUE(roots_at_least(s.denominator(), d)) << c.str();
+      EXPECT_TRUE(roots_at_least(K2, d)) << c.str();
+    }
+  }
 }

@@ -201,6 +201,14 @@ class Speed {
   /// [0, 1] (the hints would mislead: sigma's are then empty, sigma^2's may
   /// hold the poles) or the approximation failed.
   const std::vector<std::complex<double>>& singularity_hints(bool squared) const;
+  /// A certified d >= 0 such that every nonzero complex root of g, of D and
+  /// of sum K_k^2 (sigma's zeros, poles and branch points) lies at least
+  /// 2^-d from 0 and from 1 (root_depth_bits, algebra/newton_polygon.hpp,
+  /// of each polynomial and of its Taylor shift to 1; roots at 0 or 1
+  /// themselves are not counted): sigma varies on no finer scale than about
+  /// 2^-d next to an end. Computed on the first call (thread-safe; copies
+  /// share it); 0 for an identically zero speed.
+  long scale_bits() const;
 
  private:
   // piece_signs() at one rational point inside (a, b), not remembered.
@@ -211,6 +219,8 @@ class Speed {
     RatFunc squared;
     std::once_flag hints_once;
     std::vector<std::complex<double>> hints_sigma, hints_squared;
+    std::once_flag scale_once;
+    long scale_bits = 0;
     std::mutex signs_mutex;  // guards signs
     // piece_signs() of the interval between zeros i - 1 and i, once known
     std::vector<std::pair<bool, PieceSigns>> signs;

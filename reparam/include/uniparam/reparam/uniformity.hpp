@@ -28,15 +28,23 @@ struct Options {
 /// Throws InvalidArgument when an option is out of range.
 void validate(const Options& o);
 
-/// Bits of the scale on which sigma may vary: the largest coefficient size
-/// of the factored form's polynomials g, K_k and D. A nonzero root of an
-/// integer polynomial of height H has modulus at least 1 / (1 + H), so
-/// sigma's singularities and peaks may lie that close to 0 (and, by
-/// t -> 1 - t, to 1): (t, C t^2) has D = 1 + 4 C^2 t^2, a peak of width
-/// 1 / (2 C) at t = 0. A quadrature of sigma, sigma^2 or their weighted
-/// forms may need that many bisections (QuadratureOptions::scale_bits).
+/// Bits of the scale on which sigma may vary next to an end of [0, 1]:
+/// Speed::scale_bits, a certified bound from the Newton polygons of the
+/// factored form's g, D and sum K_k^2 at 0 and at 1 (no zero, pole or
+/// branch point of sigma comes within 2^-scale_bits of an end, other than
+/// at the end itself). (t, C t^2) has D = 1 + 4 C^2 t^2 and a peak of width
+/// 1 / (2 C) at t = 0: about log2 C + 3 bits. A quadrature of sigma,
+/// sigma^2 or their weighted forms may need that many bisections
+/// (QuadratureOptions::scale_bits).
 /// \post >= 0; depends on s's polynomials only.
 long speed_scale_bits(const Speed& s);
+
+/// The largest coefficient size, in bits, of the factored form's
+/// polynomials g, K_k and D: where it is small, sigma and its integrals are
+/// within a few powers of 2^bits of 1 and need no exact scaling (the
+/// integrals of (C t, t^3) with a 5000-digit C are about 2^-33000).
+/// \post >= 0; depends on s's polynomials only.
+long speed_coefficient_bits(const Speed& s);
 
 /// Certified integral of sigma over [a, b], split at the zeros of sigma
 /// inside, so that every piece's integrand is analytic. \pre 0 <= a <= b <= 1.
