@@ -44,6 +44,15 @@ namespace {
 
 constexpr int kNodes = GaussLegendre20::kNodes;
 
+// The C1 draft's budget of panel pairs per piece part (FloatPieces::get):
+// a smooth sigma settles within a few dozen; an integrand whose double
+// evaluation is noisier than the tolerance somewhere (a near-pole of the
+// components that sigma itself does not have, as on a curve balanced by a
+// Moebius map) would otherwise bisect there to depth 30 in every piece
+// that reaches it. Its estimate then holds what the budget reached, which
+// only steers the draft: the C1 method certifies what it chooses.
+constexpr long kDraftPanelPairs = 1024;
+
 GaussLegendre20 make_rule() {
   // Gauss-Legendre nodes on [-1, 1] by Newton's method on P_n.
   GaussLegendre20 r{};
@@ -159,7 +168,7 @@ const FloatPiece& FloatPieces::get(double a, double b) {
   const double scale1 = std::fabs(first.len) + 1e-300;
   for (std::size_t j = 0; j + 1 < ends.size(); ++j) {
     const FloatPiece w = panel<true>(s_, a, h, ends[j], ends[j + 1]);
-    long budget = std::numeric_limits<long>::max();  // no budget: 30 levels at most
+    long budget = kDraftPanelPairs;
     total = total + refine<true>(s_, a, h, ends[j], ends[j + 1], w, 1e-13, scale2, scale1, 0, budget);
   }
   return cache_.emplace(key, total).first->second;
