@@ -24,10 +24,10 @@ using test_support::thread_cpu_ns;
 TEST(ParallelInline, SmallJobsStayOnTheCallingThread) {
   // A job is dispatched after 0.5 ms of the caller's CPU time or 0.1 s of
   // wall time (a caller descheduled on a busy machine, or a slow sanitizer
-  // build): only rounds that stayed well within both count, and nearly all
-  // of them must.
+  // build): only rounds that stayed well within both count. Rounds go on
+  // until 250 have counted (on a busy machine many do not), up to 3000.
   int judged = 0;
-  for (int round = 0; round < 300; ++round) {
+  for (int round = 0; round < 3000 && judged < 250; ++round) {
     const std::uint64_t before = parallel_dispatches();
     long elsewhere = 0;
     std::vector<long> sum(4, 0);
