@@ -255,7 +255,7 @@ int run_plot(int argc, char** argv) {
     const Reparameterization r = read_method(a, c, kind, opt, false);
     const Speed sp(c, kind);
     const PlotView v = single_view(c, sp, r, K, a.get("target", "0.99"), opt);
-    status = target_status(r, "plot");
+    status = target_status(r, "plot", a, opt.digits);
     const Projection proj = read_projection(a.get("projection", ""), c.dimension());
     const PlotData d = collect(v, proj, opt.max_prec);
     text = render(v, kind, d, proj, K);

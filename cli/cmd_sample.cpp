@@ -10,6 +10,7 @@
 #include "composite.hpp"
 #include "output.hpp"
 #include "json_reports.hpp"
+#include "moebius_report.hpp"
 #include "report.hpp"
 #include "uniparam/reparam/locate.hpp"
 #include "uniparam/reparam/sample.hpp"
@@ -61,12 +62,11 @@ Reparameterization read_method(const Args& a, const Curve& c, SpeedKind kind, co
   return Reparameterization::identity(u.mu, u.u);
 }
 
-int target_status(const Reparameterization& r, const std::string& command) {
+int target_status(const Reparameterization& r, const std::string& command, const Args& a, long digits) {
   const auto* m = r.moebius_result();
   if (!m || !m->target.has_value() || m->target->reached) return 0;
-  warn() << "uniparam " << command << ": the target u >= " << m->target->value.str()
-            << " was not reached (best map used: " << m->pieces() << " pieces, u = " << m->u_after.mid_decimal(6)
-            << "; raise --max-pieces)\n";
+  warn() << "uniparam " << command << ": "
+         << target_missed_message(*m, a.get_long("max-pieces", 64, 1, 1000), digits, "used") << "\n";
   return 4;
 }
 
@@ -361,7 +361,7 @@ int run_sample(int argc, char** argv) {
     sample_each(c, sp, r, K, opt.digits, opt.max_prec, sink);
   }, deviation ? std::function<Ball(const SamplePoint&)>(deviation_of) : std::function<Ball(const SamplePoint&)>(),
      &worst);
-  return rc ? rc : target_status(r, "sample");
+  return rc ? rc : target_status(r, "sample", a, opt.digits);
 }
 
 namespace {

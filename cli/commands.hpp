@@ -104,8 +104,9 @@ std::string read_method_name(const Args& a, bool with_none);
 /// The reparameterization of c selected by --method, computed with `opt`.
 Reparameterization read_method(const Args& a, const Curve& c, SpeedKind kind, const Options& opt, bool with_none);
 /// Exit status after using r: 4, with a message on stderr, when r is a C1
-/// map whose target uniformity was not reached (the best map was used); 0 otherwise.
-int target_status(const Reparameterization& r, const std::string& command);
+/// map whose target uniformity was not reached (the best map was used:
+/// target_missed_message with --max-pieces from a); 0 otherwise.
+int target_status(const Reparameterization& r, const std::string& command, const Args& a, long digits);
 /// "x", "y", "z" for n <= 3 components, else "x1", ..., "xn" (0-based i).
 std::string coordinate_name(std::size_t i, std::size_t n);
 /// True for --json or --format json.

@@ -119,10 +119,10 @@ std::string missed_u_text(const Ball& u, const Rational& target, long digits) {
   return format_ball(u, printed_digits(digits), Format::Text);
 }
 
-std::string target_missed_message(const MoebiusResult& r, long max_pieces, long digits) {
+std::string target_missed_message(const MoebiusResult& r, long max_pieces, long digits, const std::string& use) {
   std::string m = "the target u >= " + r.target->value.str() + " was not reached with at most " +
-                  std::to_string(max_pieces) + (max_pieces == 1 ? " piece" : " pieces") +
-                  "; the best map found is printed (" + std::to_string(r.pieces()) +
+                  std::to_string(max_pieces) + (max_pieces == 1 ? " piece" : " pieces") + "; the best map found is " +
+                  use + " (" + std::to_string(r.pieces()) +
                   (r.pieces() == 1 ? " piece" : " pieces") + ", u = " +
                   missed_u_text(r.u_after, r.target->value, digits) + "); ";
   if (r.target->draft_failed)

@@ -34,8 +34,12 @@ constexpr long kMaxPiecesLimit = 1000;
 std::string missed_u_text(const Ball& u, const Rational& target, long digits);
 
 /// The message of a C1 map r (r.target set, not reached) refined up to
-/// `max_pieces` pieces: the target, the u reached (missed_u_text), and what
-/// to change: raise --max-pieces below kMaxPiecesLimit, else lower --target.
-std::string target_missed_message(const MoebiusResult& r, long max_pieces, long digits);
+/// `max_pieces` pieces: the target, the u reached (missed_u_text), that the
+/// best map found is `use`d ("printed" by reparam, "used" by sample and
+/// plot), and what to change: where the draft's floating point broke down,
+/// --pieces N or a lower --target; else raise --max-pieces below
+/// kMaxPiecesLimit, else lower --target.
+std::string target_missed_message(const MoebiusResult& r, long max_pieces, long digits,
+                                  const std::string& use = "printed");
 
 }  // namespace uniparam::cli

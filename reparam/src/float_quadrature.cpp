@@ -11,11 +11,14 @@
 
 namespace uniparam::detail {
 
-double sigma2_double(const Speed& s, double t) {
+double sigma2_double(const Speed& s, double t, long scale_exp) {
   // Double evaluation from local expansions (no power-basis cancellation);
-  // the ball path below only where it is not finite (cusps, 0/0).
+  // the ball path below only where it is not finite (cusps, 0/0) or, with a
+  // scale, not a normal double (beyond double's range before the scaling).
   const double d = s.squared_double(t);
-  if (std::isfinite(d) && d >= 0) return d;
+  if (scale_exp == 0 && std::isfinite(d) && d >= 0) return d;
+  if (scale_exp != 0 && std::isfinite(d) && d >= 0x1p-900 && d <= 0x1p900)
+    return std::ldexp(d, static_cast<int>(-2 * scale_exp));
   acb_t z, w;
   acb_init(z);
   acb_init(w);
@@ -29,6 +32,7 @@ double sigma2_double(const Speed& s, double t) {
   long prec = last_speed == &s ? last_prec : 64;
   for (; prec <= 1024; prec *= 2) {
     s.eval_squared(w, z, prec);
+    acb_mul_2exp_si(w, w, -2 * scale_exp);
     v = arf_get_d(arb_midref(acb_realref(w)), ARF_RND_NEAR);
     const double r = mag_get_d(arb_radref(acb_realref(w)));
     if (std::isfinite(v) && r <= 1e-14 * std::fabs(v) + 1e-300) break;
@@ -80,12 +84,12 @@ GaussLegendre20 make_rule() {
 // [a, a + h]: the moments of sigma^2 (float_abc, the C1 draft) and, with
 // kLength, the length (the C1 draft; float_abc leaves it 0).
 template <bool kLength>
-FloatPiece panel(const Speed& s, double a, double h, double l, double r) {
+FloatPiece panel(const Speed& s, double a, double h, double l, double r, long scale_exp) {
   const GaussLegendre20& g = gauss_legendre20();
   FloatPiece out;
   const double m = (l + r) / 2, k = (r - l) / 2;
   for (int i = 0; i < kNodes; ++i) {
-    const double t = m + k * g.x[i], u = (t - a) / h, s2 = sigma2_double(s, t), f = s2 * g.w[i] * k;
+    const double t = m + k * g.x[i], u = (t - a) / h, s2 = sigma2_double(s, t, scale_exp), f = s2 * g.w[i] * k;
     out.A += f * (1 - u) * (1 - u);
     out.B += f * 2 * u * (1 - u);
     out.C += f * u * u;
@@ -102,17 +106,18 @@ FloatPiece panel(const Speed& s, double a, double h, double l, double r) {
 // left half is refined before the right, so the budget goes left to right.
 // The time budget is checked every 4 levels: at most 31 calls between checks.
 template <bool kLength>
-FloatPiece refine(const Speed& s, double a, double h, double l, double r, const FloatPiece& whole, double tol,
-                  double scale2, double scale1, int depth, long& budget) {
+FloatPiece refine(const Speed& s, long scale_exp, double a, double h, double l, double r, const FloatPiece& whole,
+                  double tol, double scale2, double scale1, int depth, long& budget) {
   if (depth % 4 == 0) check_time_budget();
   --budget;
   const double m = (l + r) / 2;
-  const FloatPiece left = panel<kLength>(s, a, h, l, m), right = panel<kLength>(s, a, h, m, r), both = left + right;
+  const FloatPiece left = panel<kLength>(s, a, h, l, m, scale_exp), right = panel<kLength>(s, a, h, m, r, scale_exp),
+                   both = left + right;
   const double d2 = std::fabs(both.A - whole.A) + std::fabs(both.B - whole.B) + std::fabs(both.C - whole.C);
   const bool settled = d2 <= tol * scale2 && (!kLength || std::fabs(both.len - whole.len) <= tol * scale1);
   if (depth >= 30 || budget <= 0 || r - l < 1e-15 || settled) return both;
-  const FloatPiece x = refine<kLength>(s, a, h, l, m, left, tol, scale2, scale1, depth + 1, budget);
-  const FloatPiece y = refine<kLength>(s, a, h, m, r, right, tol, scale2, scale1, depth + 1, budget);
+  const FloatPiece x = refine<kLength>(s, scale_exp, a, h, l, m, left, tol, scale2, scale1, depth + 1, budget);
+  const FloatPiece y = refine<kLength>(s, scale_exp, a, h, m, r, right, tol, scale2, scale1, depth + 1, budget);
   return x + y;
 }
 
@@ -127,7 +132,7 @@ double FloatABC::M(double h) const { return h * (B + 2 * std::sqrt(A * C)); }
 
 FloatABC float_abc(const Speed& s, double a, double b) {
   const double h = b - a;
-  const FloatPiece whole = panel<false>(s, a, h, a, b);
+  const FloatPiece whole = panel<false>(s, a, h, a, b, 0);
   const double scale = std::fabs(whole.A) + std::fabs(whole.B) + std::fabs(whole.C);
   // Tolerance 1e-12 and at most 256 panel pairs (10240 evaluations of
   // sigma^2): an integrand whose double evaluation is noisier than the
@@ -135,7 +140,7 @@ FloatABC float_abc(const Speed& s, double a, double b) {
   // to depth 30; the result only steers the optimiser, which certifies what
   // it chooses.
   long budget = 256;
-  const FloatPiece v = refine<false>(s, a, h, a, b, whole, 1e-12, scale, 0, 0, budget);
+  const FloatPiece v = refine<false>(s, 0, a, h, a, b, whole, 1e-12, scale, 0, 0, budget);
   return FloatABC{v.A, v.B, v.C};
 }
 
@@ -147,7 +152,7 @@ double midpoint_double(const RealAlgebraic& x) {
   return arf_get_d(arb_midref(x.to_ball(64).get()), ARF_RND_NEAR);
 }
 
-FloatPieces::FloatPieces(const Speed& s) : s_(s) {
+FloatPieces::FloatPieces(const Speed& s, long scale_exp) : s_(s), scale_exp_(scale_exp) {
   for (const auto& z : s.zeros()) zeros_.push_back(midpoint_double(z.t));
 }
 
@@ -163,13 +168,14 @@ const FloatPiece& FloatPieces::get(double a, double b) {
     if (z > a && z < b) ends.push_back(z);
   ends.push_back(b);
   FloatPiece first;
-  for (std::size_t j = 0; j + 1 < ends.size(); ++j) first = first + panel<true>(s_, a, h, ends[j], ends[j + 1]);
+  for (std::size_t j = 0; j + 1 < ends.size(); ++j)
+    first = first + panel<true>(s_, a, h, ends[j], ends[j + 1], scale_exp_);
   const double scale2 = std::fabs(first.A) + std::fabs(first.B) + std::fabs(first.C) + 1e-300;
   const double scale1 = std::fabs(first.len) + 1e-300;
   for (std::size_t j = 0; j + 1 < ends.size(); ++j) {
-    const FloatPiece w = panel<true>(s_, a, h, ends[j], ends[j + 1]);
+    const FloatPiece w = panel<true>(s_, a, h, ends[j], ends[j + 1], scale_exp_);
     long budget = kDraftPanelPairs;
-    total = total + refine<true>(s_, a, h, ends[j], ends[j + 1], w, 1e-13, scale2, scale1, 0, budget);
+    total = total + refine<true>(s_, scale_exp_, a, h, ends[j], ends[j + 1], w, 1e-13, scale2, scale1, 0, budget);
   }
   return cache_.emplace(key, total).first->second;
 }

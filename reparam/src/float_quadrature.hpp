@@ -25,8 +25,11 @@ struct GaussLegendre20 {
 };
 const GaussLegendre20& gauss_legendre20();
 
-/// sigma(t)^2 rounded to double (uncertified). t in [0, 1].
-double sigma2_double(const Speed& s, double t);
+/// sigma(t)^2 2^(-2 scale_exp) rounded to double (uncertified). t in [0, 1].
+/// A nonzero scale_exp brings a speed beyond double's range (sigma^2 near
+/// 2^2000 for a huge coefficient) into it: such values come from the ball
+/// path, scaled exactly before the rounding to double.
+double sigma2_double(const Speed& s, double t, long scale_exp = 0);
 
 /// Uncertified A, B, C of a piece [a, b] (the integrals of sigma^2 (1-t~)^2,
 /// sigma^2 2 t~ (1-t~), sigma^2 t~^2 over dt), by adaptive 20-point
@@ -54,14 +57,19 @@ FloatPiece operator+(const FloatPiece& x, const FloatPiece& y);
 /// reused): 20-point Gauss-Legendre panels, split at the zeros of sigma and
 /// bisected until the moments and the length change by at most 1e-13 of the
 /// piece's first estimates (at most 30 levels; the time budget is checked
-/// every 4). \pre s outlives the object. Not thread-safe.
+/// every 4; at most 1024 panel pairs per part between zeros). The
+/// integrals are of sigma 2^-scale_exp (sigma2_double): the draft's
+/// quantities are all relative, so any exact scale serves, and one near
+/// 1 / mu keeps a speed beyond double's range inside it.
+/// \pre s outlives the object. Not thread-safe.
 class FloatPieces {
  public:
-  explicit FloatPieces(const Speed& s);
+  explicit FloatPieces(const Speed& s, long scale_exp = 0);
   const FloatPiece& get(double a, double b);
 
  private:
   const Speed& s_;
+  long scale_exp_;
   std::vector<double> zeros_;
   std::map<std::pair<double, double>, FloatPiece> cache_;
 };

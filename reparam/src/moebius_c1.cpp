@@ -469,8 +469,18 @@ MoebiusResult reparam_c1_on(const Speed& s, const Rational& target, const Option
   // The rounds choose T in floating point (draft_c1, UNCERTIFIED); a T whose
   // draft meets the target is certified (build) and accepted only if the
   // certified u_after >= target. Otherwise the best draft is certified at the end.
-  detail::FloatPieces fp(s);
-  const double mu_d = arf_get_d(arb_midref(base.mu.get()), ARF_RND_NEAR);
+  // The draft integrates sigma 2^-e, with 2^e near mu where mu is beyond
+  // 2^+-256 (a huge coefficient: sigma^2 would leave double's range), so
+  // that its quantities, all relative, stay representable.
+  long e = 0;
+  if (arb_is_finite(base.mu.get()) && !arf_is_zero(arb_midref(base.mu.get()))) {
+    const long m = arf_abs_bound_lt_2exp_si(arb_midref(base.mu.get()));
+    if (m > 256 || m < -256) e = m;
+  }
+  detail::FloatPieces fp(s, e);
+  Ball mu_scaled;
+  arb_mul_2exp_si(mu_scaled.get(), base.mu.get(), -e);
+  const double mu_d = arf_get_d(arb_midref(mu_scaled.get()), ARF_RND_NEAR);
   const double target_d = arf_get_d(arb_midref(Ball(target, 128).get()), ARF_RND_NEAR);
   const Ball tq(target, 2 * digits_to_bits(opt.digits) + 64);
   std::vector<RealAlgebraic> best = T, certified_T;

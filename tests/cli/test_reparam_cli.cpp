@@ -83,6 +83,24 @@ TEST(CliReparam, UnreachedTargetPrintsTheBestMapAndExitsWithFour) {
   EXPECT_NE(r.err.find("--max-pieces"), std::string::npos) << r.err;
 }
 
+// Must show: sample and plot with an unreached C1 target say what reparam
+// says (the same advice, the map "used" instead of "printed"), not a
+// message of their own.
+TEST(CliReparam, UnreachedTargetMessageIsTheSameForSampleAndPlot) {
+  const auto r = run_uniparam({"reparam", kSlide, "--target", "0.9999999", "--max-pieces", "2"});
+  ASSERT_EQ(r.exit_code, 4);
+  const std::string line = r.err.substr(r.err.find(": ") + 2);
+  for (const char* command : {"sample", "plot"}) {
+    std::vector<std::string> args{command, kSlide, "--method", "c1", "--target", "0.9999999", "--max-pieces", "2"};
+    if (std::string(command) == "plot") args.insert(args.end(), {"-o", "-"});
+    const auto s = run_uniparam(args);
+    EXPECT_EQ(s.exit_code, 4) << command;
+    std::string expected = line;
+    expected.replace(expected.find("is printed"), 10, "is used");
+    EXPECT_NE(s.err.find(expected), std::string::npos) << command << ": " << s.err << " vs " << expected;
+  }
+}
+
 TEST(CliReparam, FormulasInEveryFormat) {
   auto latex = run_uniparam({"reparam", "(t, t^2)", "--pieces", "2", "--rational", "--format", "latex"});
   ASSERT_EQ(latex.exit_code, 0) << latex.err;
