@@ -228,3 +228,14 @@ TEST(HugeCoeffCli, GeometricWeightsExactPointsAndLocate) {
     EXPECT_TRUE(on_circle(xy[0], xy[1])) << xy[0].str(20) << ", " << xy[1].str(20);
   }
 }
+
+// Must show: the C1 method with the parametric speed on (C t, t^3), whose
+// speed sqrt(C^2 + 9 t^4) and integrals (about C and C^2) are beyond
+// double's range, reaches its target with exit 0.
+TEST(HugeCoeffCli, ParametricTargetOnAHugeLine) {
+  const auto r = run_uniparam({"reparam", "(" + big_c() + "*t, t^3)", "--speed", "parametric", "--target", "0.99",
+                               "--timeout", kTimeout});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("reached with"), std::string::npos) << r.out.substr(0, 600);
+  EXPECT_EQ(r.out.find("NOT reached"), std::string::npos);
+}
