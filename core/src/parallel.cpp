@@ -197,6 +197,9 @@ class Pool {
   /// that is not yet dispatched and has no prepare step (one with a prepare
   /// step is the caller's to dispatch, between two items).
   bool poll(std::int64_t now_wall) {
+    // Nothing published (read without the lock): no lock taken, so a tick
+    // never contends with a calling thread starting or ending a job.
+    if (!waiting_.load()) return false;
     std::unique_lock<std::mutex> lock(m_);
     if (!job_ || job_->dispatched || job_->prepare) return false;
     if (!job_->due(now_wall, false)) return true;
