@@ -50,8 +50,9 @@ long root_depth_bits(const Poly& p) {
   // The first hull edge's slope is the largest (log2 |c_{v+i}/c_v|) / i
   // over all i (the hull lies above every point), so 2^-deepest() is
   // min_i |c_v / c_{v+i}|^(1/i) and Fujiwara's bound is 2^-(deepest + 1).
-  // The logarithms are doubles of relative accuracy 2^-52 of values below
-  // 2^63: a margin of one bit covers them.
+  // Each log2 |c| is that of a double mantissa plus an exact exponent e,
+  // accurate to about (1 + |e|) 2^-52: far below the margin of one bit for
+  // coefficients of fewer than 2^40 bits.
   const double d = NewtonPolygon(p).deepest();
   if (!std::isfinite(d)) return 0;
   return static_cast<long>(std::ceil(d)) + 2;
