@@ -19,6 +19,14 @@ namespace {
 using test_support::burn;
 using test_support::thread_cpu_ns;
 
+// Fixed busy work without clock reads: burn()'s CPU-clock system calls
+// cost microseconds each under the sanitizers, which would make these
+// rounds as long as the dispatch threshold itself.
+void spin(int iterations) {
+  volatile std::uint64_t x = 1;
+  for (int i = 0; i < iterations; ++i) x = x * 6364136223846793005ULL + 1;
+}
+
 // Many jobs of about a tenth of a millisecond each (the low-degree case): every item on
 // the calling thread, and no pool thread ever woken.
 TEST(ParallelInline, SmallJobsStayOnTheCallingThread) {
@@ -36,7 +44,7 @@ TEST(ParallelInline, SmallJobsStayOnTheCallingThread) {
     parallel_for(64, 4, [&](std::size_t w, std::size_t i) {
       if (w != 0) ++elsewhere;
       sum[w] += static_cast<long>(i);
-      burn(2000);  // 64 items: about 0.13 ms of CPU in all
+      spin(1500);  // 64 items: about 0.12 ms of CPU in all
     });
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const std::int64_t cpu = thread_cpu_ns() - cpu0;
