@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "support/json.hpp"
+#include "support/reference.hpp"
 #include "support/run.hpp"
 #include "uniparam/reparam/all.hpp"
 
@@ -30,19 +31,9 @@ constexpr long kPrec = 20000;  // enough for K^2 with K of 5000 digits
 // u = mu^2 / int sigma^2 of the angular speed K / (1 + K^2 t^2) on [0, 1]:
 // mu = atan K, int sigma^2 = (K / 2) (atan K + K / (1 + K^2)).
 Ball angular_u(const std::string& c) {
-  Ball k, at, t, sq, u;
-  arb_set_str(k.get(), c.c_str(), kPrec);
-  arb_mul_2exp_si(k.get(), k.get(), 1);
-  arb_atan(at.get(), k.get(), kPrec);
-  arb_sqr(t.get(), k.get(), kPrec);
-  arb_add_ui(t.get(), t.get(), 1, kPrec);
-  arb_div(t.get(), k.get(), t.get(), kPrec);
-  arb_add(sq.get(), at.get(), t.get(), kPrec);
-  arb_mul(sq.get(), sq.get(), k.get(), kPrec);
-  arb_mul_2exp_si(sq.get(), sq.get(), -1);
-  arb_sqr(u.get(), at.get(), kPrec);
-  arb_div(u.get(), u.get(), sq.get(), kPrec);
-  return u;
+  Ball b;
+  arb_set_str(b.get(), c.c_str(), kPrec);
+  return uniparam::test_support::parabola_angular(b, kPrec).u;
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 
 #include "support/curves.hpp"
 #include "support/iterations.hpp"
+#include "support/reference.hpp"
 #include "uniparam/core/budget.hpp"
 #include "uniparam/reparam/all.hpp"
 #include "uniparam/reparam/scaling.hpp"
@@ -102,19 +103,10 @@ TEST(HugeCoeff, BalancedUniformityMatchesClosedForm) {
   Options o;
   o.digits = 30;
   const UniformityResult r = uniformity(p, SpeedKind::Angular, o);
-  const long prec = 4096;
-  Ball k, at, t, sq, u;
-  arb_set_fmpz(k.get(), C.get());
-  arb_mul_2exp_si(k.get(), k.get(), 1);
-  arb_atan(at.get(), k.get(), prec);
-  arb_sqr(t.get(), k.get(), prec);
-  arb_add_ui(t.get(), t.get(), 1, prec);
-  arb_div(t.get(), k.get(), t.get(), prec);
-  arb_add(sq.get(), at.get(), t.get(), prec);
-  arb_mul(sq.get(), sq.get(), k.get(), prec);
-  arb_mul_2exp_si(sq.get(), sq.get(), -1);
-  arb_sqr(u.get(), at.get(), prec);
-  arb_div(u.get(), u.get(), sq.get(), prec);
+  Ball c;
+  arb_set_fmpz(c.get(), C.get());
+  const test_support::ParabolaAngular ref = test_support::parabola_angular(c, 4096);
+  const Ball &at = ref.mu, &u = ref.u;
   EXPECT_TRUE(arb_overlaps(r.mu.get(), at.get())) << r.mu.str(35);
   EXPECT_TRUE(arb_overlaps(r.u.get(), u.get())) << r.u.str(35) << " vs " << u.str(35);
   EXPECT_TRUE(r.u.meets_digits(o.digits)) << r.u.str(35);

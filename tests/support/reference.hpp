@@ -26,4 +26,26 @@ inline bool contains_ref(const Ball& b, const char* decimal) {
   return arb_overlaps(b.get(), r.get());
 }
 
+/// The closed forms of the angular speed K / (1 + K^2 t^2), K = 2C, of the
+/// parabola (t, C t^2) on [0, 1], at precision prec: mu = atan K and
+/// u = mu^2 / int sigma^2 with int sigma^2 = (K / 2)(atan K + K / (1 + K^2)).
+struct ParabolaAngular {
+  Ball mu, u;
+};
+inline ParabolaAngular parabola_angular(const Ball& c, long prec) {
+  ParabolaAngular r;
+  Ball k, t, sq;
+  arb_mul_2exp_si(k.get(), c.get(), 1);
+  arb_atan(r.mu.get(), k.get(), prec);
+  arb_sqr(t.get(), k.get(), prec);
+  arb_add_ui(t.get(), t.get(), 1, prec);
+  arb_div(t.get(), k.get(), t.get(), prec);
+  arb_add(sq.get(), r.mu.get(), t.get(), prec);
+  arb_mul(sq.get(), sq.get(), k.get(), prec);
+  arb_mul_2exp_si(sq.get(), sq.get(), -1);
+  arb_sqr(r.u.get(), r.mu.get(), prec);
+  arb_div(r.u.get(), r.u.get(), sq.get(), prec);
+  return r;
+}
+
 }  // namespace uniparam::test_support
