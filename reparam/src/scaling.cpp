@@ -96,22 +96,6 @@ Poly shifted_to_one(const Poly& P) {
   return r;
 }
 
-// How close to 0 or to 1 the nearest complex singularity of sigma's
-// analytic continuation lies, as -log2 of the distance (Newton polygons of
-// D, whose roots are poles, and of sum K_k^2, whose roots are branch
-// points, at both ends): the depth a quadrature bisects to there.
-double singularity_depth(const Speed& s) {
-  Poly K2(0);
-  for (const Poly& k : s.cofactors()) K2 = K2 + k * k;
-  double depth = 0;
-  for (const Poly* P : {&s.denominator(), static_cast<const Poly*>(&K2)}) {
-    if (P->is_zero()) continue;
-    depth = std::max(depth, Tropical(*P).deepest());
-    depth = std::max(depth, Tropical(shifted_to_one(*P)).deepest());
-  }
-  return depth;
-}
-
 }  // namespace
 
 std::optional<BalancedCurve> balance(const Curve& p) {
@@ -147,7 +131,7 @@ std::optional<BalancedCurve> balance(const Curve& p, const Speed& s) {
   // features of p far from [0, 1] (a root of D or sum K^2 at |t| ~ 2^j)
   // come within about 2^-(|k| + j) of that end. Balanced only where q's
   // nearest singularity is farther from the ends than p's.
-  if (!(singularity_depth(Speed(bal.q, s.kind())) + kMinBits <= singularity_depth(s))) return std::nullopt;
+  if (!(Speed(bal.q, s.kind()).scale_bits() + kMinBits <= s.scale_bits())) return std::nullopt;
   return bal;
 }
 

@@ -55,9 +55,9 @@ std::optional<BalancedCurve> balance(const Curve& p);
 /// it, rounded (the same in 1 - t with the Taylor shifts of g, K_k, D about
 /// 1). Empty where |k| < 16 at both ends, where both ends are concentrated
 /// (one Moebius map cannot spread both), for an identically zero speed, and
-/// where q's speed would have a complex singularity (a root of D or of
-/// sum K_k^2, Newton-polygon estimate at both ends) not at least 2^16 times
-/// farther from 0 and 1 than p's nearest: m brings t = infinity within
+/// where q's speed would have a zero, pole or branch point (a root of g, D
+/// or sum K_k^2: Speed::scale_bits, a certified bound at both ends) not at
+/// least 2^16 times farther from 0 and 1 than p's: m brings t = infinity within
 /// 2^-|k| of an end, and with it p's far singularities (a space curve such
 /// as (t, C t^2, t^3) has some at |t| ~ C), which would make q costlier to
 /// integrate than p.
