@@ -82,10 +82,23 @@ struct Job {
   std::atomic<bool> failed{false};
   std::exception_ptr error;
   std::mutex error_mutex;
-  // The calling thread's CPU clock, its reading and the wall clock when the
-  // job was published (set before publication, then only read).
+  // The calling thread's CPU clock and the wall clock when the job was
+  // published (set before publication, then only read).
   clockid_t caller_clock = CLOCK_THREAD_CPUTIME_ID;
-  std::int64_t start_cpu = 0, start_wall = 0;
+  std::int64_t start_wall = 0;
+  // Before the process's first thread, the CPU-time window
+  // (window_cpu_ns): the wall and CPU clocks and the items started at its
+  // start (window_wall 0: not started), and the earliest wall time of the
+  // next CPU-clock reading; guarded by cpu_mutex.
+  std::mutex cpu_mutex;
+  std::int64_t window_wall = 0, window_cpu = 0, next_look = 0;
+  std::size_t window_taken = 0;
+  // In a process that has threads (g_threads_started when the job was
+  // published), where the dispatcher judges jobs during their items, the
+  // caller's CPU clock is read at the start instead (start_cpu), and at
+  // each look once kInlineCpu of wall time has passed.
+  bool whole_job = false;
+  std::int64_t start_cpu = 0;
   std::atomic<bool> dispatched{false};  // pool threads may join (written under the pool's mutex)
 
   /// Worker `worker` takes items until none is left or one failed. Worker
@@ -113,7 +126,11 @@ struct Job {
   /// Worth waking the pool threads for: what is left of the job is long
   /// enough to pay for them. The caller has spent kInlineCpu of CPU time on
   /// it, and the items the other workers could take, estimated at the
-  /// caller's CPU time per item so far, add up to kInlineCpu more; or the
+  /// caller's CPU time per item so far, add up to kInlineCpu more (a
+  /// process with threads: whole_job); before the process's first thread,
+  /// the same with kFirstThreadCpu, the first half of it counted in wall
+  /// time and the second in CPU time, the time per item the second half's
+  /// (window_cpu_ns); or the
   /// same with wall time and kInlineWall (a task that blocks, or a caller
   /// that is descheduled for long). The items the others could take: those
   /// not started, less the one the caller starts next when `between` (it
@@ -121,7 +138,20 @@ struct Job {
   /// thread could). Items of one job cost about the same; where its tail
   /// costs more than its head, the estimate is low and the job may finish
   /// alone, which costs at most what one thread costs.
-  bool due(std::int64_t now_wall, bool between) const;
+  bool due(std::int64_t now_wall, bool between);
+
+  /// The caller's CPU time on the job since the window opened, and the
+  /// items started since then (in `items`), without a reading of its CPU
+  /// clock at the job's start (a system call of about 1.5 us on a virtual
+  /// machine, as long as a small job's item). The window opens at the first
+  /// look (the CPU clock's first reading); -1 then, and between two
+  /// readings (at most one per kWindow). Looks start at half the threshold
+  /// (due), so a job shorter than that never reads the CPU clock.
+  std::int64_t window_cpu_ns(std::int64_t now_wall, std::size_t& items);
+  /// At the end of the job: 1 when the window measured at least the
+  /// threshold of CPU time, 0 when it measured less, -1 when it was not
+  /// opened (no reading is taken then).
+  int window_long_enough(std::int64_t now_wall);
 };
 
 /// The work a job does on the calling thread alone before the pool threads
@@ -138,28 +168,87 @@ struct Job {
 /// CPU time, not wall time: a caller descheduled on a busy machine has not
 /// done more work, and threads would not make it faster.
 constexpr std::int64_t kInlineCpu = 500000;      // ns
+/// kInlineCpu for the first job of the process that would start a thread
+/// (a pool thread or the dispatcher): glibc's allocator locks its arena in
+/// every calloc, realloc and non-cached free once a second thread has
+/// existed, for the rest of the process (1-2% of a low-degree computation,
+/// whose numbers GMP and FLINT allocate), so a process of small jobs must
+/// not start one for a job that threads would shorten by a fraction of a
+/// millisecond.
+constexpr std::int64_t kFirstThreadCpu = 2000000;  // ns
+/// Set once the process has started a pool thread or the dispatcher.
+std::atomic<bool> g_threads_started{false};
+/// kInlineCpu, or kFirstThreadCpu before the process's first thread.
+std::int64_t inline_cpu() { return g_threads_started.load(std::memory_order_relaxed) ? kInlineCpu : kFirstThreadCpu; }
 constexpr std::int64_t kInlineWall = 100000000;  // ns
+/// The least wall time between two readings of the caller's CPU clock
+/// (Job::window_cpu_ns).
+constexpr std::int64_t kWindow = 100000;  // ns
 /// How often the dispatcher looks at the published jobs, while there are
 /// any: a long job waits at most this much beyond kInlineCpu for the pool
 /// threads; each look is a wake-up of the dispatcher (microseconds).
 constexpr std::chrono::microseconds kTick{1000};
 
-bool Job::due(std::int64_t now_wall, bool between) const {
+std::int64_t Job::window_cpu_ns(std::int64_t now_wall, std::size_t& items) {
+  std::lock_guard<std::mutex> lock(cpu_mutex);
+  if (now_wall < next_look) return -1;
+  next_look = now_wall + kWindow;
+  const std::int64_t cpu = cpu_ns(caller_clock);
+  if (window_wall == 0) {
+    window_wall = now_wall;
+    window_cpu = cpu;
+    window_taken = next.load();
+    return -1;
+  }
+  items = next.load() - window_taken;
+  return std::max<std::int64_t>(cpu - window_cpu, 0);
+}
+
+int Job::window_long_enough(std::int64_t now_wall) {
+  if (whole_job) return cpu_ns(caller_clock) - start_cpu >= inline_cpu() ? 1 : 0;
+  {
+    std::lock_guard<std::mutex> lock(cpu_mutex);
+    if (window_wall == 0) return -1;
+    next_look = 0;  // the window is open: one more reading closes it
+  }
+  std::size_t items = 0;
+  return window_cpu_ns(now_wall, items) >= inline_cpu() ? 1 : 0;
+}
+
+bool Job::due(std::int64_t now_wall, bool between) {
   // Before the dispatch only the caller takes items: `taken` items were
   // started by it, all done when it is between two, all but the last
   // otherwise (the time per item then is too low, if anything).
   const std::size_t taken = next.load();
   if (taken == 0 || taken >= n) return false;  // nothing measured yet, or nothing left
   const std::size_t open = n - taken - (between ? 1 : 0);
-  if (open == 0) return false;  // the caller's own next item is the last: threads cannot help
-  const auto left = [&](std::int64_t spent) {  // the work left for the others, at `spent` so far
-    return static_cast<std::int64_t>(open) * (spent / static_cast<std::int64_t>(taken));
-  };
   const std::int64_t wall = now_wall - start_wall;
-  if (wall >= kInlineWall && left(wall) >= kInlineWall) return true;
-  if (wall < kInlineCpu) return false;  // CPU time <= wall time: no system call
-  const std::int64_t cpu = cpu_ns(caller_clock) - start_cpu;
-  return cpu >= kInlineCpu && left(cpu) >= kInlineCpu;
+  const std::int64_t threshold = inline_cpu();
+  if (open == 0) {  // the caller's own next item is the last: threads cannot help
+    // Its window still opens, for the end of the job (window_long_enough).
+    std::size_t items = 0;
+    if (!whole_job && wall >= threshold / 2) window_cpu_ns(now_wall, items);
+    return false;
+  }
+  const auto left = [&](std::int64_t spent, std::size_t items) {  // the work left for the others
+    return static_cast<std::int64_t>(open) * (spent / static_cast<std::int64_t>(std::max<std::size_t>(items, 1)));
+  };
+  if (wall >= kInlineWall && left(wall, taken) >= kInlineWall) return true;
+  if (whole_job) {  // a process with threads: the CPU time since the start
+    if (wall < kInlineCpu) return false;  // CPU time <= wall time: no system call
+    const std::int64_t cpu = cpu_ns(caller_clock) - start_cpu;
+    return cpu >= kInlineCpu && left(cpu, taken) >= kInlineCpu;
+  }
+  // A process without threads yet: the first half of the threshold in
+  // wall time, which bounds the CPU time before the window (CPU time <=
+  // wall time, and no reading of the CPU clock for a job that ends
+  // sooner), then the second half measured in the window. A caller
+  // descheduled before the window is not counted as working then; the time
+  // per item is the window's.
+  if (wall < threshold / 2) return false;
+  std::size_t items = 0;
+  const std::int64_t cpu = window_cpu_ns(now_wall, items);
+  return cpu >= threshold / 2 && left(cpu, items) >= threshold;
 }
 
 /// The number of pools: a parallel_for made inside a task of another (an
@@ -229,6 +318,7 @@ class Pool {
   void dispatch_locked() {
     while (threads_.size() + 1 < job_->workers) {
       const std::size_t k = threads_.size() + 1;
+      g_threads_started.store(true);
       threads_.emplace_back([this, k] { loop(k); });
     }
     job_->dispatched.store(true);
@@ -285,10 +375,12 @@ class Pool {
 /// their calling thread is inside an item (e.g. an operation's two long
 /// steps side by side): it looks every kTick while any pool has a published
 /// job without a prepare step, and blocks otherwise (a parallel_for that
-/// finds it blocked wakes it). It never runs items itself. Started by the first job found long
-/// (start()), so a process that only runs small jobs has no thread besides
-/// its own (the allocator's single-thread fast paths stay on, and nothing
-/// wakes up); the calling thread dispatches between items by itself.
+/// finds it blocked wakes it). It never runs items itself. Started (start())
+/// by the first dispatch, or by the end of the first job in which one of
+/// the caller's items ran for inline_cpu() while others were left, so a
+/// process that only runs small jobs has no thread besides its own (the
+/// allocator's single-thread fast paths stay on, and nothing wakes up);
+/// the calling thread dispatches between items by itself.
 class Dispatcher {
  public:
   /// The dispatcher, started on first call.
@@ -320,7 +412,7 @@ class Dispatcher {
   }
 
  private:
-  Dispatcher() : thread_([this] { loop(); }) {}
+  Dispatcher() : thread_((g_threads_started.store(true), [this] { loop(); })) {}
 
   void loop() {
     std::unique_lock<std::mutex> lock(m_);
@@ -366,7 +458,12 @@ bool Pool::run(Job& job) {
     ~Release() { flag.store(false); }
   } release{in_use_};
   if (pthread_getcpuclockid(pthread_self(), &job.caller_clock) != 0) job.caller_clock = CLOCK_THREAD_CPUTIME_ID;
-  job.start_cpu = cpu_ns(job.caller_clock);
+  // A process that has threads runs long jobs: one reading of the CPU
+  // clock per job lets the dispatcher judge it from its first tick.
+  if (g_threads_started.load()) {
+    job.whole_job = true;
+    job.start_cpu = cpu_ns(job.caller_clock);
+  }
   job.start_wall = wall_ns();
   const bool for_dispatcher = !job.prepare;  // a prepare step runs on the caller
   {
@@ -377,8 +474,16 @@ bool Pool::run(Job& job) {
   if (Dispatcher* d = Dispatcher::started(); d && for_dispatcher) d->arm();
   // Between its items the caller dispatches a job that is due itself (the
   // dispatcher may not run yet, and cannot run a prepare step).
+  // Whether one of the caller's items ran for inline_cpu() of wall time
+  // while items were left for others: a job the dispatcher could have
+  // dispatched during that item.
+  std::int64_t item_start = job.start_wall;
+  bool long_item = false;
   job.work(0, [&] {
-    if (job.dispatched.load() || !job.due(wall_ns(), true)) return;
+    const std::int64_t now = wall_ns();
+    if (now - item_start >= inline_cpu() && job.next.load() < job.n) long_item = true;
+    item_start = now;
+    if (job.dispatched.load() || !job.due(now, true)) return;
     Dispatcher::start();
     if (job.prepare) job.prepare(job.workers);  // no task runs now: the caller is between items
     {
@@ -388,11 +493,13 @@ bool Pool::run(Job& job) {
     }
     wake_.notify_all();
   });
-  // A long job, even one the caller had to finish alone (its last item
-  // took the time): later ones get the dispatcher.
-  if (!Dispatcher::started() && wall_ns() - job.start_wall >= kInlineCpu &&
-      cpu_ns(job.caller_clock) - job.start_cpu >= kInlineCpu)
-    Dispatcher::start();
+  // A job with an item that long: later ones get the dispatcher. Not a
+  // job that was long only in its number of items (the caller dispatches
+  // those between items), nor one whose long item was its last: starting a
+  // thread costs the process (inline_cpu()). Nor a caller that was only
+  // descheduled for that long: its CPU time in the job's window must reach
+  // the threshold too.
+  if (long_item && !Dispatcher::started() && job.window_long_enough(wall_ns()) == 1) Dispatcher::start();
   std::unique_lock<std::mutex> lock(m_);
   job_ = nullptr;  // threads woken from now on sit this job out
   waiting_.store(false);
@@ -403,6 +510,8 @@ bool Pool::run(Job& job) {
 }  // namespace
 
 std::uint64_t parallel_dispatches() { return g_dispatched.load(); }
+
+bool parallel_threads_started() { return g_threads_started.load(); }
 
 void parallel_for(std::size_t n, std::size_t max_workers, const std::function<void(std::size_t, std::size_t)>& task,
                   const std::function<void(std::size_t)>& prepare) {

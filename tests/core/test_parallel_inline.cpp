@@ -75,9 +75,11 @@ TEST(ParallelInline, LongJobsUseThePool) {
 
 // Two long items (an operation's steps side by side): the second does not
 // wait for the first, it goes to a pool thread while the first runs (once
-// the process has seen a long job, which starts the dispatcher).
+// the process has seen a job with a long item while others were left,
+// which starts the dispatcher: here 3 ms, above the 2 ms a process's first
+// thread needs).
 TEST(ParallelInline, TwoLongItemsRunSideBySide) {
-  parallel_for(4, 2, [](std::size_t, std::size_t) { burn(1000000); });
+  parallel_for(2, 2, [](std::size_t, std::size_t) { burn(3000000); });
   std::atomic<long> elsewhere{0};
   parallel_for(2, 2, [&](std::size_t w, std::size_t) {
     if (w != 0) ++elsewhere;

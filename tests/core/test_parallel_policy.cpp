@@ -99,12 +99,42 @@ TEST(ParallelPolicy, AJobFoundLongAtItsLastItemIsNotDispatched) {
   EXPECT_GE(judged, 15);
 }
 
-// 30 items of 0.1 ms: after 0.5 ms, 2.4 ms are left: the job is
-// dispatched once, with its prepare step run once.
+// A job long enough to start the process's first thread (2 ms, then 2 ms
+// estimated left): 60 items of 0.1 ms.
+void start_threads() {
+  if (!parallel_threads_started()) run_job(60, [](std::size_t) { return 100000; });
+  ASSERT_TRUE(parallel_threads_started());
+}
+
+// 30 items of 0.1 ms, once the process has threads: after 0.5 ms, 2.4 ms
+// are left: the job is dispatched once, with its prepare step run once.
 TEST(ParallelPolicy, ALongTailIsDispatched) {
+  start_threads();
   const Outcome o = run_job(30, [](std::size_t) { return 100000; });
   EXPECT_EQ(o.dispatches, 1u);
   EXPECT_EQ(o.prepares, 1);
+}
+
+// Before its first thread a process needs 2 ms of CPU time and 2 ms
+// estimated left: 15 items of 0.1 ms (0.5 ms, then 0.9 ms left: dispatched
+// in a process that has threads) stay on the caller, and start no thread.
+// Each test runs in its own process under ctest; in a process where an
+// earlier test started threads this one has nothing to check.
+TEST(ParallelPolicy, TheFirstThreadWaitsForALongerJob) {
+  if (parallel_threads_started()) GTEST_SKIP() << "an earlier test in this process started threads";
+  int judged = 0;
+  for (int round = 0; round < 20; ++round) {
+    const Outcome o = run_job(15, [](std::size_t) { return 100000; });
+    if (o.wall > kJudgedWall) continue;
+    ++judged;
+    EXPECT_EQ(o.dispatches, 0u) << "round " << round;
+    EXPECT_EQ(o.prepares, 0) << "round " << round;
+    EXPECT_FALSE(parallel_threads_started()) << "round " << round;
+  }
+  EXPECT_GE(judged, 15);
+  start_threads();
+  const Outcome o = run_job(15, [](std::size_t) { return 100000; });
+  EXPECT_EQ(o.dispatches, 1u);
 }
 
 }  // namespace

@@ -47,11 +47,19 @@ class ScopedWorkerCount {
 /// of wall time, for tasks that block): by the calling thread between two
 /// items, or during one by a dispatcher thread that looks every
 /// millisecond while jobs without a prepare step run (started by the first
-/// job found long: until then a job can only be dispatched between items,
-/// and a process of small jobs starts no thread at all). So a job shorter
-/// than that, or one found long only near its end, costs what it costs on
-/// one thread and never waits for another. Waiting threads block on a
-/// condition variable (no spinning).
+/// job in which one of the caller's items took that long while others were
+/// left: until then a job can only be dispatched between items, and a
+/// process of small jobs starts no thread at all). Until the process has
+/// started a thread, both bounds are 2 ms instead of 0.5 ms (from its
+/// first thread on, glibc's allocator takes a lock in every calloc, realloc
+/// and uncached free, which costs small computations 1-2% for the rest of
+/// the process), and the first half of that CPU time is counted in wall
+/// time, the second half (and so the time per item) in the calling
+/// thread's CPU time: a job shorter than 1 ms reads only the wall clock,
+/// without a system call. So a job shorter than the bounds, or one found
+/// long only near its end, costs what it costs on one thread and never
+/// waits for another. Waiting threads block on a condition variable (no
+/// spinning).
 /// Worker threads inherit the calling thread's time budget (the same
 /// deadline, see budget.hpp). Workers 1.. are persistent pool threads,
 /// started when first needed and kept until the process exits (when they
@@ -80,5 +88,9 @@ void parallel_for(std::size_t n, std::size_t workers,
 /// Work counter (tests, benchmarks): the number of jobs whose pool threads
 /// parallel_for has woken, since the process started (all threads).
 std::uint64_t parallel_dispatches();
+
+/// Whether parallel_for has started a thread (a pool thread or the
+/// dispatcher) in this process (tests).
+bool parallel_threads_started();
 
 }  // namespace uniparam
