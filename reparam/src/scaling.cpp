@@ -7,9 +7,12 @@
 #include <flint/fmpz.h>
 #include <flint/fmpz_poly.h>
 
+#include "uniparam/algebra/algebraic.hpp"
 #include "uniparam/algebra/newton_polygon.hpp"
+#include "uniparam/algebra/real_roots.hpp"
 #include "uniparam/core/error.hpp"
 #include "uniparam/reparam/speed.hpp"
+#include "uniparam/reparam/uniformity.hpp"
 
 #include "moebius_map.hpp"
 
@@ -113,14 +116,43 @@ std::optional<BalancedCurve> balance(const Curve& p) {
   return balanced_by(p, static_cast<long>(k));
 }
 
+namespace {
+
+// Speed::scale_bits without g: a certified d with no pole or branch point
+// of sigma (a root of D or sum K_k^2) within 2^-d of 0 or 1 other than at
+// the end itself. The roots of g are zeros of the polynomial factor of
+// sigma = |g| sqrt(sum K^2) / D, which is analytic at them (a real one in
+// [0, 1] is a zero every integral splits at), so they cost a quadrature
+// nothing: (t, C t^3) balanced at 0 has q's g vanish next to s = 1, where
+// m brings t = infinity, while q is as easy to integrate as any curve.
+long singularity_depth_bits(const Speed& s) {
+  Poly sumK2(0);
+  for (const Poly& k : s.cofactors()) sumK2 = sumK2 + k * k;
+  long d = 0;
+  for (const Poly* P : {&s.denominator(), static_cast<const Poly*>(&sumK2)})
+    if (P->degree() >= 1) d = std::max({d, root_depth_bits(*P), root_depth_bits(shifted_to_one(*P))});
+  return d;
+}
+
+// Bits from which a concentration of mass (an end's, mass_peak; an
+// interior feature's, feature_depth) is balanced or split off.
+constexpr double kMinBits = 16;
+
+// mass_peak at 0 and at 1 (x0, x1).
+void end_mass_peaks(const Speed& s, double& x0, double& x1) {
+  x0 = mass_peak(s.g(), s.cofactors(), s.denominator());
+  std::vector<Poly> K1;
+  for (const Poly& k : s.cofactors()) K1.push_back(shifted_to_one(k));
+  x1 = mass_peak(shifted_to_one(s.g()), K1, shifted_to_one(s.denominator()));
+}
+
+}  // namespace
+
 std::optional<BalancedCurve> balance(const Curve& p, const Speed& s) {
   if (std::optional<BalancedCurve> w = balance(p)) return w;
   if (s.identically_zero()) return std::nullopt;
-  constexpr double kMinBits = 16;
-  const double x0 = mass_peak(s.g(), s.cofactors(), s.denominator());
-  std::vector<Poly> K1;
-  for (const Poly& k : s.cofactors()) K1.push_back(shifted_to_one(k));
-  const double x1 = mass_peak(shifted_to_one(s.g()), K1, shifted_to_one(s.denominator()));
+  double x0 = 0, x1 = 0;
+  end_mass_peaks(s, x0, x1);
   const bool at0 = x0 >= kMinBits, at1 = x1 >= kMinBits;
   if (at0 == at1) return std::nullopt;
   const double x = at0 ? x0 : x1;
@@ -131,8 +163,127 @@ std::optional<BalancedCurve> balance(const Curve& p, const Speed& s) {
   // features of p far from [0, 1] (a root of D or sum K^2 at |t| ~ 2^j)
   // come within about 2^-(|k| + j) of that end. Balanced only where q's
   // nearest singularity is farther from the ends than p's.
-  if (!(Speed(bal.q, s.kind()).scale_bits() + kMinBits <= s.scale_bits())) return std::nullopt;
+  if (!(singularity_depth_bits(Speed(bal.q, s.kind())) + kMinBits <= singularity_depth_bits(s))) return std::nullopt;
   return bal;
+}
+
+namespace {
+
+// q^d P(c + u) for c = n / q (d = deg P >= 1): an integer polynomial in u
+// with P's roots less c. Built as R(v) = q^d P((n + v) / q) = the Taylor
+// shift by n of sum_i P_i q^(d - i) v^i, and then u = v / q: R's i-th
+// coefficient times q^i.
+Poly shifted_to(const Poly& P, const Rational& c) {
+  const long d = P.degree();
+  const Integer n = c.num(), q = c.den();
+  std::vector<Integer> r(static_cast<std::size_t>(d) + 1);
+  Integer qk(1);
+  for (long i = d; i >= 0; --i) {
+    r[static_cast<std::size_t>(i)] = P.coeff(i) * qk;
+    qk = qk * q;
+  }
+  Poly R(r), out;
+  fmpz_poly_taylor_shift(out.get(), R.get(), n.get());
+  Integer qi(1);
+  std::vector<Integer> u(static_cast<std::size_t>(d) + 1);
+  for (long i = 0; i <= d; ++i) {
+    u[static_cast<std::size_t>(i)] = out.coeff(i) * qi;
+    qi = qi * q;
+  }
+  return Poly(u);
+}
+
+// A feature of sigma inside (0, 1): a point c where the roots of one of
+// the factored form's polynomials come within 2^-depth of the real line.
+struct Feature {
+  Rational c;
+  long depth;
+};
+
+// For each real critical point of P in (0, 1) (a near-real pair of roots
+// a +- i e of P has one within about e^2 of a): a rational c within
+// 2^-(depth + 8) of it, where depth = root_depth_bits of P about c (no root
+// of P other than c lies within 2^-depth of c), appended to out where depth
+// >= kMinBits and c lies farther than 2^(8 - depth) from both ends (an
+// end's concentration is balance()'s).
+void append_features(const Poly& P, std::vector<Feature>& out) {
+  if (P.degree() < 2) return;
+  for (const IsolatedRoot& root : isolate_real_roots(P.derivative(), Rational(0), Rational(1))) {
+    const RealAlgebraic r(root);
+    Rational c;
+    long depth = 0;
+    for (long bits = 64, it = 0; it < 16; ++it) {
+      if (r.is_rational()) {
+        c = r.rational();
+      } else {
+        r.refine(bits + 2);
+        c = grid_floor((r.lo() + r.hi()) * Rational(1, 2), -bits);
+      }
+      depth = root_depth_bits(shifted_to(P, c));
+      if (r.is_rational() || depth + 8 <= bits) break;
+      bits = depth + 16;
+    }
+    if (depth < kMinBits) continue;
+    const Rational margin = pow2(8 - depth);
+    if (c <= margin || c >= Rational(1) - margin) continue;
+    out.push_back({c, depth});
+  }
+}
+
+}  // namespace
+
+std::optional<PeakSplit> peak_split(const Speed& s) {
+  if (s.identically_zero()) return std::nullopt;
+  Poly sumK2(0);
+  for (const Poly& k : s.cofactors()) sumK2 = sumK2 + k * k;
+  const Poly* polys[] = {&s.g(), &s.denominator(), &sumK2};
+  long max_degree = 0;
+  for (const Poly* P : polys) max_degree = std::max(max_degree, P->degree());
+  if (speed_coefficient_bits(s) < kPeakCoefficientBitsPerDegree * max_degree + kPeakCoefficientBits)
+    return std::nullopt;
+  std::vector<Feature> found;
+  for (const Poly* P : polys) append_features(*P, found);
+  double x0 = 0, x1 = 0;
+  end_mass_peaks(s, x0, x1);
+  const bool at0 = x0 >= kMinBits, at1 = x1 >= kMinBits;
+  if (found.empty() && !(at0 && at1)) return std::nullopt;
+  std::sort(found.begin(), found.end(), [](const Feature& a, const Feature& b) { return a.c < b.c; });
+  // One feature of several polynomials (a pole of sigma where a branch
+  // point is too) is one split point: the deeper one's.
+  std::vector<Feature> features;
+  for (const Feature& f : found) {
+    if (!features.empty() && f.c - features.back().c <= pow2(8 - std::min(f.depth, features.back().depth))) {
+      if (f.depth > features.back().depth) features.back() = f;
+      continue;
+    }
+    features.push_back(f);
+  }
+  // Every part with a concentration at both ends is halved.
+  PeakSplit out;
+  const auto add = [&out](const Rational& k, bool feature) {
+    out.knots.push_back(k);
+    out.feature.push_back(feature);
+  };
+  add(Rational(0), at0);
+  for (const Feature& f : features) {
+    if (out.feature.back()) add((out.knots.back() + f.c) * Rational(1, 2), false);
+    add(f.c, true);
+  }
+  if (out.feature.back() && at1) add((out.knots.back() + Rational(1)) * Rational(1, 2), false);
+  add(Rational(1), at1);
+  return out;
+}
+
+Curve restrict_to(const Curve& p, const Rational& a, const Rational& b) {
+  const Rational h = b - a;
+  if (h.sign() == 0) throw InvalidArgument("restrict_to: the interval is a point");
+  // a + h u = (a_n h_d + h_n a_d u) / (a_d h_d)
+  const Poly num(std::vector<Integer>{a.num() * h.den(), h.num() * a.den()});
+  const Poly den(std::vector<Integer>{a.den() * h.den()});
+  const RatFunc L(num, den);
+  std::vector<RatFunc> q;
+  for (const RatFunc& c : p.components()) q.push_back(compose(c, L));
+  return Curve(std::move(q));
 }
 
 namespace {

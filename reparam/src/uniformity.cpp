@@ -411,9 +411,68 @@ UniformityResult uniformity(const Curve& c, SpeedKind kind, const Options& opt) 
   // Weights growing geometrically (a rational Bezier curve with weights
   // 1, 8e40, 1e82): the integrals of the balanced curve q = p o m, whose
   // speed is spread over [0, 1] instead of within 1 / lambda of one end.
-  if (!s.identically_zero())
+  if (!s.identically_zero()) {
     if (const std::optional<BalancedCurve> bal = balance(c, s)) return uniformity_balanced(s, *bal, Speed(bal->q, kind), opt);
+    // Mass at narrow features inside (0, 1) (a huge C in (t, C (t -
+    // 1/2)^2)), or at both ends: part by part, each balanced on its own.
+    if (const std::optional<PeakSplit> split = peak_split(s)) return uniformity_by_parts(s, c, *split, opt);
+  }
   return uniformity_of(s, s, nullptr, opt);
+}
+
+UniformityResult uniformity_by_parts(const Speed& s, const Curve& c, const PeakSplit& split, const Options& opt) {
+  const std::vector<Rational>& knots = split.knots;
+  validate(opt);
+  UniformityResult r;
+  r.kind = s.kind();
+  r.speed_squared = s.squared();
+  r.zeros = s.zeros();
+  r.identically_zero = s.identically_zero();
+  if (r.identically_zero) {
+    r.mu = Ball(0);
+    r.mean_square = Ball(0);
+    r.u = Ball(1);
+    return r;
+  }
+  check_digits_fit(opt);
+  const std::size_t m = knots.size() - 1;
+  // Part j is p restricted to [k_j, k_(j+1)], of length h_j, whose speed is
+  // h_j times p's: int sigma = sum mu_j, int sigma^2 = sum I_j / h_j.
+  std::vector<UniformityResult> parts(m);
+  for (long digits = opt.digits + 2; ; digits += 10) {
+    Options po = opt;
+    po.digits = digits;
+    parallel_for(m, worker_count(), [&](std::size_t, std::size_t j) {
+      // From the end with the feature: a polynomial's power basis is
+      // accurate next to 0, where a feature of width 2^-w then needs no
+      // more than w extra bits.
+      const bool backwards = split.feature[j + 1] && !split.feature[j];
+      const Curve pj = backwards ? restrict_to(c, knots[j + 1], knots[j]) : restrict_to(c, knots[j], knots[j + 1]);
+      const Speed sj(pj, s.kind());
+      if (const std::optional<BalancedCurve> bal = balance(pj, sj))
+        parts[j] = uniformity_balanced(sj, *bal, Speed(bal->q, s.kind()), po);
+      else
+        parts[j] = uniformity_of(sj, sj, nullptr, po);
+    });
+    const long prec = 2 * digits_to_bits(digits) + 64;
+    r.mu = Ball(0);
+    r.mean_square = Ball(0);
+    for (std::size_t j = 0; j < m; ++j) {
+      arb_add(r.mu.get(), r.mu.get(), parts[j].mu.get(), prec);
+      Ball h(knots[j + 1] - knots[j], prec), part;
+      arb_div(part.get(), parts[j].mean_square.get(), h.get(), prec);
+      arb_add(r.mean_square.get(), r.mean_square.get(), part.get(), prec);
+    }
+    arb_sqr(r.u.get(), r.mu.get(), prec);
+    arb_div(r.u.get(), r.u.get(), r.mean_square.get(), prec);
+    if (r.mu.meets_digits(opt.digits + 1) && r.mean_square.meets_digits(opt.digits + 1) &&
+        r.u.meets_digits(opt.digits + 1))
+      return r;
+    if (digits_to_bits(digits) > opt.max_prec)
+      throw BudgetExceeded("could not certify the uniformity to " + std::to_string(opt.digits) +
+                           " digits within " + std::to_string(opt.max_prec) +
+                           " bits of working precision (raise it with --max-prec)");
+  }
 }
 
 UniformityResult uniformity_balanced(const Speed& s, const BalancedCurve& bal, const Speed& q_speed,

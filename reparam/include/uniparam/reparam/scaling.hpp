@@ -6,6 +6,7 @@
 #pragma once
 
 #include <optional>
+#include <vector>
 
 #include "uniparam/algebra/algebraic.hpp"
 #include "uniparam/core/ball.hpp"
@@ -55,17 +56,64 @@ std::optional<BalancedCurve> balance(const Curve& p);
 /// it, rounded (the same in 1 - t with the Taylor shifts of g, K_k, D about
 /// 1). Empty where |k| < 16 at both ends, where both ends are concentrated
 /// (one Moebius map cannot spread both), for an identically zero speed, and
-/// where q's speed would have a zero, pole or branch point (a root of g, D
-/// or sum K_k^2: Speed::scale_bits, a certified bound at both ends) not at
-/// least 2^16 times farther from 0 and 1 than p's: m brings t = infinity within
+/// where q's speed would have a pole or branch point (a root of D or sum
+/// K_k^2, a certified bound at both ends as in Speed::scale_bits; the roots
+/// of g are zeros of a polynomial factor, which cost a quadrature nothing)
+/// not at least 2^16 times farther from 0 and 1 than p's: m brings t = infinity within
 /// 2^-|k| of an end, and with it p's far singularities (a space curve such
 /// as (t, C t^2, t^3) has some at |t| ~ C), which would make q costlier to
 /// integrate than p.
 /// Which m is chosen only affects the cost, never a result's correctness:
 /// every use composes with m exactly.
 /// \pre s is the speed of p (not checkable).
-/// 	hrows nothing beyond allocation.
+/// \throws nothing beyond allocation.
 std::optional<BalancedCurve> balance(const Curve& p, const Speed& s);
+
+/// The coefficient size from which peak_knots looks for features inside
+/// (0, 1): kPeakCoefficientBitsPerDegree * d + kPeakCoefficientBits bits,
+/// d the largest degree of g, D and sum K_k^2 (a pair of complex roots
+/// within e of the real line needs coefficients of about (1/e)^(1/(d-1))
+/// at least; Bezier curves of degree n have power-basis coefficients of
+/// about 2^(2n) in D, of degree 2n - 2, and are not searched unless their
+/// control points have several times n bits).
+constexpr long kPeakCoefficientBitsPerDegree = 4;
+constexpr long kPeakCoefficientBits = 64;
+
+/// Knots 0 = k_0 < ... < k_m = 1 (m >= 2) for a speed's integrals part by
+/// part, and which knots hold a concentration of sigma (feature[i] for
+/// knots[i]): each part has one at one end at most.
+struct PeakSplit {
+  std::vector<Rational> knots;
+  std::vector<char> feature;
+};
+
+/// Where the speed s of a curve has narrow features inside (0, 1) (a pole,
+/// branch point or zero of sigma within 2^-16 of a point c of the real
+/// line, e.g. the angular speed of (t, C (t - 1/2)^2) for a huge C: a peak
+/// of width 1/(2C) at 1/2), or its mass concentrated next to both ends,
+/// which one Moebius map cannot spread: the split of [0, 1] whose parts,
+/// each run from its feature's end (restrict_to(p, k, k') from the knot k
+/// with the feature) and balanced by its own map where balance() does,
+/// integrate at a cost independent of the feature's width. The features are
+/// the real critical points of g, D and sum K_k^2 in (0, 1) about which one
+/// of them has a root within 2^-16 (root_depth_bits of its Taylor shift
+/// there, the point taken within 2^-(depth + 8) of the critical point, so
+/// that the feature sits at a part's end on its own scale), none within
+/// 2^(8 - depth) of an end; the knots are those points, the midpoints
+/// between two of them, and the midpoint between an end concentrated as in
+/// balance() and its nearest point. Searched only where the coefficients
+/// reach kPeakCoefficientBitsPerDegree * d + kPeakCoefficientBits bits;
+/// empty where nothing is found, including every curve below that size.
+/// Which knots are chosen only affects the cost, never a result: the
+/// integrals over [0, 1] are the sums over the parts.
+/// \throws BudgetExceeded from the root isolation's budgets only.
+std::optional<PeakSplit> peak_split(const Speed& s);
+
+/// The curve u -> p(a + (b - a) u) on [0, 1], exact, for a != b (b < a
+/// runs backwards): p restricted to the interval between a and b. Both
+/// speeds of the restriction are |b - a| times p's at the corresponding t.
+/// \throws InvalidArgument for a == b.
+Curve restrict_to(const Curve& p, const Rational& a, const Rational& b);
 
 /// t = m(s) = a s / (a s + b (1 - s)) exactly, for s in [0, 1]: a rational
 /// for a rational s; else the root of the Moebius transform of s's
