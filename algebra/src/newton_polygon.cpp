@@ -58,4 +58,14 @@ long root_depth_bits(const Poly& p) {
   return static_cast<long>(std::ceil(d)) + 2;
 }
 
+long end_root_depth_bits(const Poly& p) {
+  if (p.degree() < 1) return root_depth_bits(p);
+  Poly at1;  // p(1 + t): its roots are p's minus 1
+  fmpz_t one;
+  fmpz_init_set_ui(one, 1);
+  fmpz_poly_taylor_shift(at1.get(), p.get(), one);
+  fmpz_clear(one);
+  return std::max(root_depth_bits(p), root_depth_bits(at1));
+}
+
 }  // namespace uniparam

@@ -130,7 +130,7 @@ long singularity_depth_bits(const Speed& s) {
   for (const Poly& k : s.cofactors()) sumK2 = sumK2 + k * k;
   long d = 0;
   for (const Poly* P : {&s.denominator(), static_cast<const Poly*>(&sumK2)})
-    if (P->degree() >= 1) d = std::max({d, root_depth_bits(*P), root_depth_bits(shifted_to_one(*P))});
+    if (P->degree() >= 1) d = std::max(d, end_root_depth_bits(*P));
   return d;
 }
 

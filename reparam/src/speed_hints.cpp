@@ -6,7 +6,6 @@
 #include <complex>
 #include <mutex>
 
-#include <flint/fmpz_poly.h>
 
 #include "uniparam/algebra/approx_roots.hpp"
 #include "uniparam/algebra/newton_polygon.hpp"
@@ -97,12 +96,8 @@ long Speed::scale_bits() const {
     Poly sumK2(0);
     for (const auto& c : K_) sumK2 = sumK2 + c * c;
     long d = 0;
-    for (const Poly* p : {&g_, &D_, static_cast<const Poly*>(&sumK2)}) {
-      if (p->degree() < 1) continue;
-      Poly at1;  // p(1 + t): its roots are p's minus 1
-      fmpz_poly_taylor_shift(at1.get(), p->get(), Integer(1).get());
-      d = std::max({d, root_depth_bits(*p), root_depth_bits(at1)});
-    }
+    for (const Poly* p : {&g_, &D_, static_cast<const Poly*>(&sumK2)})
+      if (p->degree() >= 1) d = std::max(d, end_root_depth_bits(*p));
     lazy_->scale_bits = d;
   });
   return lazy_->scale_bits;

@@ -364,6 +364,21 @@ Ball mean_speed(const Speed& s, long rel_goal_bits, const Options& opt) {
 
 namespace {
 
+// r's exact parts from s: kind, sigma^2, zeros; for an identically zero
+// speed also mu = int sigma^2 = 0 and u = 1, and true (nothing to
+// integrate).
+bool exact_parts(const Speed& s, UniformityResult& r) {
+  r.kind = s.kind();
+  r.speed_squared = s.squared();
+  r.zeros = s.zeros();
+  r.identically_zero = s.identically_zero();
+  if (!r.identically_zero) return false;
+  r.mu = Ball(0);
+  r.mean_square = Ball(0);
+  r.u = Ball(1);
+  return true;
+}
+
 // uniformity() of the speed `reported` (its exact parts: sigma^2, zeros),
 // with the integrals taken from `integrated`: the same speed, or a balanced
 // curve's with the weight of its integral of sigma^2 (scaling.hpp): the
@@ -372,16 +387,7 @@ UniformityResult uniformity_of(const Speed& reported, const Speed& integrated, c
                                const Options& opt) {
   validate(opt);
   UniformityResult r;
-  r.kind = reported.kind();
-  r.speed_squared = reported.squared();
-  r.zeros = reported.zeros();
-  r.identically_zero = reported.identically_zero();
-  if (r.identically_zero) {
-    r.mu = Ball(0);
-    r.mean_square = Ball(0);
-    r.u = Ball(1);
-    return r;
-  }
+  if (exact_parts(reported, r)) return r;
   check_digits_fit(opt);
   // Each integral to relative accuracy 2^-bits gives u to about 4 * 2^-bits.
   for (long bits = digits_to_bits(opt.digits); ; bits += 32) {
@@ -424,55 +430,55 @@ UniformityResult uniformity_by_parts(const Speed& s, const Curve& c, const PeakS
   const std::vector<Rational>& knots = split.knots;
   validate(opt);
   UniformityResult r;
-  r.kind = s.kind();
-  r.speed_squared = s.squared();
-  r.zeros = s.zeros();
-  r.identically_zero = s.identically_zero();
-  if (r.identically_zero) {
-    r.mu = Ball(0);
-    r.mean_square = Ball(0);
-    r.u = Ball(1);
-    return r;
-  }
+  if (exact_parts(s, r)) return r;
   check_digits_fit(opt);
   const std::size_t m = knots.size() - 1;
   // Part j is p restricted to [k_j, k_(j+1)], of length h_j, whose speed is
-  // h_j times p's: int sigma = sum mu_j, int sigma^2 = sum I_j / h_j.
-  std::vector<UniformityResult> parts(m);
-  for (long digits = opt.digits + 2; ; digits += 10) {
+  // h_j times p's: int sigma = sum mu_j, int sigma^2 = sum I_j / h_j. Each
+  // part to two more digits, so the sums meet opt.digits; more where many
+  // parts' absolute errors add up (mu < 1).
+  struct Part {
+    std::optional<Speed> s, q_speed;
+    std::optional<BalancedCurve> bal;
+    UniformityResult result;
+  };
+  std::vector<Part> parts(m);
+  for (int pass = 0; pass < 3; ++pass) {
     Options po = opt;
-    po.digits = digits;
+    po.digits = std::min(opt.digits + 2 + 10 * pass, 10000L);
     parallel_for(m, worker_count(), [&](std::size_t, std::size_t j) {
-      // From the end with the feature: a polynomial's power basis is
-      // accurate next to 0, where a feature of width 2^-w then needs no
-      // more than w extra bits.
-      const bool backwards = split.feature[j + 1] && !split.feature[j];
-      const Curve pj = backwards ? restrict_to(c, knots[j + 1], knots[j]) : restrict_to(c, knots[j], knots[j + 1]);
-      const Speed sj(pj, s.kind());
-      if (const std::optional<BalancedCurve> bal = balance(pj, sj))
-        parts[j] = uniformity_balanced(sj, *bal, Speed(bal->q, s.kind()), po);
-      else
-        parts[j] = uniformity_of(sj, sj, nullptr, po);
+      Part& part = parts[j];
+      if (!part.s) {
+        // From the end with the feature: a polynomial's power basis is
+        // accurate next to 0, where a feature of width 2^-w then needs no
+        // more than w extra bits.
+        const bool backwards = split.feature[j + 1] && !split.feature[j];
+        const Curve pj = backwards ? restrict_to(c, knots[j + 1], knots[j]) : restrict_to(c, knots[j], knots[j + 1]);
+        part.s.emplace(pj, s.kind());
+        part.bal = balance(pj, *part.s);
+        if (part.bal) part.q_speed.emplace(part.bal->q, s.kind());
+      }
+      part.result = part.bal ? uniformity_balanced(*part.s, *part.bal, *part.q_speed, po)
+                             : uniformity_of(*part.s, *part.s, nullptr, po);
     });
-    const long prec = 2 * digits_to_bits(digits) + 64;
+    const long prec = 2 * digits_to_bits(po.digits) + 64;
     r.mu = Ball(0);
     r.mean_square = Ball(0);
     for (std::size_t j = 0; j < m; ++j) {
-      arb_add(r.mu.get(), r.mu.get(), parts[j].mu.get(), prec);
-      Ball h(knots[j + 1] - knots[j], prec), part;
-      arb_div(part.get(), parts[j].mean_square.get(), h.get(), prec);
-      arb_add(r.mean_square.get(), r.mean_square.get(), part.get(), prec);
+      arb_add(r.mu.get(), r.mu.get(), parts[j].result.mu.get(), prec);
+      Ball h(knots[j + 1] - knots[j], prec), quotient;
+      arb_div(quotient.get(), parts[j].result.mean_square.get(), h.get(), prec);
+      arb_add(r.mean_square.get(), r.mean_square.get(), quotient.get(), prec);
     }
     arb_sqr(r.u.get(), r.mu.get(), prec);
     arb_div(r.u.get(), r.u.get(), r.mean_square.get(), prec);
     if (r.mu.meets_digits(opt.digits + 1) && r.mean_square.meets_digits(opt.digits + 1) &&
         r.u.meets_digits(opt.digits + 1))
       return r;
-    if (digits_to_bits(digits) > opt.max_prec)
-      throw BudgetExceeded("could not certify the uniformity to " + std::to_string(opt.digits) +
-                           " digits within " + std::to_string(opt.max_prec) +
-                           " bits of working precision (raise it with --max-prec)");
   }
+  throw BudgetExceeded("could not certify the uniformity to " + std::to_string(opt.digits) +
+                       " digits from its parts' integrals within " + std::to_string(opt.max_prec) +
+                       " bits of working precision (raise it with --max-prec)");
 }
 
 UniformityResult uniformity_balanced(const Speed& s, const BalancedCurve& bal, const Speed& q_speed,

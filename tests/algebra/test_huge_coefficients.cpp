@@ -111,6 +111,39 @@ TEST(NewtonPolygon, RootDepthBoundsTheNearestNonzeroRoot) {
   }
 }
 
+// end_root_depth_bits bounds the roots next to 1 as root_depth_bits those
+// next to 0: with a root planted at 1 - 2^-k (and one at 2^-j), the bound
+// is at least k (and j), and no root other than 0 and 1 comes nearer to
+// an end than it says (Arb's certified roots of p and of p(1 + t)).
+TEST(NewtonPolygon, EndRootDepthBoundsTheRootsNextToBothEnds) {
+  std::mt19937_64 rng(test_seed(8103));
+  std::uniform_int_distribution<long> deg(1, 6), size(0, 200), plant(1, 300);
+  for (long it = 0; it < iterations(100); ++it) {
+    std::vector<long> bits;
+    for (long k = 0, n = deg(rng); k <= n; ++k) bits.push_back(rng() % 4 == 0 ? 0 : size(rng) + 1);
+    bits.back() = std::max(bits.back(), 1L);
+    // p(0) != 0: a repeated root at 0 would be one at -1 in p(1 + t), which
+    // Arb's root finder (squarefree input only) would never isolate.
+    bits.front() = std::max(bits.front(), 1L);
+    Poly p = random_poly_bits(rng, bits);
+    const long k = plant(rng), j = it % 2 ? plant(rng) : 0;
+    Integer two_k(1), two_j(1);
+    for (long i = 0; i < k; ++i) two_k = two_k * Integer(2);
+    for (long i = 0; i < j; ++i) two_j = two_j * Integer(2);
+    p = p * Poly(std::vector<Integer>{two_k - Integer(1), Integer(0) - two_k});  // root 1 - 2^-k
+    if (j > 0) p = p * Poly(std::vector<Integer>{Integer(-1), two_j});  // root 2^-j
+    SCOPED_TRACE(p.str().substr(0, 300));
+    const long d = end_root_depth_bits(p);
+    EXPECT_GE(d, std::max(k, j));
+    Poly at1;
+    fmpz_poly_taylor_shift(at1.get(), p.get(), Integer(1).get());
+    for (const Poly* q : {static_cast<const Poly*>(&p), static_cast<const Poly*>(&at1)}) {
+      const double truth = log2_min_root_modulus(*q);
+      if (truth != HUGE_VAL) EXPECT_GE(truth, -static_cast<double>(d)) << "a root nearer than 2^-" << d;
+    }
+  }
+}
+
 // Must show: the tropical polynomial T(x) = max_i (log2 |c_i| - i x) read
 // from the hull equals the maximum over all coefficients, at increasing x.
 TEST(NewtonPolygon, TropicalValueIsTheMaximumOverTheCoefficients) {

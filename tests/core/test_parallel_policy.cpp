@@ -53,20 +53,29 @@ Outcome run_job(std::size_t n, Cost cost) {
 // dispatched on wall time (0.1 s) instead of CPU time.
 constexpr double kJudgedWall = 0.05;
 
+// 20 rounds of run_job(n, cost); check(outcome, round) on each round that
+// took at most kJudgedWall, of which there must be 15 at least.
+template <class Cost, class Check>
+void judged_rounds(std::size_t n, Cost cost, Check check) {
+  int judged = 0;
+  for (int round = 0; round < 20; ++round) {
+    const Outcome o = run_job(n, cost);
+    if (o.wall > kJudgedWall) continue;
+    ++judged;
+    check(o, round);
+  }
+  EXPECT_GE(judged, 15);
+}
+
 // 8 items of 0.1 ms: the caller has spent 0.5 ms after 5 of them, when 3
 // are left, the next of which it takes itself: about 0.2 ms for another
 // worker, less than waking it costs. The whole job stays on the caller.
 TEST(ParallelPolicy, AShortTailIsNotDispatched) {
-  int judged = 0;
-  for (int round = 0; round < 20; ++round) {
-    const Outcome o = run_job(8, [](std::size_t) { return 100000; });
-    if (o.wall > kJudgedWall) continue;
-    ++judged;
+  judged_rounds(8, [](std::size_t) { return 100000; }, [](const Outcome& o, int round) {
     EXPECT_EQ(o.dispatches, 0u) << "round " << round;
     EXPECT_EQ(o.prepares, 0) << "round " << round;
     EXPECT_EQ(o.elsewhere, 0) << "round " << round;
-  }
-  EXPECT_GE(judged, 15);
+  });
 }
 
 // Two items of 1 ms (an operation's parts, each copied for a woken worker
@@ -74,29 +83,19 @@ TEST(ParallelPolicy, AShortTailIsNotDispatched) {
 // takes the second itself; copying for a worker that would find nothing
 // left is waste.
 TEST(ParallelPolicy, TheLastItemIsNotDispatched) {
-  int judged = 0;
-  for (int round = 0; round < 20; ++round) {
-    const Outcome o = run_job(2, [](std::size_t) { return 1000000; });
-    if (o.wall > kJudgedWall) continue;
-    ++judged;
+  judged_rounds(2, [](std::size_t) { return 1000000; }, [](const Outcome& o, int round) {
     EXPECT_EQ(o.dispatches, 0u) << "round " << round;
     EXPECT_EQ(o.prepares, 0) << "round " << round;
-  }
-  EXPECT_GE(judged, 15);
+  });
 }
 
 // Cheap items first, then an expensive last one: when the caller has
 // spent 0.5 ms, only the item it takes next is left.
 TEST(ParallelPolicy, AJobFoundLongAtItsLastItemIsNotDispatched) {
-  int judged = 0;
-  for (int round = 0; round < 20; ++round) {
-    const Outcome o = run_job(10, [](std::size_t i) { return i < 9 ? 60000 : 1000000; });
-    if (o.wall > kJudgedWall) continue;
-    ++judged;
+  judged_rounds(10, [](std::size_t i) { return i < 9 ? 60000 : 1000000; }, [](const Outcome& o, int round) {
     EXPECT_EQ(o.dispatches, 0u) << "round " << round;
     EXPECT_EQ(o.prepares, 0) << "round " << round;
-  }
-  EXPECT_GE(judged, 15);
+  });
 }
 
 // A job long enough to start the process's first thread (2 ms, then 2 ms
@@ -122,16 +121,11 @@ TEST(ParallelPolicy, ALongTailIsDispatched) {
 // earlier test started threads this one has nothing to check.
 TEST(ParallelPolicy, TheFirstThreadWaitsForALongerJob) {
   if (parallel_threads_started()) GTEST_SKIP() << "an earlier test in this process started threads";
-  int judged = 0;
-  for (int round = 0; round < 20; ++round) {
-    const Outcome o = run_job(15, [](std::size_t) { return 100000; });
-    if (o.wall > kJudgedWall) continue;
-    ++judged;
+  judged_rounds(15, [](std::size_t) { return 100000; }, [](const Outcome& o, int round) {
     EXPECT_EQ(o.dispatches, 0u) << "round " << round;
     EXPECT_EQ(o.prepares, 0) << "round " << round;
     EXPECT_FALSE(parallel_threads_started()) << "round " << round;
-  }
-  EXPECT_GE(judged, 15);
+  });
   start_threads();
   const Outcome o = run_job(15, [](std::size_t) { return 100000; });
   EXPECT_EQ(o.dispatches, 1u);

@@ -45,4 +45,9 @@ class NewtonPolygon {
 /// monomial, which have no nonzero roots). Roots of p at 0 are not counted.
 long root_depth_bits(const Poly& p);
 
+/// The larger of root_depth_bits(p) and root_depth_bits(p(1 + t)): no root
+/// of p other than 0 and 1 lies within 2^-d of 0 or of 1 (p's features
+/// next to the ends of [0, 1]).
+long end_root_depth_bits(const Poly& p);
+
 }  // namespace uniparam
