@@ -135,7 +135,7 @@ long singularity_depth_bits(const Speed& s) {
 }
 
 // Bits from which a concentration of mass (an end's, mass_peak; an
-// interior feature's, feature_depth) is balanced or split off.
+// interior feature's, append_features) is balanced or split off.
 constexpr double kMinBits = 16;
 
 // mass_peak at 0 and at 1 (x0, x1).
