@@ -64,35 +64,6 @@ bool provably_no_rational_root(const Poly& f) {
 
 /// The open interval (c/2^k, (c+1)/2^k) of [0, 1].
 
-/// G(x) = L^n f((A + W x) / L) / content with a = A/L, b - a = W/L: the
-/// roots of G in [0, 1] are those of f in [a, b].
-Poly map_to_unit_interval(const Poly& f, const Rational& a, const Rational& b) {
-  const Rational w = b - a;
-  const Integer L = a.den() * w.den();
-  const Integer A = a.num() * w.den();
-  const Integer W = w.num() * a.den();
-  const slong n = f.degree();
-  Poly H(f);
-  {
-    Integer Lp(1);
-    fmpz* c = H.get()->coeffs;
-    for (slong i = n; i >= 0; --i) {  // c_i * L^(n-i)
-      fmpz_mul(c + i, c + i, Lp.get());
-      fmpz_mul(Lp.get(), Lp.get(), L.get());
-    }
-  }
-  Poly G;
-  fmpz_poly_taylor_shift(G.get(), H.get(), A.get());
-  {
-    Integer Wp(1);
-    fmpz* c = G.get()->coeffs;
-    for (slong i = 0; i <= n; ++i) {
-      fmpz_mul(c + i, c + i, Wp.get());
-      fmpz_mul(Wp.get(), Wp.get(), W.get());
-    }
-  }
-  return G.primitive();
-}
 
 /// Makes r (a root of the squarefree f isolated in (lo, hi)) exact when it is
 /// rational. Rational roots n/d have d | lc(f); once hi - lo < 1/lc^2 the
@@ -130,7 +101,7 @@ void isolate_factor(const Poly& f, int mult, const Rational& a, const Rational& 
   const long k = detail::floor_log2(b - a) - 1;
   const Rational a2 = grid_floor(a, k), b2 = -grid_floor(-b, k);
   const Rational w = b2 - a2;
-  const Poly G = map_to_unit_interval(f, a2, b2);
+  const Poly G = mapped_to_unit_interval(f, a2, b2);
   std::vector<Found> raw;
   // Roots at the ends, exactly. G keeps them: Descartes' rule counts roots
   // in the open (0, 1) only, and a leaf never has a root of G at an end.

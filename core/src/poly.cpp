@@ -166,4 +166,34 @@ std::vector<double> scaled_doubles(const Poly& p) {
   return c;
 }
 
+Poly mapped_to_unit_interval(const Poly& f, const Rational& a, const Rational& b) {
+  // a = A / L, b - a = W / L: G = L^n f((A + W x) / L), the Taylor shift by
+  // A of sum f_i L^(n - i) y^i, then y = W x.
+  const Rational w = b - a;
+  const Integer L = a.den() * w.den();
+  const Integer A = a.num() * w.den();
+  const Integer W = w.num() * a.den();
+  const slong n = f.degree();
+  Poly H(f);
+  {
+    Integer Lp(1);
+    fmpz* c = H.get()->coeffs;
+    for (slong i = n; i >= 0; --i) {  // c_i * L^(n-i)
+      fmpz_mul(c + i, c + i, Lp.get());
+      fmpz_mul(Lp.get(), Lp.get(), L.get());
+    }
+  }
+  Poly G;
+  fmpz_poly_taylor_shift(G.get(), H.get(), A.get());
+  {
+    Integer Wp(1);
+    fmpz* c = G.get()->coeffs;
+    for (slong i = 0; i <= n; ++i) {
+      fmpz_mul(c + i, c + i, Wp.get());
+      fmpz_mul(Wp.get(), Wp.get(), W.get());
+    }
+  }
+  return G.primitive();
+}
+
 }  // namespace uniparam

@@ -126,10 +126,8 @@ namespace {
 // nothing: (t, C t^3) balanced at 0 has q's g vanish next to s = 1, where
 // m brings t = infinity, while q is as easy to integrate as any curve.
 long singularity_depth_bits(const Speed& s) {
-  Poly sumK2(0);
-  for (const Poly& k : s.cofactors()) sumK2 = sumK2 + k * k;
   long d = 0;
-  for (const Poly* P : {&s.denominator(), static_cast<const Poly*>(&sumK2)})
+  for (const Poly* P : {&s.denominator(), &s.cofactor_square_sum()})
     if (P->degree() >= 1) d = std::max(d, end_root_depth_bits(*P));
   return d;
 }
@@ -169,30 +167,6 @@ std::optional<BalancedCurve> balance(const Curve& p, const Speed& s) {
 
 namespace {
 
-// q^d P(c + u) for c = n / q (d = deg P >= 1): an integer polynomial in u
-// with P's roots less c. Built as R(v) = q^d P((n + v) / q) = the Taylor
-// shift by n of sum_i P_i q^(d - i) v^i, and then u = v / q: R's i-th
-// coefficient times q^i.
-Poly shifted_to(const Poly& P, const Rational& c) {
-  const long d = P.degree();
-  const Integer n = c.num(), q = c.den();
-  std::vector<Integer> r(static_cast<std::size_t>(d) + 1);
-  Integer qk(1);
-  for (long i = d; i >= 0; --i) {
-    r[static_cast<std::size_t>(i)] = P.coeff(i) * qk;
-    qk = qk * q;
-  }
-  Poly R(r), out;
-  fmpz_poly_taylor_shift(out.get(), R.get(), n.get());
-  Integer qi(1);
-  std::vector<Integer> u(static_cast<std::size_t>(d) + 1);
-  for (long i = 0; i <= d; ++i) {
-    u[static_cast<std::size_t>(i)] = out.coeff(i) * qi;
-    qi = qi * q;
-  }
-  return Poly(u);
-}
-
 // A feature of sigma inside (0, 1): a point c where the roots of one of
 // the factored form's polynomials come within 2^-depth of the real line.
 struct Feature {
@@ -219,7 +193,7 @@ void append_features(const Poly& P, std::vector<Feature>& out) {
         r.refine(bits + 2);
         c = grid_floor((r.lo() + r.hi()) * Rational(1, 2), -bits);
       }
-      depth = root_depth_bits(shifted_to(P, c));
+      depth = root_depth_bits(mapped_to_unit_interval(P, c, c + Rational(1)));  // P(c + u), scaled
       if (r.is_rational() || depth + 8 <= bits) break;
       bits = depth + 16;
     }
@@ -234,13 +208,13 @@ void append_features(const Poly& P, std::vector<Feature>& out) {
 
 std::optional<PeakSplit> peak_split(const Speed& s) {
   if (s.identically_zero()) return std::nullopt;
-  Poly sumK2(0);
-  for (const Poly& k : s.cofactors()) sumK2 = sumK2 + k * k;
-  const Poly* polys[] = {&s.g(), &s.denominator(), &sumK2};
-  long max_degree = 0;
-  for (const Poly* P : polys) max_degree = std::max(max_degree, P->degree());
+  // The gate first, from the degrees alone (deg sum K^2 <= 2 max deg K_k):
+  // sum K^2 is built only for a curve that is searched.
+  long max_degree = std::max(s.g().degree(), s.denominator().degree());
+  for (const Poly& k : s.cofactors()) max_degree = std::max(max_degree, 2 * k.degree());
   if (speed_coefficient_bits(s) < kPeakCoefficientBitsPerDegree * max_degree + kPeakCoefficientBits)
     return std::nullopt;
+  const Poly* polys[] = {&s.g(), &s.denominator(), &s.cofactor_square_sum()};
   std::vector<Feature> found;
   for (const Poly* P : polys) append_features(*P, found);
   double x0 = 0, x1 = 0;

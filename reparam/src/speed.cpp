@@ -208,11 +208,18 @@ const RatFunc& Speed::squared() const {
       lazy_->squared = RatFunc(0);
       return;
     }
-    Poly sumK2(0);
-    for (const auto& k : K_) sumK2 = sumK2 + k * k;
-    lazy_->squared = RatFunc(g_ * g_ * sumK2, D_ * D_);
+    lazy_->squared = RatFunc(g_ * g_ * cofactor_square_sum(), D_ * D_);
   });
   return lazy_->squared;
+}
+
+const Poly& Speed::cofactor_square_sum() const {
+  std::call_once(lazy_->sumK2_once, [this] {
+    Poly sum(0);
+    for (const auto& k : K_) sum = sum + k * k;
+    lazy_->sumK2 = std::move(sum);
+  });
+  return lazy_->sumK2;
 }
 
 Speed::PieceSigns Speed::piece_signs(const RealAlgebraic& a, const RealAlgebraic& b) const {

@@ -6,7 +6,6 @@
 #include <complex>
 #include <mutex>
 
-
 #include "uniparam/algebra/approx_roots.hpp"
 #include "uniparam/algebra/newton_polygon.hpp"
 #include "uniparam/core/parallel.hpp"
@@ -76,9 +75,7 @@ const std::vector<std::complex<double>>& Speed::singularity_hints(bool squared) 
                    if (i == 0) {
                      poles_ok = append_hints(D_, poles);
                    } else {
-                     Poly sumK2(0);
-                     for (const auto& c : K_) sumK2 = sumK2 + c * c;
-                     branch_ok = append_hints(sumK2, branch);
+                     branch_ok = append_hints(cofactor_square_sum(), branch);
                    }
                  });
     if (!poles_ok) return;  // no hints rather than half of them
@@ -93,10 +90,8 @@ const std::vector<std::complex<double>>& Speed::singularity_hints(bool squared) 
 long Speed::scale_bits() const {
   std::call_once(lazy_->scale_once, [this] {
     if (zero_) return;
-    Poly sumK2(0);
-    for (const auto& c : K_) sumK2 = sumK2 + c * c;
     long d = 0;
-    for (const Poly* p : {&g_, &D_, static_cast<const Poly*>(&sumK2)})
+    for (const Poly* p : {&g_, &D_, &cofactor_square_sum()})
       if (p->degree() >= 1) d = std::max(d, end_root_depth_bits(*p));
     lazy_->scale_bits = d;
   });

@@ -7,22 +7,67 @@
 
 #include <random>
 #include <string>
+#include <vector>
 
 #include "support/iterations.hpp"
 #include "uniparam/core/ball.hpp"
 #include "uniparam/core/error.hpp"
 #include "uniparam/core/number.hpp"
+#include "uniparam/core/poly.hpp"
 
 namespace uniparam {
 namespace {
 
 using test_support::iterations;
 using test_support::random_integer;
+using test_support::test_seed;
 
 Rational random_rational(std::mt19937_64& rng) {
   Integer d = random_integer(rng, 12);
   if (d.sign() == 0) d = Integer(3);
   return Rational(random_integer(rng, 15), d);
+}
+
+// p(x) exactly, by Horner's rule in Q.
+Rational eval_exact(const Poly& p, const Rational& x) {
+  Rational r(0);
+  for (long i = p.degree(); i >= 0; --i) r = r * x + Rational(p.coeff(i));
+  return r;
+}
+
+// mapped_to_unit_interval(f, a, b) is f(a + (b - a) x) times one nonzero
+// constant: the ratio G(x) / f(a + (b - a) x) is the same at every x, for
+// random f, a and b (b < a too), and G is primitive.
+TEST(ExactHelpers, MappedToUnitIntervalIsFOnTheInterval) {
+  std::mt19937_64 rng(test_seed(4242));
+  for (long it = 0; it < iterations(200); ++it) {
+    std::vector<Integer> c;
+    for (long k = 0, n = 1 + static_cast<long>(rng() % 7); k <= n; ++k) c.push_back(random_integer(rng, 40));
+    if (c.back().sign() == 0) c.back() = Integer(5);
+    const Poly f(c);
+    const Rational a = random_rational(rng);
+    Rational b = random_rational(rng);
+    if (b == a) b = a + Rational(1, 7);
+    const Poly G = mapped_to_unit_interval(f, a, b);
+    ASSERT_EQ(G.degree(), f.degree());
+    EXPECT_EQ(G, G.primitive());
+    bool have = false;
+    Rational ratio;
+    for (const Rational& x : {Rational(0), Rational(1), Rational(1, 3), Rational(-5, 2), Rational(7, 11)}) {
+      const Rational fx = eval_exact(f, a + (b - a) * x), gx = eval_exact(G, x);
+      if (fx.sign() == 0) {
+        EXPECT_EQ(gx.sign(), 0);
+        continue;
+      }
+      if (!have) {
+        ratio = gx / fx;
+        have = true;
+        EXPECT_NE(ratio.sign(), 0);
+      } else {
+        EXPECT_EQ(gx / fx, ratio) << "at x = " << x.str();
+      }
+    }
+  }
 }
 
 TEST(ExactHelpers, Pow2IsThePowerOfTwo) {

@@ -81,6 +81,12 @@ Poly divexact(const Poly& a, const Poly& b);
 /// 1/2 and scaled to [-1, 1] (an exact Taylor shift of 2^n p(u / 2) by 1).
 /// The zero polynomial gives itself.
 Poly centred_at_half(const Poly& p);
+/// G(x) = L^n f(a + (b - a) x) / content, n = deg f, L the least integer
+/// making it integral: f on [a, b] mapped to [0, 1] (b < a runs backwards),
+/// exactly, so the roots of G in [0, 1] are those of f in [a, b], and the
+/// roots of G are those of f less a, divided by b - a.
+/// \pre a != b; f != 0.
+Poly mapped_to_unit_interval(const Poly& f, const Rational& a, const Rational& b);
 /// The coefficients a[0 .. n] of p (n + 1 of them; none for 0) as IEEE
 /// doubles, all scaled by one power of 2 (the largest into [1/2, 1)): each
 /// within 2^-52 of itself, relatively, or below 2^-1073 (the ones below

@@ -96,6 +96,9 @@ class Speed {
   /// K_1, ..., K_m and D of the factored form.
   const std::vector<Poly>& cofactors() const { return K_; }
   const Poly& denominator() const { return D_; }
+  /// sum K_k^2 (the branch points' polynomial), computed on the first call
+  /// (thread-safe; copies share it).
+  const Poly& cofactor_square_sum() const;
   /// The local expansions of the evaluation curve's (see above) component i's
   /// numerator and denominator (copies share the caches this speed's
   /// evaluations fill; equal denominators are one). \pre i < component_count() (std::out_of_range otherwise).
@@ -217,6 +220,8 @@ class Speed {
   struct Lazy {
     std::once_flag once;
     RatFunc squared;
+    std::once_flag sumK2_once;
+    Poly sumK2;
     std::once_flag hints_once;
     std::vector<std::complex<double>> hints_sigma, hints_squared;
     std::once_flag scale_once;
