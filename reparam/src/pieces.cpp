@@ -14,6 +14,7 @@
 #include "uniparam/core/error.hpp"
 #include "uniparam/core/parallel.hpp"
 #include "uniparam/reparam/uniformity.hpp"
+#include "speed_charts.hpp"
 
 namespace uniparam {
 
@@ -267,6 +268,91 @@ std::vector<Breakpoint> critical_breakpoints(const Speed& s) {
   return out;
 }
 
+namespace {
+
+// L = A + B + C, M = B + 2 sqrt(A C), alpha = 1 / (1 + sqrt(C / A)) from r's
+// A, B, C.
+void finish_piece(PieceIntegrals& r, long rel_goal_bits) {
+  const long prec = 2 * rel_goal_bits + 64;
+  arb_add(r.L.get(), r.A.get(), r.B.get(), prec);
+  arb_add(r.L.get(), r.L.get(), r.C.get(), prec);
+  Ball t;
+  arb_mul(t.get(), r.A.get(), r.C.get(), prec);
+  arb_sqrt(t.get(), t.get(), prec);
+  arb_mul_2exp_si(t.get(), t.get(), 1);
+  arb_add(r.M.get(), r.B.get(), t.get(), prec);
+  arb_div(t.get(), r.C.get(), r.A.get(), prec);
+  arb_sqrt(t.get(), t.get(), prec);
+  arb_add_ui(t.get(), t.get(), 1, prec);
+  arb_inv(r.alpha.get(), t.get(), prec);
+}
+
+// A, B, C of the piece [a, b] without zeros at its ends (piece_integrals)
+// span by span in the charts: f_k(t) dt = sigma^2(t) (b - a) w_k(t~) dt
+// with sigma^2 dt = sigma_phi(u)^2 / |phi'(u)| du and t = phi(u). The
+// integrands are >= 0, so the spans' relative accuracies carry to the sums.
+std::vector<Ball> chart_piece_integrals(const SpeedCharts& ch, const RealAlgebraic& a, const RealAlgebraic& b,
+                                        long rel_goal_bits, long max_prec) {
+  std::vector<Ball> total(3, Ball(0));
+  PieceEnds ends(a, b);
+  for (const SpeedCharts::Span& sp : ch.spans(a, b)) {
+    const SpeedChart& c = ch.charts[sp.chart];
+    // v = sigma_phi^2 w0 (b - a) and, with d the chart's denominator,
+    // X = d t~ and Y = d (1 - t~) (SpeedChart::offset: polynomials in u,
+    // where t~ has the chart's pole next to an end): f_k = v Y^2, 2 v X Y, v X^2.
+    Integrand raw = [&c, &ends](acb_ptr out, const acb_t z, bool, long prec) {
+      acb_t ta, dt, x, y, v;
+      acb_init(ta);
+      acb_init(dt);
+      acb_init(x);
+      acb_init(y);
+      acb_init(v);
+      ends.get(ta, dt, prec);
+      c.speed.eval_squared(v, z, prec);
+      arb_mul(acb_realref(y), c.w0(prec).get(), acb_realref(dt), prec);
+      acb_mul_arb(v, v, acb_realref(y), prec);
+      c.offset(x, z, acb_realref(ta), prec);
+      acb_div(x, x, dt, prec);
+      c.offset(y, z, ends.b(prec).get(), prec);
+      acb_div(y, y, dt, prec);
+      acb_neg(y, y);
+      acb_mul(out, y, y, prec);
+      acb_mul(out, out, v, prec);
+      acb_mul(out + 1, x, y, prec);
+      acb_mul_2exp_si(out + 1, out + 1, 1);
+      acb_mul(out + 1, out + 1, v, prec);
+      acb_mul(out + 2, x, x, prec);
+      acb_mul(out + 2, out + 2, v, prec);
+      acb_clear(ta);
+      acb_clear(dt);
+      acb_clear(x);
+      acb_clear(y);
+      acb_clear(v);
+    };
+    const long scale_bits = speed_scale_bits(c.speed);
+    PieceEnds local(sp.u0, sp.u1);
+    const std::vector<long> exps = piece_scale_exponents(raw, 3, local, scale_bits, speed_coefficient_bits(c.speed));
+    Integrand f = [&raw, &exps](acb_ptr out, const acb_t z, bool analytic, long prec) {
+      raw(out, z, analytic, prec);
+      for (std::size_t k = 0; k < 3; ++k) acb_mul_2exp_si(out + k, out + k, -exps[k]);
+    };
+    QuadratureOptions qo;
+    qo.rel_goal_bits = rel_goal_bits;
+    qo.max_prec = max_prec;
+    qo.scale_bits = scale_bits;
+    qo.what = "the piece integrals A, B, C";
+    qo.singularity_hints = c.speed.singularity_hints(true);
+    std::vector<Ball> abc = integrate_many(f, 3, sp.u0, sp.u1, qo);
+    for (std::size_t k = 0; k < 3; ++k) {
+      arb_mul_2exp_si(abc[k].get(), abc[k].get(), exps[k]);
+      arb_add(total[k].get(), total[k].get(), abc[k].get(), 2 * rel_goal_bits + 64);
+    }
+  }
+  return total;
+}
+
+}  // namespace
+
 PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakpoint& b, long rel_goal_bits,
                                long max_prec) {
   if (a.multiplicity > 0 && b.multiplicity > 0)
@@ -280,6 +366,17 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
   const ZeroSide side = a.multiplicity > 0 ? ZeroSide::Left : b.multiplicity > 0 ? ZeroSide::Right : ZeroSide::None;
   const int mu = side == ZeroSide::Left ? a.multiplicity : side == ZeroSide::Right ? b.multiplicity : 0;
   const SpeedZero zero = side == ZeroSide::Left ? a.zero() : side == ZeroSide::Right ? b.zero() : SpeedZero{a.t, 0};
+  // A speed with narrow features inside (0, 1): span by span in its
+  // parts' charts (speed_charts.hpp).
+  if (side == ZeroSide::None)
+    if (const SpeedCharts* ch = s.charts()) {
+      std::vector<Ball> abc = chart_piece_integrals(*ch, a.t, b.t, rel_goal_bits, max_prec);
+      r.A = std::move(abc[0]);
+      r.B = std::move(abc[1]);
+      r.C = std::move(abc[2]);
+      finish_piece(r, rel_goal_bits);
+      return r;
+    }
 
   // f_k(t) = sigma^2 rho w_k(s~): k = 0, 1, 2 for (1-s~)^2, 2 s~(1-s~), s~^2,
   // the three in one quadrature (one evaluation of the speed per point).
@@ -417,19 +514,7 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
     r.square = std::move(abc[3]);
     r.square_bits = rel_goal_bits;
   }
-  const long prec = 2 * rel_goal_bits + 64;
-  arb_add(r.L.get(), r.A.get(), r.B.get(), prec);
-  arb_add(r.L.get(), r.L.get(), r.C.get(), prec);
-  // M = B + 2 sqrt(A C), alpha = 1 / (1 + sqrt(C / A))
-  Ball t;
-  arb_mul(t.get(), r.A.get(), r.C.get(), prec);
-  arb_sqrt(t.get(), t.get(), prec);
-  arb_mul_2exp_si(t.get(), t.get(), 1);
-  arb_add(r.M.get(), r.B.get(), t.get(), prec);
-  arb_div(t.get(), r.C.get(), r.A.get(), prec);
-  arb_sqrt(t.get(), t.get(), prec);
-  arb_add_ui(t.get(), t.get(), 1, prec);
-  arb_inv(r.alpha.get(), t.get(), prec);
+  finish_piece(r, rel_goal_bits);
   return r;
 }
 

@@ -206,14 +206,17 @@ void append_features(const Poly& P, std::vector<Feature>& out) {
 
 }  // namespace
 
-std::optional<PeakSplit> peak_split(const Speed& s) {
-  if (s.identically_zero()) return std::nullopt;
-  // The gate first, from the degrees alone (deg sum K^2 <= 2 max deg K_k):
-  // sum K^2 is built only for a curve that is searched.
+bool peak_split_searched(const Speed& s) {
+  if (s.identically_zero()) return false;
+  // From the degrees alone (deg sum K^2 <= 2 max deg K_k): sum K^2 is built
+  // only for a curve that is searched.
   long max_degree = std::max(s.g().degree(), s.denominator().degree());
   for (const Poly& k : s.cofactors()) max_degree = std::max(max_degree, 2 * k.degree());
-  if (speed_coefficient_bits(s) < kPeakCoefficientBitsPerDegree * max_degree + kPeakCoefficientBits)
-    return std::nullopt;
+  return speed_coefficient_bits(s) >= kPeakCoefficientBitsPerDegree * max_degree + kPeakCoefficientBits;
+}
+
+std::optional<PeakSplit> peak_split(const Speed& s) {
+  if (!peak_split_searched(s)) return std::nullopt;
   const Poly* polys[] = {&s.g(), &s.denominator(), &s.cofactor_square_sum()};
   std::vector<Feature> found;
   for (const Poly* P : polys) append_features(*P, found);

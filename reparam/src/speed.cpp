@@ -15,6 +15,7 @@
 #include "uniparam/algebra/real_roots.hpp"
 #include "uniparam/core/error.hpp"
 #include "uniparam/core/parallel.hpp"
+#include "uniparam/reparam/scaling.hpp"
 
 namespace uniparam {
 
@@ -196,6 +197,8 @@ Speed::Speed(const Curve& c, SpeedKind kind) : kind_(kind) {
   for (const auto* v : {&Y_b_, &K_b_, &g_h_})
     for (const LocalPoly& q : *v) disk_form_ = disk_form_ && q.has_disk_form();
   if (Y_b_.empty()) disk_form_ = disk_form_ && W_b_.has_disk_form();
+  // Kept for the charts (charts(), speed_charts.cpp), where they may exist.
+  if (peak_split_searched(*this)) lazy_->curve = std::make_shared<const Curve>(c);
 }
 
 const RatFunc& Speed::squared() const {

@@ -79,6 +79,11 @@ std::optional<BalancedCurve> balance(const Curve& p, const Speed& s);
 constexpr long kPeakCoefficientBitsPerDegree = 4;
 constexpr long kPeakCoefficientBits = 64;
 
+/// Whether peak_split looks for features in s at all: where the
+/// coefficients reach kPeakCoefficientBitsPerDegree * d + kPeakCoefficientBits
+/// bits (from the degrees and sizes alone; builds nothing).
+bool peak_split_searched(const Speed& s);
+
 /// Knots 0 = k_0 < ... < k_m = 1 (m >= 2) for a speed's integrals part by
 /// part, and which knots hold a concentration of sigma (feature[i] for
 /// knots[i]): each part has one at one end at most.

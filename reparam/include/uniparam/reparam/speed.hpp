@@ -28,6 +28,7 @@ struct SpeedDD;  // Speed::eval_dd's double-word components (speed_detail.hpp)
 }  // namespace detail
 class AcbBox;      // an RAII acb_t (speed_enclosure.hpp)
 class CurveModel;  // how the evaluation curve evaluates (curve_model.hpp)
+struct SpeedCharts;  // the exact charts of a speed's parts (speed_charts.hpp)
 namespace speed_formula {
 enum class Form;  // the speed's shape (speed_formula.hpp)
 }  // namespace speed_formula
@@ -213,6 +214,22 @@ class Speed {
   /// share it); 0 for an identically zero speed.
   long scale_bits() const;
 
+  /// Where sigma has narrow features inside (0, 1) (peak_split in
+  /// scaling.hpp: a peak of width 1/(2C) at 1/2 in the angular speed of
+  /// (t, C (t - 1/2)^2) for a huge C): the parts of [0, 1] between the split's
+  /// knots, each with the exact chart t = phi(u) of its restriction, run from
+  /// its feature's end and balanced where balance() does, and that curve's
+  /// speed (speed_charts.hpp, internal). The integrals of sigma and of
+  /// sigma^2 times a weight are taken part by part in the charts, at a cost
+  /// independent of the features' widths. Null where the speed has no such
+  /// features (every curve below peak_split's coefficient size, at once).
+  /// The split is found on the first call (thread-safe; copies share it);
+  /// each copy of the speed makes its own copies of the parts' speeds on its
+  /// first call, so copies may be used on different threads as before.
+  /// The charts' own speeds have no charts.
+  /// \throws BudgetExceeded from the root isolation's budgets only.
+  const SpeedCharts* charts() const;
+
  private:
   // piece_signs() at one rational point inside (a, b), not remembered.
   PieceSigns piece_signs_at(const RealAlgebraic& a, const RealAlgebraic& b) const;
@@ -226,11 +243,28 @@ class Speed {
     std::vector<std::complex<double>> hints_sigma, hints_squared;
     std::once_flag scale_once;
     long scale_bits = 0;
+    // the curve, kept where peak_split searches it; the charts' prototypes
+    std::shared_ptr<const Curve> curve;
+    std::once_flag charts_once;
+    std::shared_ptr<const SpeedCharts> charts;
     std::mutex signs_mutex;  // guards signs
     // piece_signs() of the interval between zeros i - 1 and i, once known
     std::vector<std::pair<bool, PieceSigns>> signs;
   };
   std::shared_ptr<Lazy> lazy_;  // squared(), shared by copies
+  // This object's own copy of the charts' prototypes (their speeds are used
+  // by one thread at a time, as this one): a copy of the Speed starts empty.
+  struct OwnCharts {
+    OwnCharts() = default;
+    OwnCharts(const OwnCharts&) noexcept {}
+    OwnCharts& operator=(const OwnCharts&) noexcept {
+      charts.reset();
+      return *this;
+    }
+    std::shared_ptr<const SpeedCharts> charts;
+  };
+  mutable OwnCharts own_charts_;
+  friend struct SpeedCharts;
   bool zero_ = false;
   std::vector<SpeedZero> zeros_;
   Poly g_;

@@ -1,0 +1,128 @@
+#include "speed_charts.hpp"
+
+#include <algorithm>
+#include <mutex>
+#include <utility>
+
+#include "uniparam/core/error.hpp"
+#include "uniparam/core/poly.hpp"
+
+namespace uniparam {
+
+Rational SpeedChart::length() const {
+  const Rational h = k1 - k0;
+  return h.sign() < 0 ? -h : h;
+}
+
+RealAlgebraic SpeedChart::local(const RealAlgebraic& t) const {
+  // x = (t - k0) / (k1 - k0) in [0, 1], then u = m^-1(x)
+  const RealAlgebraic x = [&]() {
+    if (t.is_rational()) return RealAlgebraic((t.rational() - k0) / (k1 - k0));
+    // t is irrational, so strictly between k0 and k1: its interval is
+    // refined into that part, then mapped (increasing or not).
+    const Rational lo = std::min(k0, k1), hi = std::max(k0, k1);
+    for (long bits = 64; !(lo <= t.lo() && t.hi() <= hi); bits *= 2) t.refine(bits);
+    Rational xl = (t.lo() - k0) / (k1 - k0), xh = (t.hi() - k0) / (k1 - k0);
+    if (xh < xl) std::swap(xl, xh);
+    return RealAlgebraic(mapped_to_unit_interval(t.poly(), k0, k1), xl, xh);
+  }();
+  return bal ? balance_unmap(*bal, x) : x;
+}
+
+namespace {
+
+const Integer& chart_a(const SpeedChart& c) {
+  static const Integer one(1);
+  return c.bal ? c.bal->a : one;
+}
+const Integer& chart_b(const SpeedChart& c) {
+  static const Integer one(1);
+  return c.bal ? c.bal->b : one;
+}
+
+}  // namespace
+
+void SpeedChart::denominator(acb_t d, const acb_t z, long prec) const {
+  if (!bal) {
+    acb_one(d);
+    return;
+  }
+  acb_t t;
+  acb_init(t);
+  acb_neg(d, z);
+  acb_add_si(d, d, 1, prec);
+  acb_mul_fmpz(d, d, bal->b.get(), prec);
+  acb_mul_fmpz(t, z, bal->a.get(), prec);
+  acb_add(d, d, t, prec);
+  acb_clear(t);
+}
+
+Ball SpeedChart::w0(long prec) const {
+  const Rational w = Rational(1) / (Rational(chart_a(*this) * chart_b(*this)) * length());
+  return Ball(w, prec);
+}
+
+void SpeedChart::offset(acb_t out, const acb_t z, const arb_t x, long prec) const {
+  arb_t k;
+  acb_t t;
+  arb_init(k);
+  acb_init(t);
+  // (k1 - x) a z
+  arb_set_fmpq(k, k1.get(), prec);
+  arb_sub(k, k, x, prec);
+  arb_mul_fmpz(k, k, chart_a(*this).get(), prec);
+  acb_mul_arb(out, z, k, prec);
+  // (k0 - x) b (1 - z)
+  arb_set_fmpq(k, k0.get(), prec);
+  arb_sub(k, k, x, prec);
+  arb_mul_fmpz(k, k, chart_b(*this).get(), prec);
+  acb_neg(t, z);
+  acb_add_si(t, t, 1, prec);
+  acb_mul_arb(t, t, k, prec);
+  acb_add(out, out, t, prec);
+  arb_clear(k);
+  acb_clear(t);
+}
+
+std::vector<SpeedCharts::Span> SpeedCharts::spans(const RealAlgebraic& a, const RealAlgebraic& b) const {
+  std::vector<Span> out;
+  for (std::size_t j = 0; j < charts.size(); ++j) {
+    const SpeedChart& c = charts[j];
+    const RealAlgebraic lo(std::min(c.k0, c.k1)), hi(std::max(c.k0, c.k1));
+    if (!(a < hi && lo < b)) continue;
+    RealAlgebraic u0 = c.local(a < lo ? lo : a), u1 = c.local(hi < b ? hi : b);
+    if (u1 < u0) std::swap(u0, u1);
+    out.push_back(Span{j, std::move(u0), std::move(u1)});
+  }
+  return out;
+}
+
+std::shared_ptr<const SpeedCharts> SpeedCharts::build(const Speed& s, const Curve& c) {
+  const std::optional<PeakSplit> split = peak_split(s);
+  if (!split) return nullptr;
+  auto out = std::make_shared<SpeedCharts>();
+  const std::vector<Rational>& k = split->knots;
+  for (std::size_t j = 0; j + 1 < k.size(); ++j) {
+    // from the end with the feature (the power basis is accurate next to 0)
+    const bool backwards = split->feature[j + 1] && !split->feature[j];
+    const Rational& k0 = backwards ? k[j + 1] : k[j];
+    const Rational& k1 = backwards ? k[j] : k[j + 1];
+    const Curve part = restrict_to(c, k0, k1);
+    Speed sp(part, s.kind());
+    std::optional<BalancedCurve> bal = balance(part, sp);
+    SpeedChart chart{k0, k1, bal, bal ? Speed(bal->q, s.kind()) : std::move(sp)};
+    chart.speed.lazy_->curve.reset();  // no charts of its own
+    out->charts.push_back(std::move(chart));
+  }
+  return out;
+}
+
+const SpeedCharts* Speed::charts() const {
+  if (!lazy_->curve) return nullptr;
+  std::call_once(lazy_->charts_once, [this] { lazy_->charts = SpeedCharts::build(*this, *lazy_->curve); });
+  if (!lazy_->charts) return nullptr;
+  if (!own_charts_.charts) own_charts_.charts = std::make_shared<const SpeedCharts>(*lazy_->charts);
+  return own_charts_.charts.get();
+}
+
+}  // namespace uniparam

@@ -1,0 +1,73 @@
+// reparam/src/speed_charts.hpp -- INTERNAL: the exact charts of the parts of
+// [0, 1] a speed with narrow interior features is integrated over
+// (Speed::charts, peak_split in scaling.hpp), and the spans of an interval
+// in them.
+#pragma once
+
+#include <acb.h>
+
+#include <cstddef>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "uniparam/algebra/algebraic.hpp"
+#include "uniparam/core/number.hpp"
+#include "uniparam/reparam/curve.hpp"
+#include "uniparam/reparam/scaling.hpp"
+#include "uniparam/reparam/speed.hpp"
+
+namespace uniparam {
+
+/// One part [min(k0, k1), max(k0, k1)] of [0, 1] and its chart
+/// t = phi(u) = k0 + (k1 - k0) m(u), u in [0, 1], with m the balancing map
+/// of scaling.hpp (m(u) = a u / (a u + b (1 - u))) or the identity:
+/// phi(0) = k0 is the end with the part's feature, where the power basis of
+/// p o phi is accurate. For either speed, sigma_phi(u) = sigma(phi(u))
+/// |phi'(u)|, so
+///     int sigma dt   = int sigma_phi du,
+///     int sigma^2 dt = int sigma_phi(u)^2 / |phi'(u)| du,
+///     1 / |phi'(u)| = (a u + b (1 - u))^2 / (a b |k1 - k0|)
+/// over corresponding intervals, exactly.
+struct SpeedChart {
+  Rational k0, k1;
+  std::optional<BalancedCurve> bal;  ///< m; the identity where empty
+  Speed speed;                       ///< sigma_phi: the speed of p o phi (no charts of its own)
+
+  /// |k1 - k0|.
+  Rational length() const;
+  /// phi^-1(t) exactly. \pre t lies between k0 and k1.
+  RealAlgebraic local(const RealAlgebraic& t) const;
+  /// For the complex ball z, with m(z) = a z / d(z) (a = b = 1 for the
+  /// identity): d(z) = a z + b (1 - z), and 1 / |phi'(z)| = d(z)^2 w0
+  /// with w0 = 1 / (a b |k1 - k0|) (an exact rational, here a ball).
+  void denominator(acb_t d, const acb_t z, long prec) const;
+  Ball w0(long prec) const;
+  /// d(z) (phi(z) - x) = (k1 - x) a z + (k0 - x) b (1 - z) for the real ball
+  /// x: polynomial in z (no pole near the part, unlike phi), and a sum of
+  /// two terms of one sign for x outside the part; for x inside, its error
+  /// is at most about 2^-prec d(z) on [0, 1], as that of phi(z) - x would
+  /// be, times d(z).
+  void offset(acb_t out, const acb_t z, const arb_t x, long prec) const;
+};
+
+struct SpeedCharts {
+  /// The parts in the order of t, covering [0, 1].
+  std::vector<SpeedChart> charts;
+
+  /// A piece of [a, b] inside one part, in that part's coordinate:
+  /// phi maps [u0, u1] (u0 < u1) onto it.
+  struct Span {
+    std::size_t chart;
+    RealAlgebraic u0, u1;
+  };
+  /// [a, b] cut at the parts' ends strictly inside, in order of t.
+  /// \pre 0 <= a < b <= 1.
+  std::vector<Span> spans(const RealAlgebraic& a, const RealAlgebraic& b) const;
+
+  /// The charts of the speed s of the curve c from peak_split(s); null where
+  /// that is empty. The charts' speeds are marked to have no charts.
+  static std::shared_ptr<const SpeedCharts> build(const Speed& s, const Curve& c);
+};
+
+}  // namespace uniparam
