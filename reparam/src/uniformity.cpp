@@ -475,66 +475,10 @@ UniformityResult uniformity(const Curve& c, SpeedKind kind, const Options& opt) 
   // speed is spread over [0, 1] instead of within 1 / lambda of one end.
   if (!s.identically_zero()) {
     if (const std::optional<BalancedCurve> bal = balance(c, s)) return uniformity_balanced(s, *bal, Speed(bal->q, kind), opt);
-    // Mass at narrow features inside (0, 1) (a huge C in (t, C (t -
-    // 1/2)^2)), or at both ends: part by part, each balanced on its own.
-    if (const std::optional<PeakSplit> split = peak_split(s)) return uniformity_by_parts(s, c, *split, opt);
   }
+  // Mass at narrow features inside (0, 1) (a huge C in (t, C (t - 1/2)^2)),
+  // or at both ends: the integrals run part by part in s's charts.
   return uniformity_of(s, s, nullptr, opt);
-}
-
-UniformityResult uniformity_by_parts(const Speed& s, const Curve& c, const PeakSplit& split, const Options& opt) {
-  const std::vector<Rational>& knots = split.knots;
-  validate(opt);
-  UniformityResult r;
-  if (exact_parts(s, r)) return r;
-  check_digits_fit(opt);
-  const std::size_t m = knots.size() - 1;
-  // Part j is p restricted to [k_j, k_(j+1)], of length h_j, whose speed is
-  // h_j times p's: int sigma = sum mu_j, int sigma^2 = sum I_j / h_j. Each
-  // part to two more digits, so the sums meet opt.digits; more where many
-  // parts' absolute errors add up (mu < 1).
-  struct Part {
-    std::optional<Speed> s, q_speed;
-    std::optional<BalancedCurve> bal;
-    UniformityResult result;
-  };
-  std::vector<Part> parts(m);
-  for (int pass = 0; pass < 3; ++pass) {
-    Options po = opt;
-    po.digits = std::min(opt.digits + 2 + 10 * pass, 10000L);
-    parallel_for(m, worker_count(), [&](std::size_t, std::size_t j) {
-      Part& part = parts[j];
-      if (!part.s) {
-        // From the end with the feature: a polynomial's power basis is
-        // accurate next to 0, where a feature of width 2^-w then needs no
-        // more than w extra bits.
-        const bool backwards = split.feature[j + 1] && !split.feature[j];
-        const Curve pj = backwards ? restrict_to(c, knots[j + 1], knots[j]) : restrict_to(c, knots[j], knots[j + 1]);
-        part.s.emplace(pj, s.kind());
-        part.bal = balance(pj, *part.s);
-        if (part.bal) part.q_speed.emplace(part.bal->q, s.kind());
-      }
-      part.result = part.bal ? uniformity_balanced(*part.s, *part.bal, *part.q_speed, po)
-                             : uniformity_of(*part.s, *part.s, nullptr, po);
-    });
-    const long prec = 2 * digits_to_bits(po.digits) + 64;
-    r.mu = Ball(0);
-    r.mean_square = Ball(0);
-    for (std::size_t j = 0; j < m; ++j) {
-      arb_add(r.mu.get(), r.mu.get(), parts[j].result.mu.get(), prec);
-      Ball h(knots[j + 1] - knots[j], prec), quotient;
-      arb_div(quotient.get(), parts[j].result.mean_square.get(), h.get(), prec);
-      arb_add(r.mean_square.get(), r.mean_square.get(), quotient.get(), prec);
-    }
-    arb_sqr(r.u.get(), r.mu.get(), prec);
-    arb_div(r.u.get(), r.u.get(), r.mean_square.get(), prec);
-    if (r.mu.meets_digits(opt.digits + 1) && r.mean_square.meets_digits(opt.digits + 1) &&
-        r.u.meets_digits(opt.digits + 1))
-      return r;
-  }
-  throw BudgetExceeded("could not certify the uniformity to " + std::to_string(opt.digits) +
-                       " digits from its parts' integrals within " + std::to_string(opt.max_prec) +
-                       " bits of working precision (raise it with --max-prec)");
 }
 
 UniformityResult uniformity_balanced(const Speed& s, const BalancedCurve& bal, const Speed& q_speed,

@@ -1,6 +1,7 @@
-// Speeds with narrow features inside (0, 1): peak_split's parts, each
-// balanced on its own, give the uniformity at a cost independent of the
-// features' width, and the same certified values as the direct integrals.
+// Speeds with narrow features inside (0, 1): peak_split's parts, each in
+// its exact balanced chart (Speed::charts), give the integrals of the
+// uniformity and of the methods at a cost independent of the features'
+// width, and the same certified values as the direct quadratures.
 #include <gtest/gtest.h>
 
 #include <arb.h>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "support/reference.hpp"
+#include "uniparam/algebra/quadrature.hpp"
 #include "uniparam/core/budget.hpp"
 #include "uniparam/reparam/all.hpp"
 #include "uniparam/reparam/scaling.hpp"
@@ -63,54 +65,162 @@ TEST(PeakSplit, OrdinaryCurvesAreNotSplit) {
       EXPECT_FALSE(peak_split(Speed(Curve::parse(c), kind)).has_value()) << c;
 }
 
-// (t, C (t - c)^2) for random centres c in (0, 1) and 40-digit C: a peak
-// of width 1/(2C) at c, found and split at; the uniformity part by part
-// overlaps the direct integrals (uniformity(Speed): no split, no balance),
-// and mu the closed form atan(2 C c) + atan(2 C (1 - c)).
-TEST(PeakSplit, PartsAgreeWithTheDirectIntegrals) {
+namespace {
+
+// The oracle: quadratures on p's own parameter, without the charts.
+// k = 0: sigma (sigma^2 > 0 on [a, b]); 1: sigma^2; 2, 3, 4: piece_integrals'
+// A, B, C, sigma^2 (b - a) w(t~) with w = (1 - t~)^2, 2 t~ (1 - t~), t~^2.
+Ball direct_integral(const Speed& s, int k, const RealAlgebraic& a, const RealAlgebraic& b) {
+  Integrand f = [&s, k, &a, &b](acb_t out, const acb_t z, bool analytic, long prec) {
+    s.eval_squared(out, z, prec);
+    if (k == 0) {
+      acb_sqrt_analytic(out, out, analytic, prec);
+      return;
+    }
+    if (k == 1) return;
+    acb_t ta, dt, x;
+    acb_init(ta);
+    acb_init(dt);
+    acb_init(x);
+    acb_set_arb(ta, a.to_ball(prec).get());
+    acb_set_arb(dt, b.to_ball(prec).get());
+    acb_sub(dt, dt, ta, prec);
+    acb_sub(x, z, ta, prec);
+    acb_div(x, x, dt, prec);  // t~
+    acb_mul(out, out, dt, prec);
+    acb_sub_ui(ta, x, 1, prec);
+    acb_neg(ta, ta);  // 1 - t~
+    if (k == 2) acb_mul(x, ta, ta, prec);
+    else if (k == 3) acb_mul(x, x, ta, prec), acb_mul_2exp_si(x, x, 1);
+    else acb_mul(x, x, x, prec);
+    acb_mul(out, out, x, prec);
+    acb_clear(ta);
+    acb_clear(dt);
+    acb_clear(x);
+  };
+  QuadratureOptions qo;
+  qo.rel_goal_bits = 80;
+  qo.max_prec = 1 << 14;
+  return integrate(f, a, b, qo);
+}
+
+}  // namespace
+
+// (t, C (t - c)^2 [+ t^3]) for random centres c in (0, 1) and 30-digit C: a
+// peak of width about 1/(2C) at c. The speed has charts, a feature knot on
+// the peak's own scale, and its integrals over random intervals (rational
+// and algebraic ends, across the peak or beside it) taken in the charts
+// overlap the direct quadratures: sigma, sigma^2 and a piece's A, B, C.
+TEST(SpeedCharts, IntegralsAgreeWithDirectQuadrature) {
   TimeBudget budget(300);
-  std::mt19937 rng(20261203);
-  for (int trial = 0; trial < 6; ++trial) {
-    const std::string C = random_digits(rng, 40);
+  std::mt19937 rng(20261204);
+  for (int trial = 0; trial < 4; ++trial) {
+    const std::string C = random_digits(rng, 30);
     const long den = 3 + static_cast<long>(rng() % 17);
     const long num = 1 + static_cast<long>(rng() % static_cast<unsigned long>(den - 1));
-    const std::string centre = std::to_string(num) + "/" + std::to_string(den);
+    const Rational c(num, den);
     const std::string extra = trial % 2 ? " + t^3" : "";
-    const Curve p = Curve::parse("(t, " + C + "*(t - " + centre + ")^2" + extra + ")");
+    const Curve p = Curve::parse("(t, " + C + "*(t - " + c.str() + ")^2" + extra + ")");
     SCOPED_TRACE(p.str());
+    // ends: [0, 1]; across c from sqrt(q) (algebraic) or a rational; beside c
+    const long q = 1 + static_cast<long>(rng() % 97);
+    const RealAlgebraic root(Poly(std::vector<Integer>{Integer(-q), Integer(0), Integer(100)}), Rational(0),
+                             Rational(1));  // sqrt(q) / 10
+    const Rational below = c * Rational(1 + static_cast<long>(rng() % 9), 10);
+    const std::vector<std::pair<RealAlgebraic, RealAlgebraic>> intervals{
+        {RealAlgebraic(0), RealAlgebraic(1)},
+        {root < RealAlgebraic(c) ? root : RealAlgebraic(below), root < RealAlgebraic(c) ? RealAlgebraic(1) : root},
+        {RealAlgebraic(below / Rational(2)), RealAlgebraic(below)}};
     for (SpeedKind kind : {SpeedKind::Angular, SpeedKind::Parametric}) {
       const Speed s(p, kind);
+      ASSERT_NE(s.charts(), nullptr);
       const std::optional<PeakSplit> split = peak_split(s);
       ASSERT_TRUE(split.has_value());
-      // A feature knot within 2^-100 of the centre (the peak's width is
-      // about 2^-133): the part's end is on the peak's own scale.
+      // A feature knot within 2^-70 of the centre (the peak's width is
+      // about 2^-100): the part's end is on the peak's own scale.
       bool at_centre = false;
       for (std::size_t i = 0; i < split->knots.size(); ++i) {
-        const Rational d = split->knots[i] - Rational(num, den);
-        at_centre = at_centre || (split->feature[i] && d <= pow2(-100) && Rational(0) - d <= pow2(-100));
+        const Rational d = split->knots[i] - c;
+        at_centre = at_centre || (split->feature[i] && d <= pow2(-70) && Rational(0) - d <= pow2(-70));
       }
       EXPECT_TRUE(at_centre) << "no feature at the peak";
-      Options o;
-      o.digits = 20;
-      const UniformityResult parts = uniformity(p, kind, o);
-      const UniformityResult direct = uniformity(s, o);
-      EXPECT_TRUE(arb_overlaps(parts.mu.get(), direct.mu.get())) << parts.mu.str(25) << " vs " << direct.mu.str(25);
-      EXPECT_TRUE(arb_overlaps(parts.mean_square.get(), direct.mean_square.get()))
-          << parts.mean_square.str(25) << " vs " << direct.mean_square.str(25);
-      EXPECT_TRUE(arb_overlaps(parts.u.get(), direct.u.get())) << parts.u.str(25) << " vs " << direct.u.str(25);
-      if (kind == SpeedKind::Angular && extra.empty()) {
-        Ball c2, a, b, mu;
-        arb_set_str(c2.get(), C.c_str(), 512);
-        arb_mul_2exp_si(c2.get(), c2.get(), 1);
-        arb_mul(a.get(), c2.get(), Ball(Rational(num, den), 512).get(), 512);
-        arb_mul(b.get(), c2.get(), Ball(Rational(den - num, den), 512).get(), 512);
-        arb_atan(a.get(), a.get(), 512);
-        arb_atan(b.get(), b.get(), 512);
-        arb_add(mu.get(), a.get(), b.get(), 512);
-        EXPECT_TRUE(arb_overlaps(parts.mu.get(), mu.get())) << parts.mu.str(25) << " vs " << mu.str(25);
+      for (const auto& [a, b] : intervals) {
+        SCOPED_TRACE("[" + a.decimal(10) + ", " + b.decimal(10) + "] " + to_string(kind));
+        const Ball mu = integrate_speed(s, a, b, 64, 1 << 14);
+        const Ball sq = integrate_speed_squared(s, a, b, 64, 1 << 14);
+        const PieceIntegrals pi = piece_integrals(s, Breakpoint{a}, Breakpoint{b}, 64, 1 << 14);
+        const Ball* got[] = {&mu, &sq, &pi.A, &pi.B, &pi.C};
+        for (int k = 0; k < 5; ++k) {
+          const Ball want = direct_integral(s, k, a, b);
+          EXPECT_TRUE(arb_overlaps(got[k]->get(), want.get())) << k << ": " << got[k]->str(25) << " vs " << want.str(25);
+          EXPECT_TRUE(got[k]->meets_digits(15)) << k << ": " << got[k]->str(25);
+        }
       }
     }
   }
+}
+
+// The uniformity of such a peak at c: mu is the closed form
+// atan(2 C c) + atan(2 C (1 - c)) for the angular speed.
+TEST(SpeedCharts, UniformityOfAPeakMatchesTheClosedForm) {
+  TimeBudget budget(120);
+  std::mt19937 rng(20261203);
+  for (int trial = 0; trial < 4; ++trial) {
+    const std::string C = random_digits(rng, 40);
+    const long den = 3 + static_cast<long>(rng() % 17);
+    const long num = 1 + static_cast<long>(rng() % static_cast<unsigned long>(den - 1));
+    const Curve p = Curve::parse("(t, " + C + "*(t - " + Rational(num, den).str() + ")^2)");
+    SCOPED_TRACE(p.str());
+    Options o;
+    o.digits = 20;
+    const UniformityResult r = uniformity(p, SpeedKind::Angular, o);
+    Ball c2, a, b, mu;
+    arb_set_str(c2.get(), C.c_str(), 512);
+    arb_mul_2exp_si(c2.get(), c2.get(), 1);
+    arb_mul(a.get(), c2.get(), Ball(Rational(num, den), 512).get(), 512);
+    arb_mul(b.get(), c2.get(), Ball(Rational(den - num, den), 512).get(), 512);
+    arb_atan(a.get(), a.get(), 512);
+    arb_atan(b.get(), b.get(), 512);
+    arb_add(mu.get(), a.get(), b.get(), 512);
+    EXPECT_TRUE(arb_overlaps(r.mu.get(), mu.get())) << r.mu.str(25) << " vs " << mu.str(25);
+    EXPECT_TRUE(r.u.meets_digits(20));
+  }
+}
+
+// The methods on (t, C (t - 1/2)^2) with a 1000-digit C (a peak of width
+// 10^-1000 at 1/2), within a TimeBudget the integrals across the peak
+// cannot meet: radical's mu is 2 atan(C), its pieces symmetric about 1/2
+// (A and C swapped), and u(p) the parabola's closed form (as in the test
+// below) for radical and the optimised three-piece C0 method, whose u(p o r)
+// is no lower than u(p).
+TEST(SpeedCharts, MethodsOnAHugeInteriorPeakFinish) {
+  TimeBudget budget(30);
+  const std::string c_text(1000, '3');
+  const Curve p = Curve::parse("(t, " + c_text + "*(t - 1/2)^2)");
+  const long prec = 8000;
+  Ball half_c;
+  arb_set_str(half_c.get(), c_text.c_str(), prec);
+  arb_mul_2exp_si(half_c.get(), half_c.get(), -1);
+  const test_support::ParabolaAngular half = test_support::parabola_angular(half_c, prec);
+  Ball mu;
+  arb_mul_2exp_si(mu.get(), half.mu.get(), 1);
+  Options o;
+  o.digits = 20;
+  const RadicalResult r = radical(p, SpeedKind::Angular, o);
+  EXPECT_TRUE(arb_overlaps(r.mu.get(), mu.get())) << r.mu.str(25) << " vs " << mu.str(25);
+  EXPECT_TRUE(arb_overlaps(r.u_before.get(), half.u.get())) << r.u_before.str(25) << " vs " << half.u.str(25);
+  // sigma(t) = sigma(1 - t): pieces symmetric about 1/2, A and C swapped
+  const std::size_t n = r.integrals.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    Ball sum;
+    arb_add(sum.get(), r.T[i].t.to_ball(128).get(), r.T[n - i].t.to_ball(128).get(), 128);
+    EXPECT_TRUE(arb_contains_si(sum.get(), 1)) << r.T[i].t.str();
+    EXPECT_TRUE(arb_overlaps(r.integrals[i].A.get(), r.integrals[n - 1 - i].C.get())) << i;
+    EXPECT_TRUE(arb_overlaps(r.integrals[i].B.get(), r.integrals[n - 1 - i].B.get())) << i;
+  }
+  const MoebiusResult m = reparam_c0(p, SpeedKind::Angular, 3, o);
+  EXPECT_TRUE(arb_overlaps(m.u_before.get(), half.u.get())) << m.u_before.str(25) << " vs " << half.u.str(25);
+  EXPECT_FALSE(arb_lt(m.u_after.get(), m.u_before.get())) << m.u_after.str(25) << " < " << m.u_before.str(25);
 }
 
 // Must show: (t, C (t - 1/2)^2) with a 2000-digit C, whose angular speed is

@@ -82,16 +82,6 @@ struct BalancedCurve;
 /// uniformity(c, kind, opt); the pairing of s, bal and q_speed is not checked.
 UniformityResult uniformity_balanced(const Speed& s, const BalancedCurve& bal, const Speed& q_speed,
                                      const Options& opt = {});
-struct PeakSplit;
-/// uniformity(c, kind, opt) for a curve c with speed s = Speed(c, kind),
-/// from its integrals part by part over [k_j, k_(j+1)] (peak_split in
-/// scaling.hpp), each part restrict_to(c, ...) from its feature's end and
-/// balanced where balance() does: sigma^2 and the zeros are s's, mu the sum
-/// of the parts' mu, int sigma^2 the sum of the parts' divided by their
-/// lengths. Same contract as uniformity(c, kind, opt).
-/// \pre split's knots strictly increasing from exactly 0 to exactly 1, one
-///      flag per knot (not checked).
-UniformityResult uniformity_by_parts(const Speed& s, const Curve& c, const PeakSplit& split, const Options& opt = {});
 /// mu = int_0^1 sigma alone, split and threaded as in uniformity(), each
 /// part to relative accuracy 2^-rel_goal_bits (so mu too: sigma >= 0). For
 /// callers that get int sigma^2 elsewhere (radical(): from its pieces'
