@@ -287,20 +287,23 @@ void finish_piece(PieceIntegrals& r, long rel_goal_bits) {
   arb_inv(r.alpha.get(), t.get(), prec);
 }
 
-// A, B, C of the piece [a, b] without zeros at its ends (piece_integrals)
-// span by span in the charts: f_k(t) dt = sigma^2(t) (b - a) w_k(t~) dt
+// A, B, C of the piece [a, b] of s without zeros at its ends
+// (piece_integrals) span by span in s's charts: f_k(t) dt = sigma^2(t) (b - a) w_k(t~) dt
 // with sigma^2 dt = sigma_phi(u)^2 / |phi'(u)| du and t = phi(u). The
 // integrands are >= 0, so the spans' relative accuracies carry to the sums.
-std::vector<Ball> chart_piece_integrals(const SpeedCharts& ch, const RealAlgebraic& a, const RealAlgebraic& b,
-                                        long rel_goal_bits, long max_prec) {
+std::vector<Ball> chart_piece_integrals(const Speed& s, const SpeedCharts& ch, const RealAlgebraic& a,
+                                        const RealAlgebraic& b, long rel_goal_bits, long max_prec) {
   std::vector<Ball> total(3, Ball(0));
   PieceEnds ends(a, b);
   for (const SpeedCharts::Span& sp : ch.spans(a, b)) {
     const SpeedChart& c = ch.charts[sp.chart];
+    // the speed integrated: the chart's, or s itself on a plain span
+    const Speed& speed = sp.plain ? s : c.speed;
     // v = sigma_phi^2 w0 (b - a) and, with d the chart's denominator,
     // X = d t~ and Y = d (1 - t~) (SpeedChart::offset: polynomials in u,
-    // where t~ has the chart's pole next to an end): f_k = v Y^2, 2 v X Y, v X^2.
-    Integrand raw = [&c, &ends](acb_ptr out, const acb_t z, bool, long prec) {
+    // where t~ has the chart's pole next to an end): f_k = v Y^2, 2 v X Y,
+    // v X^2. On a plain span: v = sigma^2 (b - a), X = t~, Y = 1 - t~.
+    Integrand raw = [&c, &ends, &speed, plain = sp.plain](acb_ptr out, const acb_t z, bool, long prec) {
       acb_t ta, dt, x, y, v;
       acb_init(ta);
       acb_init(dt);
@@ -308,12 +311,18 @@ std::vector<Ball> chart_piece_integrals(const SpeedCharts& ch, const RealAlgebra
       acb_init(y);
       acb_init(v);
       ends.get(ta, dt, prec);
-      c.speed.eval_squared(v, z, prec);
-      arb_mul(acb_realref(y), c.w0(prec).get(), acb_realref(dt), prec);
-      acb_mul_arb(v, v, acb_realref(y), prec);
-      c.offset(x, z, acb_realref(ta), prec);
+      speed.eval_squared(v, z, prec);
+      if (plain) {
+        acb_mul(v, v, dt, prec);
+        acb_sub(x, z, ta, prec);
+        acb_sub_arb(y, z, ends.b(prec).get(), prec);
+      } else {
+        arb_mul(acb_realref(y), c.w0(prec).get(), acb_realref(dt), prec);
+        acb_mul_arb(v, v, acb_realref(y), prec);
+        c.offset(x, z, acb_realref(ta), prec);
+        c.offset(y, z, ends.b(prec).get(), prec);
+      }
       acb_div(x, x, dt, prec);
-      c.offset(y, z, ends.b(prec).get(), prec);
       acb_div(y, y, dt, prec);
       acb_neg(y, y);
       acb_mul(out, y, y, prec);
@@ -329,9 +338,9 @@ std::vector<Ball> chart_piece_integrals(const SpeedCharts& ch, const RealAlgebra
       acb_clear(y);
       acb_clear(v);
     };
-    const long scale_bits = speed_scale_bits(c.speed);
+    const long scale_bits = speed_scale_bits(speed);
     PieceEnds local(sp.u0, sp.u1);
-    const std::vector<long> exps = piece_scale_exponents(raw, 3, local, scale_bits, speed_coefficient_bits(c.speed));
+    const std::vector<long> exps = piece_scale_exponents(raw, 3, local, scale_bits, speed_coefficient_bits(speed));
     Integrand f = [&raw, &exps](acb_ptr out, const acb_t z, bool analytic, long prec) {
       raw(out, z, analytic, prec);
       for (std::size_t k = 0; k < 3; ++k) acb_mul_2exp_si(out + k, out + k, -exps[k]);
@@ -341,7 +350,7 @@ std::vector<Ball> chart_piece_integrals(const SpeedCharts& ch, const RealAlgebra
     qo.max_prec = max_prec;
     qo.scale_bits = scale_bits;
     qo.what = "the piece integrals A, B, C";
-    qo.singularity_hints = c.speed.singularity_hints(true);
+    qo.singularity_hints = speed.singularity_hints(true);
     std::vector<Ball> abc = integrate_many(f, 3, sp.u0, sp.u1, qo);
     for (std::size_t k = 0; k < 3; ++k) {
       arb_mul_2exp_si(abc[k].get(), abc[k].get(), exps[k]);
@@ -370,7 +379,7 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
   // parts' charts (speed_charts.hpp).
   if (side == ZeroSide::None)
     if (const SpeedCharts* ch = s.charts()) {
-      std::vector<Ball> abc = chart_piece_integrals(*ch, a.t, b.t, rel_goal_bits, max_prec);
+      std::vector<Ball> abc = chart_piece_integrals(s, *ch, a.t, b.t, rel_goal_bits, max_prec);
       r.A = std::move(abc[0]);
       r.B = std::move(abc[1]);
       r.C = std::move(abc[2]);

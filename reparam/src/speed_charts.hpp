@@ -55,13 +55,20 @@ struct SpeedCharts {
   /// The parts in the order of t, covering [0, 1].
   std::vector<SpeedChart> charts;
 
-  /// A piece of [a, b] inside one part, in that part's coordinate:
-  /// phi maps [u0, u1] (u0 < u1) onto it.
+  /// A piece of [a, b] inside one part, in that part's coordinate (phi
+  /// maps [u0, u1], u0 < u1, onto it), or, where plain, on p's own
+  /// parameter: [u0, u1] is the piece itself.
   struct Span {
     std::size_t chart;
     RealAlgebraic u0, u1;
+    bool plain = false;
   };
-  /// [a, b] cut at the parts' ends strictly inside, in order of t.
+  /// [a, b] cut at the parts' ends strictly inside, in order of t. A piece
+  /// farther from its part's feature end k0 than a quarter of its length is
+  /// plain: there sigma varies on the scale of that distance, and the chart
+  /// would squeeze it next to u = 1 (within 2^-k for a map of ratio 2^k),
+  /// where no working precision below k bits tells its ends apart. The
+  /// choice only affects the cost, never a result.
   /// \pre 0 <= a < b <= 1.
   std::vector<Span> spans(const RealAlgebraic& a, const RealAlgebraic& b) const;
 

@@ -64,44 +64,14 @@ void eval_weight(acb_t out, const acb_t z, const SquareWeight& w, long prec) {
 // and, with square, that of sigma^2 in the same quadrature (sigma squared at
 // every point: one evaluation of the speed for both), with the
 // weight on sigma^2 where given, to relative accuracy 2^-rel_goal_bits or
-// absolute 2^-abs_goal_bits (0: none) of the scaled integrands below.
-std::vector<Ball> integrate_speed_piece(const Speed& s, const RealAlgebraic& a, const RealAlgebraic& b,
-                                        long rel_goal_bits, long max_prec, bool square = false,
-                                        long abs_goal_bits = 0, const SquareWeight* weight = nullptr,
-                                        const long* exps = nullptr) {
+// absolute 2^-abs_goal_bits (0: none) of the scaled integrands below; on
+// s's own parameter (not its charts).
+std::vector<Ball> integrate_speed_piece_direct(const Speed& s, const RealAlgebraic& a, const RealAlgebraic& b,
+                                               long rel_goal_bits, long max_prec, bool square, long abs_goal_bits,
+                                               const SquareWeight* weight, const long* exps) {
   // The integrands times 2^-exps[k] (exact), so that a total of about
   // 2^exps[k] becomes about 1 and one absolute goal fits both.
   const long e0 = exps ? exps[0] : 0, e1 = exps && square ? exps[1] : 0;
-  // A speed with narrow features inside (0, 1): span by span in its parts'
-  // charts (speed_charts.hpp), as a balanced curve's integrals are taken.
-  if (!weight)
-    if (const SpeedCharts* ch = s.charts()) {
-      const std::vector<SpeedCharts::Span> spans = ch->spans(a, b);
-      // the spans' absolute errors add up
-      const long extra = abs_goal_bits ? static_cast<long>(std::ceil(std::log2(static_cast<double>(spans.size())))) : 0;
-      std::vector<Ball> total(square ? 2 : 1, Ball(0));
-      for (const SpeedCharts::Span& sp : spans) {
-        const SpeedChart& c = ch->charts[sp.chart];
-        const Rational len = c.length();
-        // int sigma^2 dt = int sigma_phi^2 / |phi'| du, the weight 1 / m'
-        // of the balanced chart's integrand over |k1 - k0|, which is
-        // integrated to |k1 - k0| times the part's total (its scale too,
-        // to within a factor 2)
-        const long len_exp = static_cast<long>(fmpz_bits(len.num().get())) - static_cast<long>(fmpz_bits(len.den().get()));
-        const long ce[2] = {e0, e1 + len_exp};
-        SquareWeight cw{c.bal ? c.bal->a : Integer(1), c.bal ? c.bal->b : Integer(1)};
-        std::vector<Ball> r = integrate_speed_piece(c.speed, sp.u0, sp.u1, rel_goal_bits, max_prec, square,
-                                                    abs_goal_bits ? abs_goal_bits + extra : 0, c.bal ? &cw : nullptr, ce);
-        const long prec = 2 * rel_goal_bits + 64;
-        arb_add(total[0].get(), total[0].get(), r[0].get(), prec);
-        if (square) {
-          arb_mul_fmpz(r[1].get(), r[1].get(), len.den().get(), prec);
-          arb_div_fmpz(r[1].get(), r[1].get(), len.num().get(), prec);
-          arb_add(total[1].get(), total[1].get(), r[1].get(), prec);
-        }
-      }
-      return total;
-    }
   const Speed::PieceSigns sign = s.piece_signs(a, b);
   // Every narrow real point (nodes, the start's probes, the ends) goes to
   // node_fast below first; f gets the points it refused and the wide balls,
@@ -139,6 +109,48 @@ std::vector<Ball> integrate_speed_piece(const Speed& s, const RealAlgebraic& a, 
   arb_mul_2exp_si(r[0].get(), r[0].get(), e0);
   if (square) arb_mul_2exp_si(r[1].get(), r[1].get(), e1);
   return r;
+}
+
+// integrate_speed_piece_direct, where s has charts (speed_charts.hpp) span
+// by span in them, as a balanced curve's integrals are taken (the weight
+// is then the chart's: weight must be null).
+std::vector<Ball> integrate_speed_piece(const Speed& s, const RealAlgebraic& a, const RealAlgebraic& b,
+                                        long rel_goal_bits, long max_prec, bool square = false,
+                                        long abs_goal_bits = 0, const SquareWeight* weight = nullptr,
+                                        const long* exps = nullptr) {
+  const SpeedCharts* ch = weight ? nullptr : s.charts();
+  if (!ch) return integrate_speed_piece_direct(s, a, b, rel_goal_bits, max_prec, square, abs_goal_bits, weight, exps);
+  const long e0 = exps ? exps[0] : 0, e1 = exps && square ? exps[1] : 0;
+  const std::vector<SpeedCharts::Span> spans = ch->spans(a, b);
+  // the spans' absolute errors add up
+  const long extra = abs_goal_bits ? static_cast<long>(std::ceil(std::log2(static_cast<double>(spans.size())))) : 0;
+  const long abs_bits = abs_goal_bits ? abs_goal_bits + extra : 0;
+  std::vector<Ball> total(square ? 2 : 1, Ball(0));
+  const long prec = 2 * rel_goal_bits + 64;
+  for (const SpeedCharts::Span& sp : spans) {
+    std::vector<Ball> r;
+    if (sp.plain) {
+      const long pe[2] = {e0, e1};
+      r = integrate_speed_piece_direct(s, sp.u0, sp.u1, rel_goal_bits, max_prec, square, abs_bits, nullptr, pe);
+    } else {
+      const SpeedChart& c = ch->charts[sp.chart];
+      const Rational len = c.length();
+      // int sigma^2 dt = int sigma_phi^2 / |phi'| du: the weight 1 / m' of
+      // the balanced chart's integrand over |k1 - k0|, integrated to
+      // |k1 - k0| times the part's total (its scale too, within a factor 2)
+      const long len_exp = static_cast<long>(fmpz_bits(len.num().get())) - static_cast<long>(fmpz_bits(len.den().get()));
+      const long ce[2] = {e0, e1 + len_exp};
+      const SquareWeight cw{c.bal ? c.bal->a : Integer(1), c.bal ? c.bal->b : Integer(1)};
+      r = integrate_speed_piece_direct(c.speed, sp.u0, sp.u1, rel_goal_bits, max_prec, square, abs_bits,
+                                       c.bal ? &cw : nullptr, ce);
+      if (square) {
+        arb_mul_fmpz(r[1].get(), r[1].get(), len.den().get(), prec);
+        arb_div_fmpz(r[1].get(), r[1].get(), len.num().get(), prec);
+      }
+    }
+    for (std::size_t k = 0; k < total.size(); ++k) arb_add(total[k].get(), total[k].get(), r[k].get(), prec);
+  }
+  return total;
 }
 
 // a, the zeros of sigma strictly inside (a, b), b.
@@ -202,22 +214,24 @@ Ball integrate_speed_squared(const Speed& s, const RealAlgebraic& a, const RealA
     Ball total(0);
     for (const SpeedCharts::Span& sp : ch->spans(a, b)) {
       const SpeedChart& c = ch->charts[sp.chart];
-      Integrand f = [&c](acb_t out, const acb_t z, bool, long prec) {
+      const Speed& speed = sp.plain ? s : c.speed;
+      Integrand f = [&c, &speed, plain = sp.plain](acb_t out, const acb_t z, bool, long prec) {
+        speed.eval_squared(out, z, prec);
+        if (plain) return;
         acb_t d;
         acb_init(d);
         c.denominator(d, z, prec);
         acb_mul(d, d, d, prec);
         acb_mul_arb(d, d, c.w0(prec).get(), prec);
-        c.speed.eval_squared(out, z, prec);
         acb_mul(out, out, d, prec);
         acb_clear(d);
       };
       QuadratureOptions qo;
       qo.rel_goal_bits = rel_goal_bits;
       qo.max_prec = max_prec;
-      qo.scale_bits = speed_scale_bits(c.speed);
+      qo.scale_bits = speed_scale_bits(speed);
       qo.what = "the integral of the squared " + to_string(s.kind()) + " speed";
-      qo.singularity_hints = c.speed.singularity_hints(true);
+      qo.singularity_hints = speed.singularity_hints(true);
       arb_add(total.get(), total.get(), integrate(f, sp.u0, sp.u1, qo).get(), 2 * rel_goal_bits + 64);
     }
     return total;

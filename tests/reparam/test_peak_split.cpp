@@ -187,17 +187,18 @@ TEST(SpeedCharts, UniformityOfAPeakMatchesTheClosedForm) {
   }
 }
 
-// The methods on (t, C (t - 1/2)^2) with a 1000-digit C (a peak of width
-// 10^-1000 at 1/2), within a TimeBudget the integrals across the peak
-// cannot meet: radical's mu is 2 atan(C), its pieces symmetric about 1/2
+// The methods on (t, C (t - 1/2)^2) with a 2000-digit C (a peak of width
+// 10^-2000 at 1/2), within a TimeBudget the integrals across the peak
+// cannot meet (and pieces away from the peak, where the charts would need
+// 6600 bits to tell their ends apart, on p's own parameter): radical's mu is 2 atan(C), its pieces symmetric about 1/2
 // (A and C swapped), and u(p) the parabola's closed form (as in the test
 // below) for radical and the optimised three-piece C0 method, whose u(p o r)
 // is no lower than u(p).
 TEST(SpeedCharts, MethodsOnAHugeInteriorPeakFinish) {
   TimeBudget budget(30);
-  const std::string c_text(1000, '3');
+  const std::string c_text(2000, '3');
   const Curve p = Curve::parse("(t, " + c_text + "*(t - 1/2)^2)");
-  const long prec = 8000;
+  const long prec = 16000;
   Ball half_c;
   arb_set_str(half_c.get(), c_text.c_str(), prec);
   arb_mul_2exp_si(half_c.get(), half_c.get(), -1);
