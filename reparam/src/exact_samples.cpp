@@ -29,6 +29,10 @@ void exact_samples_each(const Curve& c, const Speed& s, long K, const Options& o
     });
     return;
   }
+  if (const SpeedCharts* ch = s.charts()) {
+    exact_samples_charts(c, s, *ch, K, opt, mu, sink);
+    return;
+  }
   exact_samples_on(CurveTrack(c, s, opt.max_prec), K, opt, mu, sink);
 }
 

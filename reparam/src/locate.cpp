@@ -77,6 +77,8 @@ LocateResult locate(const Curve& c, const Speed& s, const Rational& value, Locat
   // growing geometrically): located on the balanced curve q = p o m.
   if (const std::optional<BalancedCurve> bal = balance(c, s))
     return locate_balanced(c, *bal, Speed(bal->q, s.kind()), value, target, opt);
+  // Narrow features inside (0, 1): on the track of s's charts.
+  if (const SpeedCharts* ch = s.charts()) return locate_charts(c, s, *ch, value, target, opt);
   return locate_on(CurveTrack(c, s, opt.max_prec), value, target, opt);
 }
 

@@ -20,6 +20,10 @@
 #include "arc_model.hpp"
 #include "track.hpp"
 
+namespace uniparam {
+struct SpeedCharts;  // speed_charts.hpp
+}  // namespace uniparam
+
 namespace uniparam::locate_detail {
 
 // G(x) - T is decided at rational points x only, from a bracket
@@ -67,10 +71,26 @@ LocatedPoint mapped_point(const Curve& p, const BalancedCurve& bal, const Locate
 /// locate() on the balanced curve: G_q(s) = G_p(m(s)) (sigma_q ds =
 /// sigma_p dt), so t = m(s) for q's s, located to more digits where m
 /// stretches it. \pre sq is q's speed of the caller's kind.
-/// 	hrows as locate(); BudgetExceeded when the digits s needs exceed
+/// \throws as locate(); BudgetExceeded when the digits s needs exceed
 ///         opt.max_prec.
 LocateResult locate_balanced(const Curve& p, const BalancedCurve& bal, const Speed& sq, const Rational& value,
                              LocateTarget target, const Options& opt);
+
+// ---- locate_charts.cpp: locating on a speed with charts ----
+
+/// locate() where s has charts (speed_charts.hpp): on a track whose
+/// parameter v takes each part's half at its feature in the part's chart
+/// and the other half on t, so that G is smooth on the scale of v; t is
+/// the exact increasing image of v, p(t) the chart's curve at u (or p at
+/// t), and v is located to more digits where the map stretches it.
+/// \pre ch is s's charts, s the speed of p. \throws as locate();
+///         BudgetExceeded when the digits v needs exceed opt.max_prec.
+LocateResult locate_charts(const Curve& p, const Speed& s, const SpeedCharts& ch, const Rational& value,
+                           LocateTarget target, const Options& opt);
+/// exact_samples_each() on that track, each point carried to t (located
+/// again alone, to more digits, where t misses opt.digits).
+void exact_samples_charts(const Curve& p, const Speed& s, const SpeedCharts& ch, long K, const Options& opt,
+                          Ball& mu, const LocatedSink& sink);
 
 // ---- locate_chain.cpp: the chain of certified integrals ----
 

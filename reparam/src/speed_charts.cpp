@@ -29,6 +29,28 @@ RealAlgebraic SpeedChart::local(const RealAlgebraic& t) const {
   return bal ? balance_unmap(*bal, x) : x;
 }
 
+Rational SpeedChart::at(const Rational& u) const {
+  Rational m = u;
+  if (bal) {
+    const Rational a(bal->a), b(bal->b);
+    m = a * u / (a * u + b * (Rational(1) - u));
+  }
+  return k0 + (k1 - k0) * m;
+}
+
+Ball SpeedChart::at(const arf_t u, long prec) const {
+  Ball m;
+  arb_set_arf(m.get(), u);
+  if (bal) m = balance_map_ball(*bal, m, prec);
+  const Rational h = k1 - k0;
+  Ball t;
+  arb_mul_fmpz(t.get(), m.get(), h.num().get(), prec);
+  arb_div_fmpz(t.get(), t.get(), h.den().get(), prec);
+  Ball k(k0, prec);
+  arb_add(t.get(), t.get(), k.get(), prec);
+  return t;
+}
+
 namespace {
 
 const Integer& chart_a(const SpeedChart& c) {
@@ -134,7 +156,7 @@ std::shared_ptr<const SpeedCharts> SpeedCharts::build(const Speed& s, const Curv
     const Curve part = restrict_to(c, k0, k1);
     Speed sp(part, s.kind());
     std::optional<BalancedCurve> bal = balance(part, sp);
-    SpeedChart chart{k0, k1, bal, bal ? Speed(bal->q, s.kind()) : std::move(sp)};
+    SpeedChart chart{k0, k1, bal, bal ? bal->q : part, bal ? Speed(bal->q, s.kind()) : std::move(sp)};
     chart.speed.lazy_->curve.reset();  // no charts of its own
     out->charts.push_back(std::move(chart));
   }

@@ -32,12 +32,19 @@ namespace uniparam {
 struct SpeedChart {
   Rational k0, k1;
   std::optional<BalancedCurve> bal;  ///< m; the identity where empty
-  Speed speed;                       ///< sigma_phi: the speed of p o phi (no charts of its own)
+  Curve curve;                       ///< p o phi, exactly
+  Speed speed;                       ///< sigma_phi: its speed (no charts of its own)
 
   /// |k1 - k0|.
   Rational length() const;
   /// phi^-1(t) exactly. \pre t lies between k0 and k1.
   RealAlgebraic local(const RealAlgebraic& t) const;
+  /// phi(u) exactly, for u in [0, 1].
+  Rational at(const Rational& u) const;
+  /// An enclosure of phi(u) for the exact real u in [0, 1]: m(u) as a
+  /// quotient of sums of non-negative terms (relative accuracy about
+  /// 2^-prec, however close m(u) is to 0 or 1).
+  Ball at(const arf_t u, long prec) const;
   /// For the complex ball z, with m(z) = a z / d(z) (a = b = 1 for the
   /// identity): d(z) = a z + b (1 - z), and 1 / |phi'(z)| = d(z)^2 w0
   /// with w0 = 1 / (a b |k1 - k0|) (an exact rational, here a ball).

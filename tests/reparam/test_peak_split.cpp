@@ -262,3 +262,87 @@ TEST(PeakSplit, CubicPeakWithAHugeCoefficientFinishes) {
     EXPECT_GT(arf_sgn(arb_midref(r.u.get())), 0);
   }
 }
+
+namespace {
+
+// The angular peak (t, C (t - c)^2): G(t) = atan(2 C (t - c)) + atan(2 C c),
+// so the point at the fraction f of mu is t = c + tan(f mu - atan(2 C c)) /
+// (2 C), and p(t) = (t, C (t - c)^2). Checks that `at` overlaps it.
+void expect_peak_point(const LocatedPoint& at, const std::string& C, const Rational& c, const Rational& f) {
+  const long prec = 20000;
+  Ball c2, a, b, mu, x, t, y;
+  arb_set_str(c2.get(), C.c_str(), prec);
+  arb_mul_2exp_si(c2.get(), c2.get(), 1);  // 2 C
+  arb_mul(a.get(), c2.get(), Ball(c, prec).get(), prec);
+  arb_atan(a.get(), a.get(), prec);  // atan(2 C c)
+  arb_mul(b.get(), c2.get(), Ball(Rational(1) - c, prec).get(), prec);
+  arb_atan(b.get(), b.get(), prec);
+  arb_add(mu.get(), a.get(), b.get(), prec);
+  arb_mul(x.get(), mu.get(), Ball(f, prec).get(), prec);
+  arb_sub(x.get(), x.get(), a.get(), prec);
+  arb_tan(x.get(), x.get(), prec);
+  arb_div(x.get(), x.get(), c2.get(), prec);  // t - c
+  arb_add(t.get(), x.get(), Ball(c, prec).get(), prec);
+  arb_sqr(y.get(), x.get(), prec);
+  arb_mul(y.get(), y.get(), c2.get(), prec);
+  arb_mul_2exp_si(y.get(), y.get(), -1);
+  EXPECT_TRUE(arb_overlaps(at.t.get(), t.get())) << at.t.str(30) << " vs " << t.str(30);
+  ASSERT_EQ(at.point.size(), 2u);
+  EXPECT_TRUE(arb_overlaps(at.point[0].get(), t.get())) << at.point[0].str(30) << " vs " << t.str(30);
+  EXPECT_TRUE(arb_overlaps(at.point[1].get(), y.get())) << at.point[1].str(30) << " vs " << y.str(30);
+  EXPECT_TRUE(at.t.meets_digits(15)) << at.t.str(30);
+  for (const Ball& v : at.point) EXPECT_TRUE(v.meets_digits(15)) << v.str(30);
+}
+
+}  // namespace
+
+// locate() and the exact samples on angular peaks at random centres with
+// 40- and 300-digit C run on the charts' track, and give the closed-form
+// points; the parametric speed's located t brackets its target (G from
+// integrate_speed at t's rational ends). Within a TimeBudget the track
+// on p's own parameter cannot meet at 300 digits.
+TEST(SpeedCharts, LocatedPointsOfAPeakMatchTheClosedForm) {
+  TimeBudget budget(60);
+  std::mt19937 rng(4121226);
+  for (int trial = 0; trial < 4; ++trial) {
+    const std::string C = random_digits(rng, trial < 2 ? 40 : 300);
+    const long den = 3 + static_cast<long>(rng() % 17);
+    const Rational c(1 + static_cast<long>(rng() % static_cast<unsigned long>(den - 1)), den);
+    const Curve p = Curve::parse("(t, " + C + "*(t - " + c.str() + ")^2)");
+    SCOPED_TRACE(p.str());
+    const Speed s(p, SpeedKind::Angular);
+    ASSERT_NE(s.charts(), nullptr);
+    for (const Rational& f : {Rational(1, 3), Rational(1 + static_cast<long>(rng() % 999), 1000), Rational(1, 1000000)}) {
+      SCOPED_TRACE(f.str());
+      expect_peak_point(locate(p, s, f, LocateTarget::Fraction).at, C, c, f);
+    }
+    const ExactSamples ex = exact_samples(p, s, 7);
+    for (long k = 0; k < 7; ++k) {
+      SCOPED_TRACE(k);
+      expect_peak_point(ex.points[static_cast<std::size_t>(k)], C, c, Rational(k, 6));
+    }
+    const Speed sp(p, SpeedKind::Parametric);
+    const Rational f(1 + static_cast<long>(rng() % 9), 10);
+    const LocateResult r = locate(p, sp, f, LocateTarget::Fraction);
+    EXPECT_TRUE(r.at.t.meets_digits(15));
+    // G(lo) <= f mu <= G(hi) at the rational ends of t's ball
+    Rational lo, hi;
+    {
+      arf_t l, h;
+      arf_init(l);
+      arf_init(h);
+      arb_get_lbound_arf(l, r.at.t.get(), 256);
+      arb_get_ubound_arf(h, r.at.t.get(), 256);
+      arf_get_fmpq(lo.get(), l);
+      arf_get_fmpq(hi.get(), h);
+      arf_clear(l);
+      arf_clear(h);
+    }
+    const Ball mu = mean_speed(sp, 80);
+    Ball target, g_lo = integrate_speed(sp, RealAlgebraic(0), RealAlgebraic(lo), 80, 1 << 14),
+                 g_hi = integrate_speed(sp, RealAlgebraic(0), RealAlgebraic(hi), 80, 1 << 14);
+    arb_mul(target.get(), mu.get(), Ball(f, 256).get(), 256);
+    EXPECT_FALSE(arb_gt(g_lo.get(), target.get())) << g_lo.str(25) << " > " << target.str(25);
+    EXPECT_FALSE(arb_lt(g_hi.get(), target.get())) << g_hi.str(25) << " < " << target.str(25);
+  }
+}
