@@ -279,7 +279,84 @@ void LocalPoly::eval_double_taylor(double t, int order, double* b) const {
   }
 }
 
+namespace {
+
+// A narrow ball (below 2^kCoarseBallLog2) is a point of the working
+// precision when its radius is below 2^(kPointGuardBits - prec) (a
+// quadrature node: radius about 2^-prec); wider narrow balls (the error
+// bounds of tiny subintervals, interval Newton steps) take the mean-value
+// form as well (eval).
+constexpr long kPointGuardBits = 16;
+
+// x = x intersected with y, real and imaginary parts (both contain the same
+// value); x is left as it is if the intersection is empty (it cannot be for
+// two true enclosures, but a non-finite y must not spoil x).
+void intersect(acb_t x, const acb_t y, long prec) {
+  if (!acb_is_finite(y)) return;
+  arb_t re, im;
+  arb_init(re);
+  arb_init(im);
+  if (arb_intersection(re, acb_realref(x), acb_realref(y), prec) &&
+      arb_intersection(im, acb_imagref(x), acb_imagref(y), prec)) {
+    arb_swap(acb_realref(x), re);
+    arb_swap(acb_imagref(x), im);
+  }
+  arb_clear(re);
+  arb_clear(im);
+}
+
+}  // namespace
+
 void LocalPoly::eval(acb_t v, acb_t d1, acb_t d2, const acb_t z, long prec) const {
+  // Horner's rule and a cell's expansion about a centre c wrap a ball of
+  // radius r into about r sum_k k |a_k| |z - c|^(k-1): where p' is small next
+  // to its absolute-value bound (close to a near double root, as next to the
+  // peak of 1 + C (t - 3/5)^2), a narrow ball well wider than a point
+  // gets an enclosure many orders wider than p's variation on it. The
+  // mean-value form p(m) + p'(z) (z - m) at z's exact midpoint m wraps only
+  // at second order (p'' r^2), and both are intersected.
+  mag_t r;
+  mag_init(r);
+  ball_radius(r, z);
+  const bool region = p_.degree() >= 2 && acb_is_finite(z) && mag_cmp_2exp_si(r, kCoarseBallLog2) < 0 &&
+                      mag_cmp_2exp_si(r, kPointGuardBits - prec) >= 0;
+  mag_clear(r);
+  if (!region) {
+    eval_direct(v, d1, d2, z, prec);
+    return;
+  }
+  acb_t D1, D2, m, w, vm, dm, alt;
+  acb_init(D1);
+  acb_init(D2);
+  acb_init(m);
+  acb_init(w);
+  acb_init(vm);
+  acb_init(dm);
+  acb_init(alt);
+  eval_direct(v, D1, (d1 || d2) ? D2 : nullptr, z, prec);
+  acb_get_mid(m, z);
+  acb_sub(w, z, m, prec);
+  eval_direct(vm, d1 ? dm : nullptr, nullptr, m, prec);
+  acb_mul(alt, D1, w, prec);
+  acb_add(alt, alt, vm, prec);
+  intersect(v, alt, prec);
+  if (d1) {
+    acb_mul(alt, D2, w, prec);
+    acb_add(alt, alt, dm, prec);
+    intersect(D1, alt, prec);
+    acb_swap(d1, D1);
+  }
+  if (d2) acb_swap(d2, D2);
+  acb_clear(D1);
+  acb_clear(D2);
+  acb_clear(m);
+  acb_clear(w);
+  acb_clear(vm);
+  acb_clear(dm);
+  acb_clear(alt);
+}
+
+void LocalPoly::eval_direct(acb_t v, acb_t d1, acb_t d2, const acb_t z, long prec) const {
   if (p_.degree() + 1 <= kMinLength || !acb_is_finite(z)) {
     const std::shared_ptr<const PowerBasis> b = power_at(prec);
     centred_eval(v, d1, d2, b->p, b->p1, b->p2, z, prec);

@@ -269,6 +269,106 @@ TEST(LocalPoly, WideBallsAreAboutAsTightAsTheVariationOfP) {
   }
 }
 
+// Narrow balls wider than a point (the error bounds of tiny subintervals,
+// radius 2^-26 .. 2^-56) next to a near double root of p, where p' is far
+// smaller than the absolute-value bound that Horner's rule or a cell's
+// expansion multiplies the radius by: p = prod (C_i (t - c_i)^2 + 1), C_1 up
+// to 2^40, the ball 2^-k from c_1. The enclosure's radius must stay within
+// twice the majorant sum_{j >= 1} |c_j| (2r)^j of p - p(mid) (exact Taylor
+// coefficients at the midpoint), plus the working precision's rounding
+// relative to p's coefficients. Horner's wrapping alone exceeds that by 2^9
+// or more.
+TEST(LocalPoly, NarrowRegionsAreAboutAsTightAsTheVariationOfP) {
+  std::mt19937_64 rng(20261204);
+  std::uniform_int_distribution<long> cbits(24, 40), kdist(10, 30), edist(26, 56), cnum(1, 63);
+  std::uniform_int_distribution<ulong> frac(0, 8);
+  const long prec = 128;
+  for (long it = 0; it < iterations(40); ++it) {
+    const int factors = 1 + static_cast<int>(it % 3);  // degree 2 (power basis), 4 and 6 (cells)
+    Poly p(1);
+    Rational c1;
+    for (int i = 0; i < factors; ++i) {
+      const Rational c(cnum(rng), 64);
+      if (i == 0) c1 = c;
+      fmpz_t C;
+      fmpz_init(C);
+      fmpz_one(C);
+      fmpz_mul_2exp(C, C, static_cast<ulong>(i == 0 ? cbits(rng) : 4));
+      // C (t - c)^2 + 1 with c = a / 64: (C (64 t - a)^2 + 4096) / 4096, made integral
+      fmpz_poly_t q;
+      fmpz_poly_init(q);
+      const long a = fmpz_get_si(c.num().get()) * (64 / fmpz_get_si(c.den().get()));
+      fmpz_poly_set_coeff_si(q, 1, 64);
+      fmpz_poly_set_coeff_si(q, 0, -a);
+      fmpz_poly_mul(q, q, q);
+      fmpz_poly_scalar_mul_fmpz(q, q, C);
+      fmpz_poly_t one;
+      fmpz_poly_init(one);
+      fmpz_poly_set_si(one, 4096);
+      fmpz_poly_add(q, q, one);
+      Poly f;
+      fmpz_poly_set(f.get(), q);
+      p = p * f;
+      fmpz_poly_clear(q);
+      fmpz_poly_clear(one);
+      fmpz_clear(C);
+    }
+    const LocalPoly lp(p);
+    arb_poly_t exact, shifted;
+    arb_poly_init(exact);
+    arb_poly_init(shifted);
+    arb_poly_set_fmpz_poly(exact, p.get(), kRefPrec);
+    for (int b = 0; b < 10; ++b) {
+      acb_t z, v, d1, d2;
+      for (acb_ptr x : {z, v, d1, d2}) acb_init(x);
+      const long k = kdist(rng), e = edist(rng);
+      arb_set_fmpq(acb_realref(z), c1.get(), 2 * prec);
+      arb_t off;
+      arb_init(off);
+      arb_one(off);
+      arb_mul_2exp_si(off, off, -k);
+      if (b % 2) arb_neg(off, off);
+      arb_add(acb_realref(z), acb_realref(z), off, 2 * prec);
+      mag_zero(arb_radref(acb_realref(z)));
+      mag_set_ui_2exp_si(arb_radref(acb_realref(z)), 1, -e);
+      mag_set_ui_2exp_si(arb_radref(acb_imagref(z)), frac(rng), -e - 3);
+      lp.eval(v, d1, d2, z, prec);
+      const acb_struct* outs[3] = {v, d1, d2};
+      test_support::expect_encloses_at_points(p, outs, z, rng, "narrow region");
+      arb_t m;
+      arb_init(m);
+      arb_set_arf(m, arb_midref(acb_realref(z)));
+      arb_poly_taylor_shift(shifted, exact, m, kRefPrec);
+      mag_t rho, term, var, coeffs, cj, rad;
+      for (mag_ptr x : {rho, term, var, coeffs, cj, rad}) mag_init(x);
+      mag_set_ui_2exp_si(rho, 1, 1 - e);
+      mag_one(term);
+      for (slong j = 0; j < arb_poly_length(shifted); ++j) {
+        arb_get_mag(cj, shifted->coeffs + j);
+        mag_mul(cj, cj, term);
+        if (j >= 1) mag_add(var, var, cj);
+        mag_mul(term, term, rho);
+      }
+      mag_mul_2exp_si(var, var, 1);
+      for (slong j = 0; j <= p.degree(); ++j) {
+        arb_get_mag(cj, exact->coeffs + j);
+        mag_add(coeffs, coeffs, cj);
+      }
+      mag_mul_2exp_si(coeffs, coeffs, 30 - prec);
+      mag_add(var, var, coeffs);
+      mag_hypot(rad, arb_radref(acb_realref(v)), arb_radref(acb_imagref(v)));
+      EXPECT_LE(mag_cmp(rad, var), 0) << "degree " << p.degree() << ", 2^-" << k << " from the near root, radius 2^-"
+                                       << e << ": radius " << mag_get_d(rad) << " > " << mag_get_d(var);
+      for (mag_ptr x : {rho, term, var, coeffs, cj, rad}) mag_clear(x);
+      arb_clear(m);
+      arb_clear(off);
+      for (acb_ptr x : {z, v, d1, d2}) acb_clear(x);
+    }
+    arb_poly_clear(exact);
+    arb_poly_clear(shifted);
+  }
+}
+
 }  // namespace
 }  // namespace uniparam
 

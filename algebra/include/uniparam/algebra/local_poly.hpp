@@ -78,7 +78,14 @@ class LocalPoly {
   ///       narrow ball's enclosure is accurate to about prec bits of p's
   ///       size near z; a wide one (radius >= 2^-24) may be wider than p's
   ///       variation on z by about 2^-24 of p's size on the discs of the
-  ///       (coarse) cells used.
+  ///       (coarse) cells used. A narrow ball wider than a point of prec
+  ///       (radius from 2^(16 - prec) to 2^-24: a tiny subinterval's error
+  ///       bound) also gets the mean-value form p(m) + p'(z) (z - m) at its
+  ///       midpoint m (and p'(m) + p''(z) (z - m) for p'), intersected with
+  ///       the direct enclosure: so its enclosure stays about as wide as p's
+  ///       variation on it next to a near double root of p, where Horner's
+  ///       rule or a cell's expansion about a farther centre multiply the
+  ///       radius by the size of p's coefficients.
   ///       v may not alias d1 or d2 (z may alias none of them).
   void eval(acb_t v, acb_t d1, acb_t d2, const acb_t z, long prec) const;
   /// Same as eval(v, nullptr, nullptr, z, prec).
@@ -143,6 +150,9 @@ class LocalPoly {
   // thousands of bits would make every product cost as much as they do,
   // for no accuracy: each product is rounded to prec anyway).
   std::shared_ptr<const PowerBasis> power_at(long prec) const;
+  // eval's enclosures from one path (power basis, centred form in double,
+  // or a cell) without the mean-value form of narrow regions.
+  void eval_direct(acb_t v, acb_t d1, acb_t d2, const acb_t z, long prec) const;
   Poly p_;
   std::shared_ptr<const PowerBasis> exact_;
   long bits_ = 0;  // p_.max_bits()
