@@ -176,6 +176,16 @@ constexpr std::int64_t kInlineCpu = 500000;      // ns
 /// not start one for a job that threads would shorten by a fraction of a
 /// millisecond.
 constexpr std::int64_t kFirstThreadCpu = 2000000;  // ns
+/// The dispatcher (the only way to wake threads while the caller is inside
+/// a long item, e.g. two long steps side by side) is started after long
+/// items (of inline_cpu() with others left) have taken this much wall time
+/// in the process in all: a process whose one long item was a one-time
+/// cost (a cold cache: the first run of a small job) does not pay for a
+/// thread (kFirstThreadCpu) for the rest of its life; a process of long
+/// jobs reaches it within its first few.
+constexpr std::int64_t kDispatcherAfterLongItems = 4 * kFirstThreadCpu;  // ns
+/// The wall time of the long items seen so far (Pool::run).
+std::atomic<std::int64_t> g_long_items_wall{0};
 /// Set once the process has started a pool thread or the dispatcher.
 std::atomic<bool> g_threads_started{false};
 /// kInlineCpu, or kFirstThreadCpu before the process's first thread.
@@ -481,7 +491,10 @@ bool Pool::run(Job& job) {
   bool long_item = false;
   job.work(0, [&] {
     const std::int64_t now = wall_ns();
-    if (now - item_start >= inline_cpu() && job.next.load() < job.n) long_item = true;
+    if (now - item_start >= inline_cpu() && job.next.load() < job.n) {
+      long_item = true;
+      g_long_items_wall.fetch_add(now - item_start, std::memory_order_relaxed);
+    }
     item_start = now;
     if (job.dispatched.load() || !job.due(now, true)) return;
     Dispatcher::start();
@@ -493,13 +506,17 @@ bool Pool::run(Job& job) {
     }
     wake_.notify_all();
   });
-  // A job with an item that long: later ones get the dispatcher. Not a
-  // job that was long only in its number of items (the caller dispatches
-  // those between items), nor one whose long item was its last: starting a
-  // thread costs the process (inline_cpu()). Nor a caller that was only
-  // descheduled for that long: its CPU time in the job's window must reach
-  // the threshold too.
-  if (long_item && !Dispatcher::started() && job.window_long_enough(wall_ns()) == 1) Dispatcher::start();
+  // A job with an item that long, once such items have taken
+  // kDispatcherAfterLongItems in the process: later ones get the
+  // dispatcher. Not a job that was long only in its number of items (the
+  // caller dispatches those between items), nor one whose long item was
+  // its last: starting a thread costs the process (inline_cpu()). Nor a
+  // caller that was only descheduled for that long: its CPU time in the
+  // job's window must reach the threshold too.
+  if (long_item && !Dispatcher::started() &&
+      g_long_items_wall.load(std::memory_order_relaxed) >= kDispatcherAfterLongItems &&
+      job.window_long_enough(wall_ns()) == 1)
+    Dispatcher::start();
   std::unique_lock<std::mutex> lock(m_);
   job_ = nullptr;  // threads woken from now on sit this job out
   waiting_.store(false);

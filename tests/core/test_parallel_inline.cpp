@@ -75,11 +75,10 @@ TEST(ParallelInline, LongJobsUseThePool) {
 
 // Two long items (an operation's steps side by side): the second does not
 // wait for the first, it goes to a pool thread while the first runs (once
-// the process has seen a job with a long item while others were left,
-// which starts the dispatcher: here 3 ms, above the 2 ms a process's first
-// thread needs).
+// the process has seen jobs with long items while others were left, 8 ms
+// of them in all, which starts the dispatcher: here one of 9 ms).
 TEST(ParallelInline, TwoLongItemsRunSideBySide) {
-  parallel_for(2, 2, [](std::size_t, std::size_t) { burn(3000000); });
+  parallel_for(2, 2, [](std::size_t, std::size_t) { burn(9000000); });
   std::atomic<long> elsewhere{0};
   parallel_for(2, 2, [&](std::size_t w, std::size_t) {
     if (w != 0) ++elsewhere;

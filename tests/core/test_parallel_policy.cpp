@@ -131,5 +131,22 @@ TEST(ParallelPolicy, TheFirstThreadWaitsForALongerJob) {
   EXPECT_EQ(o.dispatches, 1u);
 }
 
+// A long item while another is left (two steps side by side) is what the
+// dispatcher serves, but one job of two such items of 3 ms (a small job's
+// cold first run) starts no thread: the dispatcher waits until long items
+// have taken 8 ms in the process. Two more such jobs (9 ms of long items)
+// start it.
+TEST(ParallelPolicy, OneColdLongItemStartsNoThread) {
+  if (parallel_threads_started()) GTEST_SKIP() << "an earlier test in this process started threads";
+  const auto step = [](std::size_t, std::size_t) { burn(3000000); };
+  const auto t0 = std::chrono::steady_clock::now();
+  parallel_for(2, 2, step);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (wall > 0.0075) GTEST_SKIP() << "descheduled for " << wall - 0.006 << " s: the long item may count more than 3 ms";
+  EXPECT_FALSE(parallel_threads_started());
+  for (int k = 0; k < 3; ++k) parallel_for(2, 2, step);
+  EXPECT_TRUE(parallel_threads_started());
+}
+
 }  // namespace
 }  // namespace uniparam

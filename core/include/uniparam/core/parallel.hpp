@@ -48,8 +48,10 @@ class ScopedWorkerCount {
 /// items, or during one by a dispatcher thread that looks every
 /// millisecond while jobs without a prepare step run (started by the first
 /// job in which one of the caller's items took that long while others were
-/// left: until then a job can only be dispatched between items, and a
-/// process of small jobs starts no thread at all). Until the process has
+/// left, once such items have taken 8 ms of wall time in the process in
+/// all: until then a job can only be dispatched between items, and a
+/// process of small jobs, or one whose only long item was a cold start,
+/// starts no thread at all). Until the process has
 /// started a thread, both bounds are 2 ms instead of 0.5 ms (from its
 /// first thread on, glibc's allocator takes a lock in every calloc, realloc
 /// and uncached free, which costs small computations 1-2% for the rest of
