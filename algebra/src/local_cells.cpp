@@ -6,6 +6,8 @@
 #include <arb_poly.h>
 
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <cmath>
 #include <future>
 #include <mutex>
@@ -202,7 +204,12 @@ Scratch& scratch() {
 // twice repeated its exact shift). Waiting cannot deadlock: a build waits
 // only on cells of a lower level or, for a coarse cell, the fine cell of the
 // same key, so the waits follow a well-founded order.
+// Distinct for every store ever made (point_cell's per-thread cache: a
+// store's address may be reused by a later one).
+std::atomic<std::uint64_t> g_next_store_uid{1};
+
 struct CellStore {
+  const std::uint64_t uid = g_next_store_uid.fetch_add(1, std::memory_order_relaxed);
   std::mutex mu;
   CellMap cells;
   std::unordered_map<CellKey, std::shared_future<CellPtr>, CellKeyHash> building;
@@ -383,10 +390,27 @@ std::size_t LocalCells::builds() const {
   return store_->builds;
 }
 
-CellPtr LocalCells::point_cell(const Poly& p, double t) const {
+const Cell& LocalCells::point_cell(const Poly& p, double t) const {
   // 64 + guard bits: the same cells as a 64-bit certified evaluation.
   const long wp = (64 + kGuardBits + FLINT_BITS - 1) / FLINT_BITS * FLINT_BITS;
-  return get_cell(*store_, p, -1, wp, kPointLevel, cell_index(t, kPointLevel), false);
+  const unsigned long long j = cell_index(t, kPointLevel);
+  // The thread's recent cells, direct-mapped by store and index; each
+  // entry holds its cell (a cell's content depends only on its key, so one
+  // kept past the store's clearing is still right).
+  struct Recent {
+    std::uint64_t uid = 0;
+    unsigned long long j = 0;
+    CellPtr cell;
+  };
+  constexpr std::size_t kRecent = 32;
+  thread_local std::array<Recent, kRecent> recent;
+  Recent& r = recent[(j + store_->uid * 7) % kRecent];
+  if (r.uid != store_->uid || r.j != j || !r.cell) {
+    r.cell = get_cell(*store_, p, -1, wp, kPointLevel, j, false);
+    r.uid = store_->uid;
+    r.j = j;
+  }
+  return *r.cell;
 }
 
 bool LocalCells::eval(const Poly& p, int variant, acb_t v, acb_t d1, acb_t d2, const acb_t z, long prec) const {

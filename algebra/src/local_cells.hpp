@@ -82,7 +82,12 @@ class LocalCells {
 
   /// The narrow-ball cell (level 6, at the working precision of a 64-bit
   /// evaluation) of p whose closure holds t (t clamped to [0, 1]).
-  CellPtr point_cell(const Poly& p, double t) const;
+  /// For the double-precision paths, called per evaluation: the calling
+  /// thread keeps its recent cells, so a repeated cell costs no lock (once
+  /// a process has threads, every lock is an atomic operation).
+  /// \post the reference stays valid until this thread's next call of
+  ///       point_cell (on any LocalCells).
+  const Cell& point_cell(const Poly& p, double t) const;
 
   /// Cells cached, and builds started (see LocalPoly::cells, builds).
   std::size_t cells() const;

@@ -239,8 +239,7 @@ void LocalPoly::eval_double(double t, double* v, double* d1, double* d2) const {
     }
     c[2] *= 2;
   } else {
-    const detail::CellPtr cp = cache_->cells.point_cell(p_, t);
-    const detail::Cell& cell = *cp;
+    const detail::Cell& cell = cache_->cells.point_cell(p_, t);
     const double w = t - arf_get_d(cell.e.centre, ARF_RND_NEAR);
     for (std::size_t k = cell.mid.size(); k-- > 0;) {
       c[2] = c[2] * w + c[1];
@@ -256,15 +255,18 @@ void LocalPoly::eval_double(double t, double* v, double* d1, double* d2) const {
 
 void LocalPoly::eval_double_taylor(double t, int order, double* b) const {
   if (order < 0 || order > 15) throw InvalidArgument("eval_double_taylor: order must be in [0, 15]");
-  std::vector<double> a;  // coefficients in w around a centre, then shifted by w
+  // coefficients in w around a centre, then shifted by w (the thread's
+  // buffer: no allocation per evaluation)
+  thread_local std::vector<double> a;
+  a.clear();
   double w = t;
   const long n = p_.degree();
   if (n < 1 || (n + 1 <= kMinLength && cache_->double_horner) || !(t >= 0 && t <= 1)) {
     for (long k = 0; k <= n; ++k) a.push_back(fmpz_get_d(p_.get()->coeffs + k));
   } else {
-    const detail::CellPtr cp = cache_->cells.point_cell(p_, t);  // eval_double's cells
-    a = cp->mid;
-    w = t - arf_get_d(cp->e.centre, ARF_RND_NEAR);
+    const detail::Cell& cell = cache_->cells.point_cell(p_, t);  // eval_double's cells
+    a.assign(cell.mid.begin(), cell.mid.end());
+    w = t - arf_get_d(cell.e.centre, ARF_RND_NEAR);
   }
   // Taylor shift by w (repeated synthetic division): after pass j, a[j] is
   // the j-th coefficient at t; only the first order + 1 passes are needed.

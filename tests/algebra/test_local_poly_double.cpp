@@ -198,5 +198,31 @@ TEST(LocalPoly, DoubleValuesMatchTheExactValuesAtCellEndsAndInside) {
   }
 }
 
+// eval_double and eval_double_taylor keep each thread's recent cells: a
+// LocalPoly made where an earlier one was destroyed (often at the same
+// address), of another polynomial, must get its own cells, never the
+// earlier one's. Short-lived LocalPolys of random polynomials, evaluated at
+// the same points one after the other, agree with the exact values.
+TEST(LocalPoly, DoubleValuesOfShortLivedPolynomialsAreTheirOwn) {
+  std::mt19937_64 rng(20261204);
+  const double ts[] = {0.1, 0.37, 0.5, 0.81};
+  for (long it = 0; it < iterations(40); ++it) {
+    const Poly p = random_test_poly(rng);
+    const LocalPoly lp(p);
+    for (double t : ts) {
+      double v, b[3];
+      lp.eval_double(t, &v, nullptr, nullptr);
+      lp.eval_double_taylor(t, 2, b);
+      const std::vector<double> ex = exact_taylor(p, t);
+      SCOPED_TRACE("degree " + std::to_string(p.degree()) + ", t = " + std::to_string(t));
+      EXPECT_LE(std::fabs(v - ex[0]), std::ldexp(local_scale(ex, 0), -40) + 1e-300);
+      for (int j = 0; j < 3; ++j) {
+        const double want = static_cast<std::size_t>(j) < ex.size() ? ex[static_cast<std::size_t>(j)] : 0.0;
+        EXPECT_LE(std::fabs(b[j] - want), std::ldexp(local_scale(ex, j), -40) + 1e-300) << "j = " << j;
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace uniparam
