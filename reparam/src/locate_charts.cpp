@@ -85,8 +85,7 @@ class ChartTrack final : public Track {
 
   std::vector<Ball> eval(const Ball& v, long prec) const override {
     if (v.is_exact()) {
-      const Rational x = exact_rational(v);
-      return exact_components(p_, t_exact(x), prec);
+      return exact_components(p_, t_exact(mid_rational(v)), prec);
     }
     // the hull over the halves v's ball meets, each on its own curve
     std::vector<Ball> out;
@@ -98,7 +97,7 @@ class ChartTrack final : public Track {
       // w = n v - h, clipped to [0, 1]
       arb_mul_ui(w.get(), v.get(), n, prec);
       arb_sub_ui(w.get(), w.get(), h, prec);
-      clip(w, prec);
+      clamp_unit(w.get(), prec);
       const Half& H = halves_[h];
       std::vector<Ball> pt;
       if (H.chart_side) {
@@ -130,7 +129,7 @@ class ChartTrack final : public Track {
   /// with v: the hull of the images of v's ends, each in its half); exact
   /// for an exact v.
   Ball t_of(const Ball& v, long prec) const {
-    if (v.is_exact()) return Ball(t_exact(exact_rational(v)), prec);
+    if (v.is_exact()) return Ball(t_exact(mid_rational(v)), prec);
     arf_t lo, hi;
     arf_init(lo);
     arf_init(hi);
@@ -156,31 +155,6 @@ class ChartTrack final : public Track {
     // t at the local w (t side)
     Rational t(const Rational& w) const { return lo + (hi - lo) * w; }
   };
-
-  // clip the ball w to [0, 1]
-  static void clip(Ball& w, long prec) {
-    arf_t l, h;
-    arf_init(l);
-    arf_init(h);
-    arb_get_lbound_arf(l, w.get(), prec);
-    arb_get_ubound_arf(h, w.get(), prec);
-    if (arf_sgn(l) < 0) arf_zero(l);
-    if (arf_cmp_si(h, 1) > 0) arf_one(h);
-    if (arf_cmp(l, h) > 0) arf_set(l, h);
-    arb_set_interval_arf(w.get(), l, h, prec);
-    arf_clear(l);
-    arf_clear(h);
-  }
-
-  static Rational exact_rational(const Ball& v) {
-    fmpq_t q;
-    fmpq_init(q);
-    arf_get_fmpq(q, arb_midref(v.get()));
-    Rational r;
-    fmpq_set(r.get(), q);
-    fmpq_clear(q);
-    return r;
-  }
 
   std::size_t half_of(const Rational& v) const {
     const long n = static_cast<long>(halves_.size());

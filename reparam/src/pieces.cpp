@@ -270,6 +270,18 @@ std::vector<Breakpoint> critical_breakpoints(const Speed& s) {
 
 namespace {
 
+// out[0..2] = v (1 - s)^2, 2 v s (1 - s), v s^2: the integrands of a
+// piece's A, B, C (Bernstein weights of degree 2) from s and r = 1 - s.
+void quadratic_weights(acb_ptr out, const acb_t s, const acb_t r, const acb_t v, long prec) {
+  acb_mul(out, r, r, prec);
+  acb_mul(out, out, v, prec);
+  acb_mul(out + 1, s, r, prec);
+  acb_mul_2exp_si(out + 1, out + 1, 1);
+  acb_mul(out + 1, out + 1, v, prec);
+  acb_mul(out + 2, s, s, prec);
+  acb_mul(out + 2, out + 2, v, prec);
+}
+
 // L = A + B + C, M = B + 2 sqrt(A C), alpha = 1 / (1 + sqrt(C / A)) from r's
 // A, B, C.
 void finish_piece(PieceIntegrals& r, long rel_goal_bits) {
@@ -325,13 +337,7 @@ std::vector<Ball> chart_piece_integrals(const Speed& s, const SpeedCharts& ch, c
       acb_div(x, x, dt, prec);
       acb_div(y, y, dt, prec);
       acb_neg(y, y);
-      acb_mul(out, y, y, prec);
-      acb_mul(out, out, v, prec);
-      acb_mul(out + 1, x, y, prec);
-      acb_mul_2exp_si(out + 1, out + 1, 1);
-      acb_mul(out + 1, out + 1, v, prec);
-      acb_mul(out + 2, x, x, prec);
-      acb_mul(out + 2, out + 2, v, prec);
+      quadratic_weights(out, x, y, v, prec);
       acb_clear(ta);
       acb_clear(dt);
       acb_clear(x);
@@ -434,16 +440,9 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
         acb_neg(st, st);
       }
     }
-    // weights (1 - s~)^2, 2 s~ (1 - s~), s~^2
     acb_sub_ui(w, st, 1, prec);
     acb_neg(w, w);  // 1 - s~
-    acb_mul(out, w, w, prec);
-    acb_mul(out, out, v, prec);
-    acb_mul(out + 1, w, st, prec);
-    acb_mul_2exp_si(out + 1, out + 1, 1);
-    acb_mul(out + 1, out + 1, v, prec);
-    acb_mul(out + 2, st, st, prec);
-    acb_mul(out + 2, out + 2, v, prec);
+    quadratic_weights(out, st, w, v, prec);
     acb_clear(ta);
     acb_clear(dt);
     acb_clear(tt);

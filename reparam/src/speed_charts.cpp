@@ -1,3 +1,5 @@
+// Speed charts (speed_charts.hpp): the parts of a speed with narrow
+// interior features, their exact charts, and the spans of an interval in them.
 #include "speed_charts.hpp"
 
 #include <algorithm>

@@ -209,6 +209,16 @@ Ball integrate_speed(const Speed& s, const RealAlgebraic& a, const RealAlgebraic
 Ball integrate_speed_squared(const Speed& s, const RealAlgebraic& a, const RealAlgebraic& b,
                              long rel_goal_bits, long max_prec) {
   if (s.identically_zero() || a == b) return Ball(0);
+  // the quadrature's options for sigma^2 of `speed` (s's or a chart's)
+  const auto options = [&](const Speed& speed) {
+    QuadratureOptions qo;
+    qo.rel_goal_bits = rel_goal_bits;
+    qo.max_prec = max_prec;
+    qo.scale_bits = speed_scale_bits(speed);
+    qo.what = "the integral of the squared " + to_string(s.kind()) + " speed";
+    qo.singularity_hints = speed.singularity_hints(true);
+    return qo;
+  };
   if (const SpeedCharts* ch = s.charts()) {
     // span by span in the charts: sigma^2 dt = sigma_phi^2 / |phi'| du
     Ball total(0);
@@ -226,24 +236,12 @@ Ball integrate_speed_squared(const Speed& s, const RealAlgebraic& a, const RealA
         acb_mul(out, out, d, prec);
         acb_clear(d);
       };
-      QuadratureOptions qo;
-      qo.rel_goal_bits = rel_goal_bits;
-      qo.max_prec = max_prec;
-      qo.scale_bits = speed_scale_bits(speed);
-      qo.what = "the integral of the squared " + to_string(s.kind()) + " speed";
-      qo.singularity_hints = speed.singularity_hints(true);
-      arb_add(total.get(), total.get(), integrate(f, sp.u0, sp.u1, qo).get(), 2 * rel_goal_bits + 64);
+      arb_add(total.get(), total.get(), integrate(f, sp.u0, sp.u1, options(speed)).get(), 2 * rel_goal_bits + 64);
     }
     return total;
   }
   Integrand f = [&s](acb_t out, const acb_t z, bool, long prec) { s.eval_squared(out, z, prec); };
-  QuadratureOptions qo;
-  qo.rel_goal_bits = rel_goal_bits;
-  qo.max_prec = max_prec;
-  qo.scale_bits = speed_scale_bits(s);
-  qo.what = "the integral of the squared " + to_string(s.kind()) + " speed";
-  qo.singularity_hints = s.singularity_hints(true);
-  return integrate(f, a, b, qo);
+  return integrate(f, a, b, options(s));
 }
 
 void check_degree(const Curve& c, const Options& opt) {

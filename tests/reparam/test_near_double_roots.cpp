@@ -12,18 +12,13 @@
 #include <random>
 #include <string>
 
+#include "support/iterations.hpp"
 #include "uniparam/core/budget.hpp"
 #include "uniparam/reparam/all.hpp"
 
 using namespace uniparam;
 
 namespace {
-
-std::string random_digits(std::mt19937& rng, int digits) {
-  std::string s(1, static_cast<char>('1' + rng() % 9));
-  for (int i = 1; i < digits; ++i) s += static_cast<char>('0' + rng() % 10);
-  return s;
-}
 
 struct Bump {
   arb_t C, c;
@@ -73,7 +68,7 @@ TEST(NearDoubleRoot, ArcLengthOfARationalBumpMatchesAnIndependentQuadrature) {
   TimeBudget budget(60);
   std::mt19937 rng(20261204);
   for (int trial = 0; trial < 6; ++trial) {
-    const std::string C = random_digits(rng, 9 + static_cast<int>(rng() % 12));
+    const std::string C = test_support::random_positive_digits(rng, 9 + static_cast<int>(rng() % 12));
     const long den = 3 + static_cast<long>(rng() % 17);
     const Rational c(1 + static_cast<long>(rng() % static_cast<unsigned long>(den - 1)), den);
     const Curve p = Curve::parse("((1 + t^2)/(1 + " + C + "*(t - " + c.str() + ")^2), t)");

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "support/iterations.hpp"
 #include "support/reference.hpp"
 #include "uniparam/algebra/quadrature.hpp"
 #include "uniparam/core/budget.hpp"
@@ -19,13 +20,6 @@
 using namespace uniparam;
 
 namespace {
-
-// A random integer with `digits` decimal digits, the first nonzero.
-std::string random_digits(std::mt19937& rng, int digits) {
-  std::string s(1, static_cast<char>('1' + rng() % 9));
-  for (int i = 1; i < digits; ++i) s += static_cast<char>('0' + rng() % 10);
-  return s;
-}
 
 // u -> p(a + (b - a) u) holds p's point at every rational u: the
 // components agree at t = a + (b - a) u, evaluated exactly.
@@ -115,7 +109,7 @@ TEST(SpeedCharts, IntegralsAgreeWithDirectQuadrature) {
   TimeBudget budget(300);
   std::mt19937 rng(20261204);
   for (int trial = 0; trial < 4; ++trial) {
-    const std::string C = random_digits(rng, 30);
+    const std::string C = test_support::random_positive_digits(rng, 30);
     const long den = 3 + static_cast<long>(rng() % 17);
     const long num = 1 + static_cast<long>(rng() % static_cast<unsigned long>(den - 1));
     const Rational c(num, den);
@@ -166,7 +160,7 @@ TEST(SpeedCharts, UniformityOfAPeakMatchesTheClosedForm) {
   TimeBudget budget(120);
   std::mt19937 rng(20261203);
   for (int trial = 0; trial < 4; ++trial) {
-    const std::string C = random_digits(rng, 40);
+    const std::string C = test_support::random_positive_digits(rng, 40);
     const long den = 3 + static_cast<long>(rng() % 17);
     const long num = 1 + static_cast<long>(rng() % static_cast<unsigned long>(den - 1));
     const Curve p = Curve::parse("(t, " + C + "*(t - " + Rational(num, den).str() + ")^2)");
@@ -305,7 +299,7 @@ TEST(SpeedCharts, LocatedPointsOfAPeakMatchTheClosedForm) {
   TimeBudget budget(60);
   std::mt19937 rng(4121226);
   for (int trial = 0; trial < 4; ++trial) {
-    const std::string C = random_digits(rng, trial < 2 ? 40 : 300);
+    const std::string C = test_support::random_positive_digits(rng, trial < 2 ? 40 : 300);
     const long den = 3 + static_cast<long>(rng() % 17);
     const Rational c(1 + static_cast<long>(rng() % static_cast<unsigned long>(den - 1)), den);
     const Curve p = Curve::parse("(t, " + C + "*(t - " + c.str() + ")^2)");

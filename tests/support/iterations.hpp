@@ -34,6 +34,15 @@ inline std::string random_digits(std::mt19937_64& rng, int max_len) {
   return s;
 }
 
+/// A string of exactly `digits` random decimal digits, the first nonzero: a
+/// positive integer of that many digits (e.g. a huge coefficient C).
+template <class Rng>
+std::string random_positive_digits(Rng& rng, int digits) {
+  std::string s(1, static_cast<char>('1' + rng() % 9));
+  for (int i = 1; i < digits; ++i) s += static_cast<char>('0' + rng() % 10);
+  return s;
+}
+
 /// A random integer of 1 to max_digits decimal digits, either sign.
 inline Integer random_integer(std::mt19937_64& rng, int max_digits) {
   const Integer v(random_digits(rng, max_digits));
