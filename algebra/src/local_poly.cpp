@@ -317,12 +317,10 @@ void LocalPoly::eval(acb_t v, acb_t d1, acb_t d2, const acb_t z, long prec) cons
   // gets an enclosure many orders wider than p's variation on it. The
   // mean-value form p(m) + p'(z) (z - m) at z's exact midpoint m wraps only
   // at second order (p'' r^2), and both are intersected.
-  mag_t r;
-  mag_init(r);
-  ball_radius(r, z);
-  const bool region = p_.degree() >= 2 && acb_is_finite(z) && mag_cmp_2exp_si(r, kCoarseBallLog2) < 0 &&
-                      mag_cmp_2exp_si(r, kPointGuardBits - prec) >= 0;
-  mag_clear(r);
+  // (the radius of either part, as is_wide_ball reads it: no hypot per node)
+  const bool region = p_.degree() >= 2 && acb_is_finite(z) && !is_wide_ball(z) &&
+                      (mag_cmp_2exp_si(arb_radref(acb_realref(z)), kPointGuardBits - prec) >= 0 ||
+                       mag_cmp_2exp_si(arb_radref(acb_imagref(z)), kPointGuardBits - prec) >= 0);
   if (!region) {
     eval_direct(v, d1, d2, z, prec);
     return;
