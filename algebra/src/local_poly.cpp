@@ -108,6 +108,19 @@ void centred_outputs(acb_ptr outs[3], const acb_poly_t c, const mag_t r, bool re
 // cancellation).
 constexpr long kMinLength = 3;
 
+// A narrow ball (not is_wide_ball) inside the disc |z| <= 2^-kNearZeroBits,
+// where LocalPoly::eval_direct takes the power basis.
+constexpr long kNearZeroBits = 16;
+bool near_zero(const acb_t z) {
+  if (is_wide_ball(z)) return false;
+  mag_t m;
+  mag_init(m);
+  acb_get_mag(m, z);
+  const bool near = mag_cmp_2exp_si(m, -kNearZeroBits) <= 0;
+  mag_clear(m);
+  return near;
+}
+
 // Enclosures of p(z), and p'(z), p''(z) where d1, d2 are non-null, for a
 // polynomial with ball coefficients p and its derivatives p1 = p', p2 = p''
 // (the power-basis fallback). Narrow balls (radius < 2^kCoarseBallLog2,
@@ -357,7 +370,12 @@ void LocalPoly::eval(acb_t v, acb_t d1, acb_t d2, const acb_t z, long prec) cons
 }
 
 void LocalPoly::eval_direct(acb_t v, acb_t d1, acb_t d2, const acb_t z, long prec) const {
-  if (p_.degree() + 1 <= kMinLength || !acb_is_finite(z)) {
+  // Narrow balls within 2^-kNearZeroBits of 0 take the power basis, p's
+  // expansion about 0: a cell's about its centre 2^-7 sums terms of p's
+  // size on that cell, and next to a root of p at or near 0 (a narrow
+  // feature moved to 0 by an exact change of variable), at |z| = 2^-k, that is
+  // 2^(k - 7) times p(z) or more: all of prec's bits lost from k ~ prec.
+  if (p_.degree() + 1 <= kMinLength || !acb_is_finite(z) || near_zero(z)) {
     const std::shared_ptr<const PowerBasis> b = power_at(prec);
     centred_eval(v, d1, d2, b->p, b->p1, b->p2, z, prec);
     return;

@@ -369,6 +369,67 @@ TEST(LocalPoly, NarrowRegionsAreAboutAsTightAsTheVariationOfP) {
   }
 }
 
+// Next to a root of p at 0 (a feature a chart puts at u = 0, with
+// coefficients of hundreds of bits), a narrow ball at |z| = 2^-k keeps
+// about prec bits of p(z), p'(z), p''(z) themselves, not of p's size on a
+// cell 2^-7 wide: p = t^m r(t) with random r (r(0) != 0, 300-bit
+// coefficients), m = 1, 2, at exact points 2^-k (20 <= k <= 400) and 64
+// bits. A level-6 cell's expansion about 2^-7 loses about (k - 7) m bits
+// of p(z): everything from k ~ 70.
+TEST(LocalPoly, PointsNextToARootAtZeroKeepTheirRelativeAccuracy) {
+  std::mt19937_64 rng(20261205);
+  std::uniform_int_distribution<long> kdist(20, 400), ddist(3, 12);
+  const long prec = 64;
+  for (long it = 0; it < iterations(40); ++it) {
+    const int m = 1 + static_cast<int>(it % 2);
+    Poly r = random_poly(rng, ddist(rng), 1000);
+    if (r.coeff(0).sign() == 0) r = r + Poly(1);
+    Poly p = r;
+    fmpz_poly_scalar_mul_2exp(p.get(), p.get(), 300);
+    fmpz_poly_shift_left(p.get(), p.get(), m);
+    const LocalPoly lp(p);
+    arb_poly_t exact, e1, e2;
+    arb_poly_init(exact);
+    arb_poly_init(e1);
+    arb_poly_init(e2);
+    arb_poly_set_fmpz_poly(exact, p.get(), kRefPrec);
+    arb_poly_derivative(e1, exact, kRefPrec);
+    arb_poly_derivative(e2, e1, kRefPrec);
+    for (int b = 0; b < 8; ++b) {
+      const long k = kdist(rng);
+      acb_t z, v, d1, d2;
+      for (acb_ptr x : {z, v, d1, d2}) acb_init(x);
+      acb_set_si(z, b % 2 ? 3 : -5);
+      acb_mul_2exp_si(z, z, -k);
+      lp.eval(v, d1, d2, z, prec);
+      const arb_poly_struct* refs[3] = {exact, e1, e2};
+      const acb_struct* outs[3] = {v, d1, d2};
+      for (int j = 0; j < 3; ++j) {
+        arb_t ref;
+        arb_init(ref);
+        arb_poly_evaluate(ref, refs[j], acb_realref(z), kRefPrec);
+        EXPECT_TRUE(arb_contains(acb_realref(outs[j]), ref) && arb_contains_zero(acb_imagref(outs[j]))) << "derivative " << j << " at 2^-" << k;
+        // relative radius at most 2^-(prec - 16)
+        mag_t lo, rad;
+        mag_init(lo);
+        mag_init(rad);
+        arb_get_mag_lower(lo, ref);
+        mag_mul_2exp_si(lo, lo, 16 - prec);
+        mag_hypot(rad, arb_radref(acb_realref(outs[j])), arb_radref(acb_imagref(outs[j])));
+        EXPECT_LE(mag_cmp(rad, lo), 0) << "t^" << m << " (" << r.str() << "), derivative " << j << " at 2^-" << k
+                                       << ": radius " << mag_get_d(rad) << " > " << mag_get_d(lo);
+        mag_clear(lo);
+        mag_clear(rad);
+        arb_clear(ref);
+      }
+      for (acb_ptr x : {z, v, d1, d2}) acb_clear(x);
+    }
+    arb_poly_clear(exact);
+    arb_poly_clear(e1);
+    arb_poly_clear(e2);
+  }
+}
+
 }  // namespace
 }  // namespace uniparam
 

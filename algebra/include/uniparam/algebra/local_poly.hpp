@@ -37,7 +37,10 @@
 // zeros), where the cells do better; p / (t - gamma) likewise
 // (DoubleCentredForm::eval_deflated).
 // Balls that no cell's disc contains (far from [0, 1]) fall back to the
-// power basis (Horner on narrow balls, a centred form on wide ones).
+// power basis (Horner on narrow balls, a centred form on wide ones), and so
+// do narrow balls within 2^-16 of 0, where the power basis is p's own
+// expansion about 0 and a cell's about 2^-7 would lose bits next to a root
+// at or near 0.
 #pragma once
 
 #include <acb.h>
@@ -76,7 +79,8 @@ class LocalPoly {
   /// \post every output contains the exact value at every point of z; an
   ///       output may be infinite (e.g. a non-finite z), never wrong. A
   ///       narrow ball's enclosure is accurate to about prec bits of p's
-  ///       size near z; a wide one (radius >= 2^-24) may be wider than p's
+  ///       size near z (within 2^-16 of 0: of the size of p's power-basis
+  ///       terms at z, so next to a root at 0 of p itself); a wide one (radius >= 2^-24) may be wider than p's
   ///       variation on z by about 2^-24 of p's size on the discs of the
   ///       (coarse) cells used. A narrow ball wider than a point of prec
   ///       (a real or imaginary radius from 2^(16 - prec), both below
