@@ -195,7 +195,11 @@ void append_features(const Poly& P, std::vector<Feature>& out) {
       }
       depth = root_depth_bits(mapped_to_unit_interval(P, c, c + Rational(1)));  // P(c + u), scaled
       if (r.is_rational() || depth + 8 <= bits) break;
-      bits = depth + 16;
+      // c is within 2^-bits of the critical point, and the roots about it
+      // are at least that close: doubled, so a feature 2^-1000 wide is
+      // reached in a few rounds (by 16 bits a round, 16 rounds stopped at
+      // about 2^-320, off the feature by 2^680 of its widths)
+      bits = std::max(depth + 16, 2 * bits);
     }
     if (depth < kMinBits) continue;
     const Rational margin = pow2(8 - depth);

@@ -6,6 +6,7 @@
 
 #include <arb.h>
 
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -254,6 +255,76 @@ TEST(PeakSplit, CubicPeakWithAHugeCoefficientFinishes) {
     const UniformityResult r = uniformity(p, kind, Options{});
     EXPECT_TRUE(r.u.meets_digits(15));
     EXPECT_GT(arf_sgn(arb_midref(r.u.get())), 0);
+  }
+}
+
+// (t, C (t - a)^2 + t^3) with a 300-digit C and a random centre a: the
+// angular peak sits where y' = 2 C (t - a) + 3 t^2 vanishes, an irrational
+// point, and is 1 / (2 C) wide. Its feature knot lies on the peak itself
+// (|y'| < 1/16 there, exactly), not merely within a few hundred bits of it,
+// which left the peak 2^680 of its widths inside a part and every quadrature
+// bisecting down to it; mu is the turning angle atan(y'(1)) - atan(y'(0))
+// (y'' > 0).
+TEST(PeakSplit, FeatureKnotsSitOnPeaksAtIrrationalPoints) {
+  TimeBudget budget(60);
+  std::mt19937 rng(20261206);
+  for (int trial = 0; trial < 3; ++trial) {
+    const std::string C = test_support::random_positive_digits(rng, 300);
+    const long den = 3 + static_cast<long>(rng() % 17);
+    const Rational a(1 + static_cast<long>(rng() % static_cast<unsigned long>(den - 1)), den);
+    const Curve p = Curve::parse("(t, " + C + "*(t - " + a.str() + ")^2 + t^3)");
+    SCOPED_TRACE(p.str());
+    const Rational c_big{Integer(C)};
+    const auto slope = [&](const Rational& t) { return Rational(2) * c_big * (t - a) + Rational(3) * t * t; };
+    const Speed s(p, SpeedKind::Angular);
+    const std::optional<PeakSplit> split = peak_split(s);
+    ASSERT_TRUE(split.has_value());
+    int features = 0;
+    for (std::size_t i = 0; i < split->knots.size(); ++i) {
+      if (!split->feature[i]) continue;
+      ++features;
+      Rational y1 = slope(split->knots[i]);
+      if (y1.sign() < 0) y1 = -y1;
+      EXPECT_LT(y1, Rational(1, 16)) << "knot " << split->knots[i].str();
+    }
+    EXPECT_EQ(features, 1);
+    Options o;
+    o.digits = 20;
+    const UniformityResult r = uniformity(p, SpeedKind::Angular, o);
+    const long prec = 2400;
+    Ball y0(-slope(Rational(0)), prec), y1(slope(Rational(1)), prec), mu;
+    arb_atan(y0.get(), y0.get(), prec);
+    arb_atan(y1.get(), y1.get(), prec);
+    arb_add(mu.get(), y0.get(), y1.get(), prec);
+    EXPECT_TRUE(arb_overlaps(r.mu.get(), mu.get())) << r.mu.str(25) << " vs " << mu.str(25);
+    EXPECT_TRUE(r.u.meets_digits(20));
+  }
+}
+
+// (t, C t^2 (1 - t)^2) with a random 300-digit C: angular peaks 1 / (2 C)
+// wide at 0, 1/2 and 1, each part's feature at its chart's u = 0, where
+// the speed's factors are evaluated next to their roots. mu = 4 atan(C
+// sqrt(3) / 9) (y' = 0 at 0, 1/2, 1; |y'| = C sqrt(3) / 9 at the zeros
+// (3 -+ sqrt(3)) / 6 of y'').
+TEST(PeakSplit, PeaksAtBothEndsAndInsideMatchTheClosedForm) {
+  TimeBudget budget(60);
+  std::mt19937 rng(20261207);
+  for (int trial = 0; trial < 3; ++trial) {
+    const std::string C = test_support::random_positive_digits(rng, 300);
+    const Curve p = Curve::parse("(t, " + C + "*t^2*(1 - t)^2)");
+    Options o;
+    o.digits = 20;
+    const UniformityResult r = uniformity(p, SpeedKind::Angular, o);
+    const long prec = 2400;
+    Ball x, mu;
+    arb_set_str(x.get(), C.c_str(), prec);
+    arb_sqrt_ui(mu.get(), 3, prec);
+    arb_mul(x.get(), x.get(), mu.get(), prec);
+    arb_div_ui(x.get(), x.get(), 9, prec);
+    arb_atan(mu.get(), x.get(), prec);
+    arb_mul_2exp_si(mu.get(), mu.get(), 2);
+    EXPECT_TRUE(arb_overlaps(r.mu.get(), mu.get())) << r.mu.str(25) << " vs " << mu.str(25);
+    EXPECT_TRUE(r.u.meets_digits(20));
   }
 }
 
