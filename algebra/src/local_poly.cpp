@@ -465,11 +465,12 @@ void LocalPoly::eval_deflated(acb_t v, const acb_t z, const RealAlgebraic& gamma
   if (cache.centred.usable() && is_wide_ball(z) && acb_is_finite(z) &&
       cache.centred.eval_deflated(v, z, g_mid, g_rad, kDoubleCentredMaxError))
     return;
-  if (p_.degree() + 1 > kMinLength && acb_is_finite(z) &&
+  if (p_.degree() + 1 > kMinLength && acb_is_finite(z) && !near_zero(z) &&
       cache.cells.eval(p_, variant, v, nullptr, nullptr, z, prec))
     return;
-  // Low degree, or far from [0, 1]: the deflated power basis (exact
-  // synthetic division in Z[gamma], see deflate), centred form.
+  // Low degree, far from [0, 1], or a narrow ball next to 0 (as in
+  // eval_direct): the deflated power basis (exact synthetic division in
+  // Z[gamma], see deflate), centred form.
   const auto key = std::make_pair(variant, prec);
   std::shared_ptr<const BallPoly> q;
   {

@@ -299,66 +299,185 @@ void finish_piece(PieceIntegrals& r, long rel_goal_bits) {
   arb_inv(r.alpha.get(), t.get(), prec);
 }
 
-// A, B, C of the piece [a, b] of s without zeros at its ends
-// (piece_integrals) span by span in s's charts: f_k(t) dt = sigma^2(t) (b - a) w_k(t~) dt
-// with sigma^2 dt = sigma_phi(u)^2 / |phi'(u)| du and t = phi(u). The
+// A, B, C of the piece [a, b] of s (piece_integrals), and next to a zero
+// of sigma at an end (side, zero with multiplicity mu) the integral of
+// sigma^2 besides, span by span in s's charts: sigma^2 dt = sigma_phi(u)^2
+// / |phi'(u)| du = sigma_phi^2 d(u)^2 w0 du with t = phi(u) (SpeedChart).
+// With g = side (t - gamma) > 0 on the piece, the integrands are those of
+// piece_integrals: v = sigma^2 Delta t^(mu+1) / ((mu+1) g^mu) (mu = 0: v =
+// sigma^2 Delta t) times the weights of s~ = t~^(mu+1) (Left) or
+// 1 - (1 - t~)^(mu+1) (Right; t~ itself for none). On the span at gamma
+// in a chart, gamma's image u_g is a zero of the chart's speed of the same
+// multiplicity, deflated there: t - gamma = h a b (u - u_g) / (d(u) d(u_g))
+// (h = k1 - k0; a Moebius map's difference quotient, no cancellation), so
+// sigma^2 / g^mu dt = [sigma_phi^2 / (side_u (u - u_g))^mu] d^2 w0
+// (d(u) d(u_g) w0)^mu du, side_u the side of u_g the span lies on. The
 // integrands are >= 0, so the spans' relative accuracies carry to the sums.
 std::vector<Ball> chart_piece_integrals(const Speed& s, const SpeedCharts& ch, const RealAlgebraic& a,
-                                        const RealAlgebraic& b, long rel_goal_bits, long max_prec) {
-  std::vector<Ball> total(3, Ball(0));
+                                        const RealAlgebraic& b, ZeroSide side, const SpeedZero& zero, int mu,
+                                        long rel_goal_bits, long max_prec) {
+  const std::size_t count = side == ZeroSide::None ? 3 : 4;
+  std::vector<Ball> total(count, Ball(0));
   PieceEnds ends(a, b);
-  for (const SpeedCharts::Span& sp : ch.spans(a, b)) {
+  const std::vector<SpeedCharts::Span> spans = ch.spans(a, b);
+  for (std::size_t j = 0; j < spans.size(); ++j) {
+    const SpeedCharts::Span& sp = spans[j];
     const SpeedChart& c = ch.charts[sp.chart];
     // the speed integrated: the chart's, or s itself on a plain span
     const Speed& speed = sp.plain ? s : c.speed;
-    // v = sigma_phi^2 w0 (b - a) and, with d the chart's denominator,
-    // X = d t~ and Y = d (1 - t~) (SpeedChart::offset: polynomials in u,
-    // where t~ has the chart's pole next to an end): f_k = v Y^2, 2 v X Y,
-    // v X^2. On a plain span: v = sigma^2 (b - a), X = t~, Y = 1 - t~.
-    Integrand raw = [&c, &ends, &speed, plain = sp.plain](acb_ptr out, const acb_t z, bool, long prec) {
-      acb_t ta, dt, x, y, v;
-      acb_init(ta);
-      acb_init(dt);
-      acb_init(x);
-      acb_init(y);
-      acb_init(v);
+    // the span at gamma, where sigma^2 / g^mu is deflated (by the chart
+    // speed's own zero at gamma's image, at the span's end u_g)
+    const bool at_zero = (side == ZeroSide::Left && j == 0) || (side == ZeroSide::Right && j + 1 == spans.size());
+    SpeedZero local_zero = zero;
+    int side_u = side == ZeroSide::Left ? 1 : -1;
+    const RealAlgebraic* u_g = nullptr;
+    if (at_zero && !sp.plain) {
+      const RealAlgebraic u_zero = c.local(zero.t);
+      bool found = false;
+      for (const SpeedZero& z : c.speed.zeros())
+        if (z.t == u_zero) {
+          if (z.multiplicity != mu)
+            throw DomainError("piece_integrals: a zero of multiplicity " + std::to_string(mu) +
+                              " has multiplicity " + std::to_string(z.multiplicity) + " in its chart");
+          local_zero = z;
+          found = true;
+        }
+      if (!found) throw DomainError("piece_integrals: the zero " + zero.t.str() + " is not one of its chart's");
+      u_g = u_zero == sp.u0 ? &sp.u0 : &sp.u1;
+      side_u = u_g == &sp.u0 ? 1 : -1;
+    }
+    Integrand raw = [&, plain = sp.plain, at_zero](acb_ptr out, const acb_t z, bool, long prec) {
+      acb_t ta, dt, x, y, v, d, w;
+      for (acb_ptr q : {ta, dt, x, y, v, d, w}) acb_init(q);
       ends.get(ta, dt, prec);
-      speed.eval_squared(v, z, prec);
+      // v = sigma^2 / g^mu dt/du (deflated at gamma), x = t~, y = 1 - t~,
+      // and w = sigma^2 dt/du (next to a zero)
       if (plain) {
-        acb_mul(v, v, dt, prec);
+        if (at_zero) {
+          speed.eval_squared_over_zero(v, z, zero, side_u, mu, prec, false);
+        } else {
+          speed.eval_squared(v, z, prec);
+        }
         acb_sub(x, z, ta, prec);
         acb_sub_arb(y, z, ends.b(prec).get(), prec);
+        acb_one(d);
       } else {
-        arb_mul(acb_realref(y), c.w0(prec).get(), acb_realref(dt), prec);
-        acb_mul_arb(v, v, acb_realref(y), prec);
-        c.offset(x, z, acb_realref(ta), prec);
-        c.offset(y, z, ends.b(prec).get(), prec);
+        if (at_zero) {
+          speed.eval_squared_over_zero(v, z, local_zero, side_u, mu, prec, false);
+        } else {
+          speed.eval_squared(v, z, prec);
+        }
+        c.offset(x, z, acb_realref(ta), prec);  // d (t - a)
+        c.offset(y, z, ends.b(prec).get(), prec);  // d (t - b)
+        if (side == ZeroSide::None) {
+          // f_k = v Y^2, 2 v X Y, v X^2 with X = d t~, Y = d (1 - t~) and
+          // v = sigma_phi^2 w0 Delta t: d^2 w0 = dt/du is in X^2, and the
+          // integrand has no division by d (whose zero, phi's pole, lies
+          // within 2^-k of [0, 1] for a map of ratio 2^k)
+          arb_mul(acb_realref(w), c.w0(prec).get(), acb_realref(dt), prec);
+          acb_mul_arb(v, v, acb_realref(w), prec);
+          acb_div(x, x, dt, prec);
+          acb_div(y, y, dt, prec);
+          acb_neg(y, y);
+          quadratic_weights(out, x, y, v, prec);
+          for (acb_ptr q : {ta, dt, x, y, v, d, w}) acb_clear(q);
+          return;
+        }
+        // next to a zero, the weights of s~ = t~^(mu+1) (or its mirror) are
+        // not homogeneous in X, Y: t~ = X / (d Delta t), with the pole of
+        // phi that the integrand has there too (order mu)
+        c.denominator(d, z, prec);
+        acb_div(x, x, d, prec);
+        acb_div(y, y, d, prec);
+        // dt/du = d^2 w0
+        acb_mul(w, d, d, prec);
+        acb_mul_arb(w, w, c.w0(prec).get(), prec);
+        acb_mul(v, v, w, prec);
       }
-      acb_div(x, x, dt, prec);
+      acb_div(x, x, dt, prec);  // t~
       acb_div(y, y, dt, prec);
-      acb_neg(y, y);
-      quadratic_weights(out, x, y, v, prec);
-      acb_clear(ta);
-      acb_clear(dt);
-      acb_clear(x);
-      acb_clear(y);
-      acb_clear(v);
+      acb_neg(y, y);            // 1 - t~
+      if (side == ZeroSide::None) {
+        acb_mul(v, v, dt, prec);
+        quadratic_weights(out, x, y, v, prec);
+      } else {
+        if (at_zero) {
+          if (plain) {
+            // sigma^2 = v g^mu, g = side (t - gamma) = Delta t t~ (Left) or Delta t (1 - t~)
+            acb_mul(w, side == ZeroSide::Left ? x : y, dt, prec);
+            acb_pow_ui(w, w, static_cast<ulong>(mu), prec);
+            acb_mul(out + 3, v, w, prec);
+          } else {
+            // (d(u) d(u_g) w0)^mu, and sigma^2 dt/du = v (side_u (u - u_g))^mu / that
+            acb_t dg, ug, r;
+            acb_init(dg);
+            acb_init(ug);
+            acb_init(r);
+            acb_set_arb(ug, u_g->to_ball(prec).get());
+            c.denominator(dg, ug, prec);
+            acb_mul(r, d, dg, prec);
+            acb_mul_arb(r, r, c.w0(prec).get(), prec);
+            acb_pow_ui(r, r, static_cast<ulong>(mu), prec);
+            acb_sub(ug, z, ug, prec);
+            if (side_u < 0) acb_neg(ug, ug);
+            acb_pow_ui(ug, ug, static_cast<ulong>(mu), prec);
+            acb_mul(out + 3, v, ug, prec);
+            acb_mul(v, v, r, prec);
+            acb_clear(dg);
+            acb_clear(ug);
+            acb_clear(r);
+          }
+        } else {
+          acb_set(out + 3, v);
+          acb_mul(w, side == ZeroSide::Left ? x : y, dt, prec);  // g
+          acb_pow_ui(w, w, static_cast<ulong>(mu), prec);
+          acb_div(v, v, w, prec);
+        }
+        // v Delta t^(mu+1) / (mu+1), s~ from t~
+        acb_pow_ui(w, dt, static_cast<ulong>(mu + 1), prec);
+        acb_mul(v, v, w, prec);
+        acb_div_ui(v, v, static_cast<ulong>(mu + 1), prec);
+        // s~ and 1 - s~ as products, never by 1 - (...): for Left, s~ =
+        // t~^(mu+1) and 1 - s~ = (1 - t~) sum_{j<=mu} t~^j; for Right the
+        // same with t~ and 1 - t~ swapped. Both keep their relative accuracy
+        // next to either end (next to a chart's feature at the end away
+        // from the zero, sigma^2 is huge and 1 - (1 - t~)^(mu+1) would
+        // leave 2^-prec of it in B and C).
+        acb_ptr near = side == ZeroSide::Left ? x : y;  // t~ or 1 - t~: the zero's end
+        acb_ptr far = side == ZeroSide::Left ? y : x;
+        acb_t sum, pw;
+        acb_init(sum);
+        acb_init(pw);
+        acb_one(sum);
+        acb_one(pw);
+        for (int i = 1; i <= mu; ++i) {
+          acb_mul(pw, pw, near, prec);
+          acb_add(sum, sum, pw, prec);
+        }
+        acb_mul(pw, pw, near, prec);  // near^(mu+1)
+        acb_mul(far, far, sum, prec);
+        acb_swap(near, pw);
+        acb_clear(sum);
+        acb_clear(pw);
+        quadratic_weights(out, x, y, v, prec);
+      }
+      for (acb_ptr q : {ta, dt, x, y, v, d, w}) acb_clear(q);
     };
     const long scale_bits = speed_scale_bits(speed);
     PieceEnds local(sp.u0, sp.u1);
-    const std::vector<long> exps = piece_scale_exponents(raw, 3, local, scale_bits, speed_coefficient_bits(speed));
-    Integrand f = [&raw, &exps](acb_ptr out, const acb_t z, bool analytic, long prec) {
+    const std::vector<long> exps = piece_scale_exponents(raw, count, local, scale_bits, speed_coefficient_bits(speed));
+    Integrand f = [&raw, &exps, count](acb_ptr out, const acb_t z, bool analytic, long prec) {
       raw(out, z, analytic, prec);
-      for (std::size_t k = 0; k < 3; ++k) acb_mul_2exp_si(out + k, out + k, -exps[k]);
+      for (std::size_t k = 0; k < count; ++k) acb_mul_2exp_si(out + k, out + k, -exps[k]);
     };
     QuadratureOptions qo;
     qo.rel_goal_bits = rel_goal_bits;
     qo.max_prec = max_prec;
     qo.scale_bits = scale_bits;
-    qo.what = "the piece integrals A, B, C";
+    qo.what = side == ZeroSide::None ? "the piece integrals A, B, C" : "the piece integrals A, B, C and of sigma^2";
     qo.singularity_hints = speed.singularity_hints(true);
-    std::vector<Ball> abc = integrate_many(f, 3, sp.u0, sp.u1, qo);
-    for (std::size_t k = 0; k < 3; ++k) {
+    std::vector<Ball> abc = integrate_many(f, count, sp.u0, sp.u1, qo);
+    for (std::size_t k = 0; k < count; ++k) {
       arb_mul_2exp_si(abc[k].get(), abc[k].get(), exps[k]);
       arb_add(total[k].get(), total[k].get(), abc[k].get(), 2 * rel_goal_bits + 64);
     }
@@ -383,15 +502,18 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
   const SpeedZero zero = side == ZeroSide::Left ? a.zero() : side == ZeroSide::Right ? b.zero() : SpeedZero{a.t, 0};
   // A speed with narrow features inside (0, 1): span by span in its
   // parts' charts (speed_charts.hpp).
-  if (side == ZeroSide::None)
-    if (const SpeedCharts* ch = s.charts()) {
-      std::vector<Ball> abc = chart_piece_integrals(s, *ch, a.t, b.t, rel_goal_bits, max_prec);
-      r.A = std::move(abc[0]);
-      r.B = std::move(abc[1]);
-      r.C = std::move(abc[2]);
-      finish_piece(r, rel_goal_bits);
-      return r;
+  if (const SpeedCharts* ch = s.charts()) {
+    std::vector<Ball> abc = chart_piece_integrals(s, *ch, a.t, b.t, side, zero, mu, rel_goal_bits, max_prec);
+    r.A = std::move(abc[0]);
+    r.B = std::move(abc[1]);
+    r.C = std::move(abc[2]);
+    if (side != ZeroSide::None) {
+      r.square = std::move(abc[3]);
+      r.square_bits = rel_goal_bits;
     }
+    finish_piece(r, rel_goal_bits);
+    return r;
+  }
 
   // f_k(t) = sigma^2 rho w_k(s~): k = 0, 1, 2 for (1-s~)^2, 2 s~(1-s~), s~^2,
   // the three in one quadrature (one evaluation of the speed per point).

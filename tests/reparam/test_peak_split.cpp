@@ -328,6 +328,43 @@ TEST(PeakSplit, PeaksAtBothEndsAndInsideMatchTheClosedForm) {
   }
 }
 
+// radical on (t, C t^2 (1 - t)^2), 300-digit C: every piece ends at a zero
+// of omega (the zeros (3 -+ sqrt(3)) / 6 of y'') and holds a peak 10^-300
+// wide at its other end, so its A, B, C and its integral of omega^2 run
+// through the charts with the zero deflated in its chart (on t they
+// bisected down to the peak at 800 bits: over 30 s). mu is the closed form,
+// u(p) from the pieces' integrals of omega^2 agrees with uniformity()'s
+// (speed_integrals: other spans, no deflation), the pieces are symmetric
+// about 1/2, and the Moebius step does not lower u.
+TEST(SpeedCharts, RadicalPiecesEndingAtZerosNextToPeaks) {
+  TimeBudget budget(20);
+  std::mt19937 rng(20261208);
+  const std::string C = test_support::random_positive_digits(rng, 300);
+  const Curve p = Curve::parse("(t, " + C + "*t^2*(1 - t)^2)");
+  Options o;
+  o.digits = 20;
+  const RadicalResult r = radical(p, SpeedKind::Angular, o);
+  const long prec = 2400;
+  Ball x, mu;
+  arb_set_str(x.get(), C.c_str(), prec);
+  arb_sqrt_ui(mu.get(), 3, prec);
+  arb_mul(x.get(), x.get(), mu.get(), prec);
+  arb_div_ui(x.get(), x.get(), 9, prec);
+  arb_atan(mu.get(), x.get(), prec);
+  arb_mul_2exp_si(mu.get(), mu.get(), 2);
+  EXPECT_TRUE(arb_overlaps(r.mu.get(), mu.get())) << r.mu.str(25) << " vs " << mu.str(25);
+  const UniformityResult u = uniformity(p, SpeedKind::Angular, o);
+  EXPECT_TRUE(arb_overlaps(r.u_before.get(), u.u.get())) << r.u_before.str(25) << " vs " << u.u.str(25);
+  EXPECT_TRUE(r.u_before.meets_digits(20));
+  const std::size_t n = r.integrals.size();
+  ASSERT_EQ(n, 4u);
+  for (std::size_t i = 0; i < n; ++i) {
+    EXPECT_TRUE(arb_overlaps(r.integrals[i].A.get(), r.integrals[n - 1 - i].C.get())) << i;
+    EXPECT_TRUE(arb_overlaps(r.integrals[i].B.get(), r.integrals[n - 1 - i].B.get())) << i;
+  }
+  EXPECT_FALSE(arb_lt(r.u_after.get(), r.u_before.get())) << r.u_after.str(25) << " < " << r.u_before.str(25);
+}
+
 namespace {
 
 // The angular peak (t, C (t - c)^2): G(t) = atan(2 C (t - c)) + atan(2 C c),
