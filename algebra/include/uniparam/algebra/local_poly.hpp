@@ -113,8 +113,9 @@ class LocalPoly {
   /// local basis of each cell: p(c + w) = (w - (gamma - c)) Q(w) by exact
   /// synthetic division of the cell's coefficients (balls containing the
   /// exact ones) by an enclosure of gamma - c, so no division by z - gamma
-  /// and no cancellation near gamma. Low degrees and balls far from [0, 1]
-  /// use the deflated power basis (deflate()).
+  /// and no cancellation near gamma. Low degrees, balls far from [0, 1] and
+  /// narrow balls within 2^-16 of 0 (as in eval) use the deflated power
+  /// basis (deflate()).
   /// \pre gamma is a root of p (checked exactly, once per gamma;
   ///      DomainError otherwise).
   /// \post v contains p(t) / (t - gamma) for every t in z (may be infinite).
