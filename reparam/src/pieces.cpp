@@ -282,9 +282,17 @@ void quadratic_weights(acb_ptr out, const acb_t s, const acb_t r, const acb_t v,
   acb_mul(out + 2, out + 2, v, prec);
 }
 
-// L = A + B + C, M = B + 2 sqrt(A C), alpha = 1 / (1 + sqrt(C / A)) from r's
-// A, B, C.
-void finish_piece(PieceIntegrals& r, long rel_goal_bits) {
+// r's A, B, C from abc[0..2] and, next to a zero (abc[3]), its integral
+// of sigma^2; then L = A + B + C, M = B + 2 sqrt(A C), alpha = 1 / (1 +
+// sqrt(C / A)).
+void finish_piece(PieceIntegrals& r, std::vector<Ball> abc, long rel_goal_bits) {
+  r.A = std::move(abc[0]);
+  r.B = std::move(abc[1]);
+  r.C = std::move(abc[2]);
+  if (abc.size() > 3) {
+    r.square = std::move(abc[3]);
+    r.square_bits = rel_goal_bits;
+  }
   const long prec = 2 * rel_goal_bits + 64;
   arb_add(r.L.get(), r.A.get(), r.B.get(), prec);
   arb_add(r.L.get(), r.L.get(), r.C.get(), prec);
@@ -503,15 +511,8 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
   // A speed with narrow features inside (0, 1): span by span in its
   // parts' charts (speed_charts.hpp).
   if (const SpeedCharts* ch = s.charts()) {
-    std::vector<Ball> abc = chart_piece_integrals(s, *ch, a.t, b.t, side, zero, mu, rel_goal_bits, max_prec);
-    r.A = std::move(abc[0]);
-    r.B = std::move(abc[1]);
-    r.C = std::move(abc[2]);
-    if (side != ZeroSide::None) {
-      r.square = std::move(abc[3]);
-      r.square_bits = rel_goal_bits;
-    }
-    finish_piece(r, rel_goal_bits);
+    finish_piece(r, chart_piece_integrals(s, *ch, a.t, b.t, side, zero, mu, rel_goal_bits, max_prec),
+                 rel_goal_bits);
     return r;
   }
 
@@ -637,14 +638,7 @@ PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakp
   };
   std::vector<Ball> abc = integrate_many(f, count, a.t, b.t, qo);
   for (std::size_t k = 0; k < count; ++k) arb_mul_2exp_si(abc[k].get(), abc[k].get(), exps[k]);
-  r.A = std::move(abc[0]);
-  r.B = std::move(abc[1]);
-  r.C = std::move(abc[2]);
-  if (side != ZeroSide::None) {
-    r.square = std::move(abc[3]);
-    r.square_bits = rel_goal_bits;
-  }
-  finish_piece(r, rel_goal_bits);
+  finish_piece(r, std::move(abc), rel_goal_bits);
   return r;
 }
 

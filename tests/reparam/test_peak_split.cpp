@@ -301,11 +301,29 @@ TEST(PeakSplit, FeatureKnotsSitOnPeaksAtIrrationalPoints) {
   }
 }
 
+namespace {
+
+// The turning angle of (t, C t^2 (1 - t)^2) over [0, 1]: 4 atan(C sqrt(3)
+// / 9) (y' = 0 at 0, 1/2, 1; |y'| = C sqrt(3) / 9 at the zeros
+// (3 -+ sqrt(3)) / 6 of y'').
+Ball quartic_turning_angle(const std::string& C) {
+  const long prec = 2400;
+  Ball x, mu;
+  arb_set_str(x.get(), C.c_str(), prec);
+  arb_sqrt_ui(mu.get(), 3, prec);
+  arb_mul(x.get(), x.get(), mu.get(), prec);
+  arb_div_ui(x.get(), x.get(), 9, prec);
+  arb_atan(mu.get(), x.get(), prec);
+  arb_mul_2exp_si(mu.get(), mu.get(), 2);
+  return mu;
+}
+
+}  // namespace
+
 // (t, C t^2 (1 - t)^2) with a random 300-digit C: angular peaks 1 / (2 C)
 // wide at 0, 1/2 and 1, each part's feature at its chart's u = 0, where
-// the speed's factors are evaluated next to their roots. mu = 4 atan(C
-// sqrt(3) / 9) (y' = 0 at 0, 1/2, 1; |y'| = C sqrt(3) / 9 at the zeros
-// (3 -+ sqrt(3)) / 6 of y'').
+// the speed's factors are evaluated next to their roots: mu matches the
+// closed form.
 TEST(PeakSplit, PeaksAtBothEndsAndInsideMatchTheClosedForm) {
   TimeBudget budget(60);
   std::mt19937 rng(20261207);
@@ -315,14 +333,7 @@ TEST(PeakSplit, PeaksAtBothEndsAndInsideMatchTheClosedForm) {
     Options o;
     o.digits = 20;
     const UniformityResult r = uniformity(p, SpeedKind::Angular, o);
-    const long prec = 2400;
-    Ball x, mu;
-    arb_set_str(x.get(), C.c_str(), prec);
-    arb_sqrt_ui(mu.get(), 3, prec);
-    arb_mul(x.get(), x.get(), mu.get(), prec);
-    arb_div_ui(x.get(), x.get(), 9, prec);
-    arb_atan(mu.get(), x.get(), prec);
-    arb_mul_2exp_si(mu.get(), mu.get(), 2);
+    const Ball mu = quartic_turning_angle(C);
     EXPECT_TRUE(arb_overlaps(r.mu.get(), mu.get())) << r.mu.str(25) << " vs " << mu.str(25);
     EXPECT_TRUE(r.u.meets_digits(20));
   }
@@ -344,14 +355,7 @@ TEST(SpeedCharts, RadicalPiecesEndingAtZerosNextToPeaks) {
   Options o;
   o.digits = 20;
   const RadicalResult r = radical(p, SpeedKind::Angular, o);
-  const long prec = 2400;
-  Ball x, mu;
-  arb_set_str(x.get(), C.c_str(), prec);
-  arb_sqrt_ui(mu.get(), 3, prec);
-  arb_mul(x.get(), x.get(), mu.get(), prec);
-  arb_div_ui(x.get(), x.get(), 9, prec);
-  arb_atan(mu.get(), x.get(), prec);
-  arb_mul_2exp_si(mu.get(), mu.get(), 2);
+  const Ball mu = quartic_turning_angle(C);
   EXPECT_TRUE(arb_overlaps(r.mu.get(), mu.get())) << r.mu.str(25) << " vs " << mu.str(25);
   const UniformityResult u = uniformity(p, SpeedKind::Angular, o);
   EXPECT_TRUE(arb_overlaps(r.u_before.get(), u.u.get())) << r.u_before.str(25) << " vs " << u.u.str(25);
