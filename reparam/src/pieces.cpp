@@ -355,6 +355,8 @@ std::optional<std::vector<Ball>> chart_piece_integrals(const Speed& s, const Spe
       u_g = u_zero == sp.u0 ? &sp.u0 : &sp.u1;
       side_u = u_g == &sp.u0 ? 1 : -1;
     }
+    // the span's ends in u, per precision (u_g is one of them)
+    PieceEnds local(sp.u0, sp.u1);
     Integrand raw = [&, plain = sp.plain, at_zero](acb_ptr out, const acb_t z, bool, long prec) {
       acb_t ta, dt, x, y, v, d, w;
       for (acb_ptr q : {ta, dt, x, y, v, d, w}) acb_init(q);
@@ -422,7 +424,11 @@ std::optional<std::vector<Ball>> chart_piece_integrals(const Speed& s, const Spe
             acb_init(dg);
             acb_init(ug);
             acb_init(r);
-            acb_set_arb(ug, u_g->to_ball(prec).get());
+            if (u_g == &sp.u0) {
+              local.get(ug, r, prec);
+            } else {
+              acb_set_arb(ug, local.b(prec).get());
+            }
             c.denominator(dg, ug, prec);
             acb_mul(r, d, dg, prec);
             acb_mul_arb(r, r, c.w0(prec).get(), prec);
@@ -473,7 +479,6 @@ std::optional<std::vector<Ball>> chart_piece_integrals(const Speed& s, const Spe
       for (acb_ptr q : {ta, dt, x, y, v, d, w}) acb_clear(q);
     };
     const long scale_bits = speed_scale_bits(speed);
-    PieceEnds local(sp.u0, sp.u1);
     const std::vector<long> exps = piece_scale_exponents(raw, count, local, scale_bits, speed_coefficient_bits(speed));
     Integrand f = [&raw, &exps, count](acb_ptr out, const acb_t z, bool analytic, long prec) {
       raw(out, z, analytic, prec);

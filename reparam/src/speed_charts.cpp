@@ -81,11 +81,6 @@ void SpeedChart::denominator(acb_t d, const acb_t z, long prec) const {
   acb_clear(t);
 }
 
-Ball SpeedChart::w0(long prec) const {
-  const Rational w = Rational(1) / (Rational(chart_a(*this) * chart_b(*this)) * length());
-  return Ball(w, prec);
-}
-
 void SpeedChart::offset(acb_t out, const acb_t z, const arb_t x, long prec) const {
   arb_t k;
   acb_t t;
@@ -160,6 +155,7 @@ std::shared_ptr<const SpeedCharts> SpeedCharts::build(const Speed& s, const Curv
     std::optional<BalancedCurve> bal = balance(part, sp);
     SpeedChart chart{k0, k1, bal, bal ? bal->q : part, bal ? Speed(bal->q, s.kind()) : std::move(sp)};
     chart.speed.lazy_->curve.reset();  // no charts of its own
+    chart.w0_exact = Rational(1) / (Rational(chart_a(chart) * chart_b(chart)) * chart.length());
     out->charts.push_back(std::move(chart));
   }
   return out;

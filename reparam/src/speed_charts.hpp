@@ -34,6 +34,9 @@ struct SpeedChart {
   std::optional<BalancedCurve> bal;  ///< m; the identity where empty
   Curve curve;                       ///< p o phi, exactly
   Speed speed;                       ///< sigma_phi: its speed (no charts of its own)
+  /// w0 = 1 / (a b |k1 - k0|) (below), exactly: made once by build, so the
+  /// integrands that ask for w0 at every point only round it.
+  Rational w0_exact;
 
   /// |k1 - k0|.
   Rational length() const;
@@ -49,7 +52,8 @@ struct SpeedChart {
   /// identity): d(z) = a z + b (1 - z), and 1 / |phi'(z)| = d(z)^2 w0
   /// with w0 = 1 / (a b |k1 - k0|) (an exact rational, here a ball).
   void denominator(acb_t d, const acb_t z, long prec) const;
-  Ball w0(long prec) const;
+  /// w0_exact at prec. \pre the chart was made by SpeedCharts::build.
+  Ball w0(long prec) const { return Ball(w0_exact, prec); }
   /// d(z) (phi(z) - x) = (k1 - x) a z + (k0 - x) b (1 - z) for the real ball
   /// x: polynomial in z (no pole near the part, unlike phi), and a sum of
   /// two terms of one sign for x outside the part; for x inside, its error

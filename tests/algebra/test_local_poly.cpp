@@ -373,9 +373,10 @@ TEST(LocalPoly, NarrowRegionsAreAboutAsTightAsTheVariationOfP) {
 // coefficients of hundreds of bits), a narrow ball at |z| = 2^-k keeps
 // about prec bits of p(z), p'(z), p''(z) themselves, not of p's size on a
 // cell 2^-7 wide: p = t^m r(t) with random r (r(0) != 0, 300-bit
-// coefficients), m = 1, 2, at exact points 2^-k (20 <= k <= 400) and 64
-// bits. A level-6 cell's expansion about 2^-7 loses about (k - 7) m bits
-// of p(z): everything from k ~ 70.
+// coefficients), m = 1, 2, at the exact points 3 2^-k and -5 2^-k (20 <=
+// k <= 400) and 64 bits. A level-6 cell's expansion about 2^-7 loses about
+// (k - 7) m bits of p(z): everything from k ~ 70. The same for
+// eval_deflated of p (2t - 1) by its root 1/2 (2 p).
 TEST(LocalPoly, PointsNextToARootAtZeroKeepTheirRelativeAccuracy) {
   std::mt19937_64 rng(20261205);
   std::uniform_int_distribution<long> kdist(20, 400), ddist(3, 12);
@@ -388,6 +389,10 @@ TEST(LocalPoly, PointsNextToARootAtZeroKeepTheirRelativeAccuracy) {
     fmpz_poly_scalar_mul_2exp(p.get(), p.get(), 300);
     fmpz_poly_shift_left(p.get(), p.get(), m);
     const LocalPoly lp(p);
+    // pd = p (2t - 1): eval_deflated by its root 1/2 gives back 2 p
+    const Poly pd = p * Poly(std::vector<long>{-1, 2});
+    const LocalPoly lpd(pd);
+    const RealAlgebraic half(Rational(1, 2));
     arb_poly_t exact, e1, e2;
     arb_poly_init(exact);
     arb_poly_init(e1);
@@ -417,6 +422,26 @@ TEST(LocalPoly, PointsNextToARootAtZeroKeepTheirRelativeAccuracy) {
         mag_mul_2exp_si(lo, lo, 16 - prec);
         mag_hypot(rad, arb_radref(acb_realref(outs[j])), arb_radref(acb_imagref(outs[j])));
         EXPECT_LE(mag_cmp(rad, lo), 0) << "t^" << m << " (" << r.str() << "), derivative " << j << " at 2^-" << k
+                                       << ": radius " << mag_get_d(rad) << " > " << mag_get_d(lo);
+        mag_clear(lo);
+        mag_clear(rad);
+        arb_clear(ref);
+      }
+      // p (2t - 1) / (t - 1/2) = 2 p
+      lpd.eval_deflated(v, z, half, prec);
+      {
+        arb_t ref;
+        arb_init(ref);
+        arb_poly_evaluate(ref, exact, acb_realref(z), kRefPrec);
+        arb_mul_2exp_si(ref, ref, 1);
+        EXPECT_TRUE(arb_contains(acb_realref(v), ref) && arb_contains_zero(acb_imagref(v))) << "deflated at 2^-" << k;
+        mag_t lo, rad;
+        mag_init(lo);
+        mag_init(rad);
+        arb_get_mag_lower(lo, ref);
+        mag_mul_2exp_si(lo, lo, 16 - prec);
+        mag_hypot(rad, arb_radref(acb_realref(v)), arb_radref(acb_imagref(v)));
+        EXPECT_LE(mag_cmp(rad, lo), 0) << "deflated, t^" << m << " (" << r.str() << ") at 2^-" << k
                                        << ": radius " << mag_get_d(rad) << " > " << mag_get_d(lo);
         mag_clear(lo);
         mag_clear(rad);

@@ -80,9 +80,9 @@ class LocalPoly {
   ///       output may be infinite (e.g. a non-finite z), never wrong. A
   ///       narrow ball's enclosure is accurate to about prec bits of p's
   ///       size near z (within 2^-16 of 0: of the size of p's power-basis
-  ///       terms at z, so next to a root at 0 of p itself); a wide one (radius >= 2^-24) may be wider than p's
-  ///       variation on z by about 2^-24 of p's size on the discs of the
-  ///       (coarse) cells used. A narrow ball wider than a point of prec
+  ///       terms at z, so next to a root at 0 of p itself); a wide one
+  ///       (radius >= 2^-24) may be wider than p's variation on z by about
+  ///       2^-24 of p's size on the discs of the (coarse) cells used. A narrow ball wider than a point of prec
   ///       (a real or imaginary radius from 2^(16 - prec), both below
   ///       2^-24: a tiny subinterval's error bound) also gets the mean-value form p(m) + p'(z) (z - m) at its
   ///       midpoint m (and p'(m) + p''(z) (z - m) for p'), intersected with
