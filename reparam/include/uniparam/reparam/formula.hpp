@@ -21,7 +21,11 @@ namespace uniparam {
 struct PieceFormulas {
   std::string s_interval, z_interval;  ///< "[s_i, s_{i+1}]", "[z_i, z_{i+1}]"
   std::string phi;   ///< t = phi_i(s)
-  std::string m;     ///< s = m_i(z), a Moebius map (a z + b) / (c z + d)
+  /// s = m_i(z) = s_i + Delta s x(z), the Moebius map in its local form
+  /// x = (1 - a)(z - z_i) / (a (z_{i+1} - z) + (1 - a)(z - z_i)), a = alpha_i:
+  /// no printed coefficient cancels, however close alpha_i is to 0 or 1.
+  /// phi and r use the same local forms.
+  std::string m;
   std::string r;     ///< t = r_i(z)
   std::vector<std::string> p_r;  ///< components of p(r_i(z))
 };
@@ -32,7 +36,9 @@ std::vector<PieceFormulas> radical_formulas(const Curve& c, const RadicalResult&
 /// The formulas of one piece of a piecewise Moebius map on [s_i, s_{i+1}].
 struct MoebiusPieceFormulas {
   std::string s_interval, t_interval;  ///< "[s_i, s_{i+1}]", "[t_i, t_{i+1}]"
-  std::string r;                       ///< t = r_i(s) = (A s + B) / (C s + D)
+  /// t = r_i(s): with exact data (A s + B) / (C s + D), expanded; otherwise
+  /// t_i + Delta t x(s), x in the local form of PieceFormulas::m.
+  std::string r;
   std::vector<std::string> p_r;        ///< components of p(r_i(s))
   bool exact = false;                  ///< rational data: every formula is exact
 };
