@@ -29,7 +29,7 @@ void exact_samples_each(const Curve& c, const Speed& s, long K, const Options& o
     });
     return;
   }
-  if (const SpeedCharts* ch = s.charts()) {
+  if (const SpeedCharts* ch = s.balanced_charts()) {
     exact_samples_charts(c, s, *ch, K, opt, mu, sink);
     return;
   }

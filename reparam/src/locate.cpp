@@ -78,7 +78,7 @@ LocateResult locate(const Curve& c, const Speed& s, const Rational& value, Locat
   if (const std::optional<BalancedCurve> bal = balance(c, s))
     return locate_balanced(c, *bal, Speed(bal->q, s.kind()), value, target, opt);
   // Narrow features inside (0, 1): on the track of s's charts.
-  if (const SpeedCharts* ch = s.charts()) return locate_charts(c, s, *ch, value, target, opt);
+  if (const SpeedCharts* ch = s.balanced_charts()) return locate_charts(c, s, *ch, value, target, opt);
   return locate_on(CurveTrack(c, s, opt.max_prec), value, target, opt);
 }
 

@@ -140,7 +140,7 @@ std::vector<SpeedCharts::Span> SpeedCharts::spans(const RealAlgebraic& a, const 
   return out;
 }
 
-std::shared_ptr<const SpeedCharts> SpeedCharts::build(const Speed& s, const Curve& c) {
+std::shared_ptr<const SpeedCharts> SpeedCharts::build(const Speed& s, const Curve& c, bool balanced) {
   const std::optional<PeakSplit> split = peak_split(s);
   if (!split) return nullptr;
   auto out = std::make_shared<SpeedCharts>();
@@ -152,8 +152,8 @@ std::shared_ptr<const SpeedCharts> SpeedCharts::build(const Speed& s, const Curv
     const Rational& k1 = backwards ? k[j] : k[j + 1];
     const Curve part = restrict_to(c, k0, k1);
     Speed sp(part, s.kind());
-    std::optional<BalancedCurve> bal = balance(part, sp);
-    SpeedChart chart{k0, k1, bal, bal ? bal->q : part, bal ? Speed(bal->q, s.kind()) : std::move(sp)};
+    std::optional<BalancedCurve> bal = balanced ? balance(part, sp) : std::nullopt;
+    SpeedChart chart{k0, k1, bal, bal ? bal->q : part, bal ? Speed(bal->q, s.kind()) : std::move(sp), Rational(0)};
     chart.speed.lazy_->curve.reset();  // no charts of its own
     chart.w0_exact = Rational(1) / (Rational(chart_a(chart) * chart_b(chart)) * chart.length());
     out->charts.push_back(std::move(chart));
@@ -163,10 +163,17 @@ std::shared_ptr<const SpeedCharts> SpeedCharts::build(const Speed& s, const Curv
 
 const SpeedCharts* Speed::charts() const {
   if (!lazy_->curve) return nullptr;
-  std::call_once(lazy_->charts_once, [this] { lazy_->charts = SpeedCharts::build(*this, *lazy_->curve); });
+  std::call_once(lazy_->charts_once, [this] { lazy_->charts = SpeedCharts::build(*this, *lazy_->curve, false); });
   if (!lazy_->charts) return nullptr;
   if (!own_charts_.charts) own_charts_.charts = std::make_shared<const SpeedCharts>(*lazy_->charts);
   return own_charts_.charts.get();
+}
+
+const SpeedCharts* Speed::balanced_charts() const {
+  if (!charts()) return nullptr;
+  std::call_once(lazy_->balanced_once, [this] { lazy_->balanced = SpeedCharts::build(*this, *lazy_->curve, true); });
+  if (!own_charts_.balanced) own_charts_.balanced = std::make_shared<const SpeedCharts>(*lazy_->balanced);
+  return own_charts_.balanced.get();
 }
 
 }  // namespace uniparam

@@ -76,16 +76,19 @@ struct SpeedCharts {
   };
   /// [a, b] cut at the parts' ends strictly inside, in order of t. A piece
   /// farther from its part's feature end k0 than a quarter of its length is
-  /// plain: there sigma varies on the scale of that distance, and the chart
-  /// would squeeze it next to u = 1 (within 2^-k for a map of ratio 2^k),
-  /// where no working precision below k bits tells its ends apart. The
-  /// choice only affects the cost, never a result.
+  /// plain: there sigma varies on the scale of that distance, which p's own
+  /// parameter resolves (a balanced chart would squeeze it next to u = 1,
+  /// within 2^-k for a map of ratio 2^k, where no working precision below k
+  /// bits tells its ends apart). The choice only affects the cost, never a
+  /// result.
   /// \pre 0 <= a < b <= 1.
   std::vector<Span> spans(const RealAlgebraic& a, const RealAlgebraic& b) const;
 
   /// The charts of the speed s of the curve c from peak_split(s); null where
-  /// that is empty. The charts' speeds are marked to have no charts.
-  static std::shared_ptr<const SpeedCharts> build(const Speed& s, const Curve& c);
+  /// that is empty. Affine charts (bal empty) unless `balanced`, where each
+  /// part is balanced where balance() does. The charts' speeds are marked to
+  /// have no charts.
+  static std::shared_ptr<const SpeedCharts> build(const Speed& s, const Curve& c, bool balanced);
 };
 
 }  // namespace uniparam

@@ -217,18 +217,28 @@ class Speed {
   /// Where sigma has narrow features inside (0, 1) (peak_split in
   /// scaling.hpp: a peak of width 1/(2C) at 1/2 in the angular speed of
   /// (t, C (t - 1/2)^2) for a huge C): the parts of [0, 1] between the split's
-  /// knots, each with the exact chart t = phi(u) of its restriction, run from
-  /// its feature's end and balanced where balance() does, and that curve's
-  /// speed (speed_charts.hpp, internal). The integrals of sigma and of
-  /// sigma^2 times a weight are taken part by part in the charts, at a cost
-  /// independent of the features' widths. Null where the speed has no such
-  /// features (every curve below peak_split's coefficient size, at once).
+  /// knots, each with the exact affine chart t = k0 + (k1 - k0) u of its
+  /// restriction, run from its feature's end, and that curve's speed
+  /// (speed_charts.hpp, internal). The integrals of sigma and of sigma^2
+  /// times a weight are taken part by part in the charts: the power basis of
+  /// an affine chart is p's Taylor expansion about the feature, accurate at
+  /// every distance from it inside the part, so the cost does not depend on
+  /// the feature's widths, also where it has several (the bump
+  /// (t, 1/(1 + C (t - c)^2)) has structure at 1/C, 1/sqrt(C) and C^(-1/3)).
+  /// Null where the speed has no such features (every curve below
+  /// peak_split's coefficient size, at once).
   /// The split is found on the first call (thread-safe; copies share it);
   /// each copy of the speed makes its own copies of the parts' speeds on its
   /// first call, so copies may be used on different threads as before.
   /// The charts' own speeds have no charts.
   /// \throws BudgetExceeded from the root isolation's budgets only.
   const SpeedCharts* charts() const;
+  /// The same parts, each chart balanced where balance() does (t = k0 +
+  /// (k1 - k0) m(u), m the balancing map of scaling.hpp), so that the
+  /// feature is spread over u in [0, 1]: for locating points (locate,
+  /// exact samples), where the cumulative integral must vary evenly in u.
+  /// Null exactly where charts() is; the same contract otherwise.
+  const SpeedCharts* balanced_charts() const;
 
  private:
   // piece_signs() at one rational point inside (a, b), not remembered.
@@ -245,8 +255,8 @@ class Speed {
     long scale_bits = 0;
     // the curve, kept where peak_split searches it; the charts' prototypes
     std::shared_ptr<const Curve> curve;
-    std::once_flag charts_once;
-    std::shared_ptr<const SpeedCharts> charts;
+    std::once_flag charts_once, balanced_once;
+    std::shared_ptr<const SpeedCharts> charts, balanced;
     std::mutex signs_mutex;  // guards signs
     // piece_signs() of the interval between zeros i - 1 and i, once known
     std::vector<std::pair<bool, PieceSigns>> signs;
@@ -259,9 +269,10 @@ class Speed {
     OwnCharts(const OwnCharts&) noexcept {}
     OwnCharts& operator=(const OwnCharts&) noexcept {
       charts.reset();
+      balanced.reset();
       return *this;
     }
-    std::shared_ptr<const SpeedCharts> charts;
+    std::shared_ptr<const SpeedCharts> charts, balanced;
   };
   mutable OwnCharts own_charts_;
   friend struct SpeedCharts;
