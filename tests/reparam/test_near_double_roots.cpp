@@ -69,8 +69,7 @@ TEST(NearDoubleRoot, ArcLengthOfARationalBumpMatchesAnIndependentQuadrature) {
   std::mt19937 rng(20261204);
   for (int trial = 0; trial < 6; ++trial) {
     const std::string C = test_support::random_positive_digits(rng, 9 + static_cast<int>(rng() % 12));
-    const long den = 3 + static_cast<long>(rng() % 17);
-    const Rational c(1 + static_cast<long>(rng() % static_cast<unsigned long>(den - 1)), den);
+    const Rational c = test_support::random_inner_rational(rng);
     const Curve p = Curve::parse("((1 + t^2)/(1 + " + C + "*(t - " + c.str() + ")^2), t)");
     SCOPED_TRACE(p.str());
     Options opt;

@@ -111,9 +111,7 @@ TEST(SpeedCharts, IntegralsAgreeWithDirectQuadrature) {
   std::mt19937 rng(20261204);
   for (int trial = 0; trial < 4; ++trial) {
     const std::string C = test_support::random_positive_digits(rng, 30);
-    const long den = 3 + static_cast<long>(rng() % 17);
-    const long num = 1 + static_cast<long>(rng() % static_cast<unsigned long>(den - 1));
-    const Rational c(num, den);
+    const Rational c = test_support::random_inner_rational(rng);
     const std::string extra = trial % 2 ? " + t^3" : "";
     const Curve p = Curve::parse("(t, " + C + "*(t - " + c.str() + ")^2" + extra + ")");
     SCOPED_TRACE(p.str());
@@ -162,9 +160,8 @@ TEST(SpeedCharts, UniformityOfAPeakMatchesTheClosedForm) {
   std::mt19937 rng(20261203);
   for (int trial = 0; trial < 4; ++trial) {
     const std::string C = test_support::random_positive_digits(rng, 40);
-    const long den = 3 + static_cast<long>(rng() % 17);
-    const long num = 1 + static_cast<long>(rng() % static_cast<unsigned long>(den - 1));
-    const Curve p = Curve::parse("(t, " + C + "*(t - " + Rational(num, den).str() + ")^2)");
+    const Rational c = test_support::random_inner_rational(rng);
+    const Curve p = Curve::parse("(t, " + C + "*(t - " + c.str() + ")^2)");
     SCOPED_TRACE(p.str());
     Options o;
     o.digits = 20;
@@ -172,8 +169,8 @@ TEST(SpeedCharts, UniformityOfAPeakMatchesTheClosedForm) {
     Ball c2, a, b, mu;
     arb_set_str(c2.get(), C.c_str(), 512);
     arb_mul_2exp_si(c2.get(), c2.get(), 1);
-    arb_mul(a.get(), c2.get(), Ball(Rational(num, den), 512).get(), 512);
-    arb_mul(b.get(), c2.get(), Ball(Rational(den - num, den), 512).get(), 512);
+    arb_mul(a.get(), c2.get(), Ball(c, 512).get(), 512);
+    arb_mul(b.get(), c2.get(), Ball(Rational(1) - c, 512).get(), 512);
     arb_atan(a.get(), a.get(), 512);
     arb_atan(b.get(), b.get(), 512);
     arb_add(mu.get(), a.get(), b.get(), 512);
@@ -270,8 +267,7 @@ TEST(PeakSplit, FeatureKnotsSitOnPeaksAtIrrationalPoints) {
   std::mt19937 rng(20261206);
   for (int trial = 0; trial < 3; ++trial) {
     const std::string C = test_support::random_positive_digits(rng, 300);
-    const long den = 3 + static_cast<long>(rng() % 17);
-    const Rational a(1 + static_cast<long>(rng() % static_cast<unsigned long>(den - 1)), den);
+    const Rational a = test_support::random_inner_rational(rng);
     const Curve p = Curve::parse("(t, " + C + "*(t - " + a.str() + ")^2 + t^3)");
     SCOPED_TRACE(p.str());
     const Rational c_big{Integer(C)};
@@ -412,8 +408,7 @@ TEST(SpeedCharts, LocatedPointsOfAPeakMatchTheClosedForm) {
   std::mt19937 rng(4121226);
   for (int trial = 0; trial < 4; ++trial) {
     const std::string C = test_support::random_positive_digits(rng, trial < 2 ? 40 : 300);
-    const long den = 3 + static_cast<long>(rng() % 17);
-    const Rational c(1 + static_cast<long>(rng() % static_cast<unsigned long>(den - 1)), den);
+    const Rational c = test_support::random_inner_rational(rng);
     const Curve p = Curve::parse("(t, " + C + "*(t - " + c.str() + ")^2)");
     SCOPED_TRACE(p.str());
     const Speed s(p, SpeedKind::Angular);
@@ -505,8 +500,7 @@ TEST(SpeedCharts, BumpsWithThreeScalesMatchTheClosedForm) {
   std::mt19937 rng(20261204);
   for (int trial = 0; trial < 3; ++trial) {
     const std::string C = test_support::random_positive_digits(rng, trial == 0 ? 50 : trial == 1 ? 120 : 300);
-    const long den = 3 + static_cast<long>(rng() % 17);
-    const Rational c(1 + static_cast<long>(rng() % static_cast<unsigned long>(den - 1)), den);
+    const Rational c = test_support::random_inner_rational(rng);
     const Curve p = Curve::parse("(t, 1/(1 + " + C + "*(t - " + c.str() + ")^2))");
     SCOPED_TRACE(p.str());
     Options o;

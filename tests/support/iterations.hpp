@@ -43,6 +43,14 @@ std::string random_positive_digits(Rng& rng, int digits) {
   return s;
 }
 
+/// A random rational k / den strictly inside (0, 1), den from 3 to 19 (a
+/// feature's position with a small denominator).
+template <class Rng>
+Rational random_inner_rational(Rng& rng) {
+  const long den = 3 + static_cast<long>(rng() % 17);
+  return Rational(1 + static_cast<long>(rng() % static_cast<unsigned long>(den - 1)), den);
+}
+
 /// A random integer of 1 to max_digits decimal digits, either sign.
 inline Integer random_integer(std::mt19937_64& rng, int max_digits) {
   const Integer v(random_digits(rng, max_digits));
