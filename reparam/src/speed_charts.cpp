@@ -140,7 +140,7 @@ std::vector<SpeedCharts::Span> SpeedCharts::spans(const RealAlgebraic& a, const 
   return out;
 }
 
-std::shared_ptr<const SpeedCharts> SpeedCharts::build(const Speed& s, const Curve& c, bool balanced) {
+std::shared_ptr<const SpeedCharts> SpeedCharts::build(const Speed& s, const Curve& c) {
   const std::optional<PeakSplit> split = peak_split(s);
   if (!split) return nullptr;
   auto out = std::make_shared<SpeedCharts>();
@@ -151,10 +151,23 @@ std::shared_ptr<const SpeedCharts> SpeedCharts::build(const Speed& s, const Curv
     const Rational& k0 = backwards ? k[j + 1] : k[j];
     const Rational& k1 = backwards ? k[j] : k[j + 1];
     const Curve part = restrict_to(c, k0, k1);
-    Speed sp(part, s.kind());
-    std::optional<BalancedCurve> bal = balanced ? balance(part, sp) : std::nullopt;
-    SpeedChart chart{k0, k1, bal, bal ? bal->q : part, bal ? Speed(bal->q, s.kind()) : std::move(sp), Rational(0)};
+    SpeedChart chart{k0, k1, std::nullopt, part, Speed(part, s.kind()), Rational(1) / (k1 > k0 ? k1 - k0 : k0 - k1)};
     chart.speed.lazy_->curve.reset();  // no charts of its own
+    out->charts.push_back(std::move(chart));
+  }
+  return out;
+}
+
+std::shared_ptr<const SpeedCharts> SpeedCharts::balanced(const SpeedCharts& affine, SpeedKind kind) {
+  auto out = std::make_shared<SpeedCharts>();
+  for (const SpeedChart& a : affine.charts) {
+    std::optional<BalancedCurve> bal = balance(a.curve, a.speed);
+    if (!bal) {
+      out->charts.push_back(a);
+      continue;
+    }
+    SpeedChart chart{a.k0, a.k1, bal, bal->q, Speed(bal->q, kind), Rational(0)};
+    chart.speed.lazy_->curve.reset();
     chart.w0_exact = Rational(1) / (Rational(chart_a(chart) * chart_b(chart)) * chart.length());
     out->charts.push_back(std::move(chart));
   }
@@ -163,7 +176,7 @@ std::shared_ptr<const SpeedCharts> SpeedCharts::build(const Speed& s, const Curv
 
 const SpeedCharts* Speed::charts() const {
   if (!lazy_->curve) return nullptr;
-  std::call_once(lazy_->charts_once, [this] { lazy_->charts = SpeedCharts::build(*this, *lazy_->curve, false); });
+  std::call_once(lazy_->charts_once, [this] { lazy_->charts = SpeedCharts::build(*this, *lazy_->curve); });
   if (!lazy_->charts) return nullptr;
   if (!own_charts_.charts) own_charts_.charts = std::make_shared<const SpeedCharts>(*lazy_->charts);
   return own_charts_.charts.get();
@@ -171,7 +184,7 @@ const SpeedCharts* Speed::charts() const {
 
 const SpeedCharts* Speed::balanced_charts() const {
   if (!charts()) return nullptr;
-  std::call_once(lazy_->balanced_once, [this] { lazy_->balanced = SpeedCharts::build(*this, *lazy_->curve, true); });
+  std::call_once(lazy_->balanced_once, [this] { lazy_->balanced = SpeedCharts::balanced(*lazy_->charts, kind_); });
   if (!own_charts_.balanced) own_charts_.balanced = std::make_shared<const SpeedCharts>(*lazy_->balanced);
   return own_charts_.balanced.get();
 }

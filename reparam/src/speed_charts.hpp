@@ -84,11 +84,14 @@ struct SpeedCharts {
   /// \pre 0 <= a < b <= 1.
   std::vector<Span> spans(const RealAlgebraic& a, const RealAlgebraic& b) const;
 
-  /// The charts of the speed s of the curve c from peak_split(s); null where
-  /// that is empty. Affine charts (bal empty) unless `balanced`, where each
-  /// part is balanced where balance() does. The charts' speeds are marked to
-  /// have no charts.
-  static std::shared_ptr<const SpeedCharts> build(const Speed& s, const Curve& c, bool balanced);
+  /// The affine charts (bal empty) of the speed s of the curve c from
+  /// peak_split(s); null where that is empty. The charts' speeds are marked
+  /// to have no charts.
+  static std::shared_ptr<const SpeedCharts> build(const Speed& s, const Curve& c);
+  /// The same parts as `affine` (made by build), each balanced where
+  /// balance() balances its restriction (a copy of the affine chart
+  /// elsewhere); kind is the speed's.
+  static std::shared_ptr<const SpeedCharts> balanced(const SpeedCharts& affine, SpeedKind kind);
 };
 
 }  // namespace uniparam
