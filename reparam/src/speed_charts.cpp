@@ -3,11 +3,13 @@
 #include "speed_charts.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <mutex>
 #include <utility>
 
 #include "uniparam/core/error.hpp"
 #include "uniparam/core/poly.hpp"
+#include "uniparam/algebra/newton_polygon.hpp"
 
 namespace uniparam {
 
@@ -158,18 +160,79 @@ std::shared_ptr<const SpeedCharts> SpeedCharts::build(const Speed& s, const Curv
   return out;
 }
 
+namespace {
+
+// A chart of the part [k0, k1] of p from its restriction q = p(k0 + (k1 - k0) u),
+// balanced where balance() balances q (its speed's charts still to be
+// switched off by the caller, a friend of Speed).
+SpeedChart balanced_chart(const Rational& k0, const Rational& k1, const Curve& q, SpeedKind kind) {
+  Speed sq(q, kind);
+  std::optional<BalancedCurve> bal = balance(q, sq);
+  SpeedChart chart{k0, k1, bal, bal ? bal->q : q, bal ? Speed(bal->q, kind) : std::move(sq), Rational(0)};
+  chart.w0_exact = Rational(1) / (Rational(chart_a(chart) * chart_b(chart)) * chart.length());
+  return chart;
+}
+
+// Root scales above 2^-kScaleBits are the part's own (of order 1), and
+// scales within 2^(2 kScaleBits) of each other are one; a ladder's rungs
+// zoom by 2^kScaleBits.
+constexpr double kScaleBits = 16;
+
+// The bits x of the scales 2^-x at which the roots of the speed's factors
+// (g, D, the cofactors K_k) lie about the part's feature (u = 0 of its affine
+// chart), from their Newton polygons: the breakpoints above kScaleBits,
+// grouped where consecutive ones lie within 2 kScaleBits of each other; each
+// group as its [first, last].
+std::vector<std::pair<double, double>> feature_scales(const Speed& s) {
+  std::vector<double> xs;
+  NewtonPolygon(s.g()).breakpoints(xs);
+  NewtonPolygon(s.denominator()).breakpoints(xs);
+  for (const Poly& k : s.cofactors())
+    if (!k.is_zero()) NewtonPolygon(k).breakpoints(xs);
+  std::sort(xs.begin(), xs.end());
+  std::vector<std::pair<double, double>> groups;
+  for (const double x : xs) {
+    if (!(x > kScaleBits) || !std::isfinite(x)) continue;
+    if (!groups.empty() && x - groups.back().second <= 2 * kScaleBits) groups.back().second = x;
+    else groups.emplace_back(x, x);
+  }
+  return groups;
+}
+
+}  // namespace
+
 std::shared_ptr<const SpeedCharts> SpeedCharts::balanced(const SpeedCharts& affine, SpeedKind kind) {
   auto out = std::make_shared<SpeedCharts>();
+  auto add = [&out](SpeedChart c) {
+    c.speed.lazy_->curve.reset();  // no charts of its own
+    out->charts.push_back(std::move(c));
+  };
   for (const SpeedChart& a : affine.charts) {
-    std::optional<BalancedCurve> bal = balance(a.curve, a.speed);
-    if (!bal) {
-      out->charts.push_back(a);
+    const std::vector<std::pair<double, double>> scales = feature_scales(a.speed);
+    if (scales.size() <= 1) {
+      add(balanced_chart(a.k0, a.k1, a.curve, kind));
       continue;
     }
-    SpeedChart chart{a.k0, a.k1, bal, bal->q, Speed(bal->q, kind), Rational(0)};
-    chart.speed.lazy_->curve.reset();
-    chart.w0_exact = Rational(1) / (Rational(chart_a(chart) * chart_b(chart)) * chart.length());
-    out->charts.push_back(std::move(chart));
+    // A feature with several scales (the bump 1/(1 + C x^2): 1/C, 1/sqrt(C),
+    // C^(-1/3)): one balancing map spreads one of them and squeezes the
+    // others next to u = 1, and a map balancing a cut between two scales
+    // brings the outer one next to the cut's far end. So the part is cut
+    // into rungs [2^-(j+1)h, 2^-jh] of u (h = kScaleBits, j = 0, 1, ...)
+    // down to the deepest scale, and the innermost [0, 2^-Jh]: each zooms by
+    // about 2^h and is balanced where balance() does.
+    const long deepest = std::lround(scales.back().second);
+    const long rungs = std::max(1L, deepest / static_cast<long>(kScaleBits) - 1);
+    std::vector<Rational> cuts{Rational(1)};
+    for (long j = 1; j <= rungs; ++j) cuts.push_back(pow2(-static_cast<long>(kScaleBits) * j));
+    cuts.push_back(Rational(0));
+    std::vector<SpeedChart> pieces;  // from the outermost in
+    for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+      const Rational &outer = cuts[i], &inner = cuts[i + 1];
+      pieces.push_back(balanced_chart(a.k0 + (a.k1 - a.k0) * inner, a.k0 + (a.k1 - a.k0) * outer,
+                                      restrict_to(a.curve, inner, outer), kind));
+    }
+    if (a.k0 < a.k1) std::reverse(pieces.begin(), pieces.end());  // in the order of t
+    for (SpeedChart& c : pieces) add(std::move(c));
   }
   return out;
 }

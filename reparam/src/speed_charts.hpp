@@ -88,9 +88,12 @@ struct SpeedCharts {
   /// peak_split(s); null where that is empty. The charts' speeds are marked
   /// to have no charts.
   static std::shared_ptr<const SpeedCharts> build(const Speed& s, const Curve& c);
-  /// The same parts as `affine` (made by build), each balanced where
-  /// balance() balances its restriction (a copy of the affine chart
-  /// elsewhere); kind is the speed's.
+  /// The parts of `affine` (made by build), each balanced where balance()
+  /// balances its restriction; a part whose feature has roots on several
+  /// scales (Newton polygons of g, D and the K_k about it, more than 2^32
+  /// apart) is first cut into a ladder of rungs zooming by 2^16 each, down
+  /// to the deepest scale, so that every scale is spread by some rung's
+  /// chart. kind is the speed's.
   static std::shared_ptr<const SpeedCharts> balanced(const SpeedCharts& affine, SpeedKind kind);
 };
 

@@ -522,3 +522,101 @@ TEST(SpeedCharts, BumpsWithThreeScalesMatchTheClosedForm) {
     EXPECT_TRUE(a.u.meets_digits(20));
   }
 }
+
+namespace {
+
+// The turning angle G(t) of the bump (t, 1/(1 + C (t - c)^2)) from 0 to the
+// rational t, theta = atan y', A = atan m (bump_turning_angle):
+// theta(t) - theta(0) before the inflection i1 = c - 1/sqrt(3C),
+// 2A - theta(0) - theta(t) between i1 and i2 = c + 1/sqrt(3C), and
+// 4A - theta(0) + theta(t) after i2.
+Ball bump_angle_to(const std::string& C, const Rational& c, const Rational& t) {
+  const long prec = 2400;
+  Ball Cb, A, r3, w;
+  arb_set_str(Cb.get(), C.c_str(), prec);
+  arb_sqrt_ui(r3.get(), 3, prec);
+  arb_sqrt(A.get(), Cb.get(), prec);
+  arb_mul(A.get(), A.get(), r3.get(), prec);
+  arb_mul_ui(A.get(), A.get(), 3, prec);
+  arb_mul_2exp_si(A.get(), A.get(), -3);
+  arb_atan(A.get(), A.get(), prec);
+  auto theta = [&](const Rational& x) {
+    Ball xb(x, prec), den, num;
+    arb_sqr(den.get(), xb.get(), prec);
+    arb_mul(den.get(), den.get(), Cb.get(), prec);
+    arb_add_ui(den.get(), den.get(), 1, prec);
+    arb_sqr(den.get(), den.get(), prec);
+    arb_mul(num.get(), Cb.get(), xb.get(), prec);
+    arb_mul_si(num.get(), num.get(), -2, prec);
+    arb_div(num.get(), num.get(), den.get(), prec);
+    arb_atan(num.get(), num.get(), prec);
+    return num;
+  };
+  // the side of t against the inflections: (t - c)^2 3C against 1
+  const Rational x = t - c;
+  Ball q(x * x * Rational(3), prec);
+  arb_mul(q.get(), q.get(), Cb.get(), prec);
+  const bool outside = arb_gt(q.get(), Ball(1).get());
+  const Ball th = theta(x), th0 = theta(Rational(0) - c);
+  Ball g;
+  if (!outside) {  // 2A - theta(0) - theta(t)
+    arb_mul_2exp_si(g.get(), A.get(), 1);
+    arb_sub(g.get(), g.get(), th.get(), prec);
+  } else if (x.sign() < 0) {
+    g = th;
+  } else {  // 4A + theta(t)
+    arb_mul_2exp_si(g.get(), A.get(), 2);
+    arb_add(g.get(), g.get(), th.get(), prec);
+  }
+  arb_sub(g.get(), g.get(), th0.get(), prec);
+  return g;
+}
+
+// Checks G(lo) <= f mu <= G(hi) at the rational ends of the located t's ball.
+void expect_bump_point(const LocatedPoint& at, const std::string& C, const Rational& c, const Rational& f) {
+  const long prec = 2400;
+  Rational lo, hi;
+  arf_t l, h;
+  arf_init(l);
+  arf_init(h);
+  arb_get_lbound_arf(l, at.t.get(), prec);
+  arb_get_ubound_arf(h, at.t.get(), prec);
+  arf_get_fmpq(lo.get(), l);
+  arf_get_fmpq(hi.get(), h);
+  arf_clear(l);
+  arf_clear(h);
+  Ball target;
+  arb_mul(target.get(), bump_turning_angle(C, c).get(), Ball(f, prec).get(), prec);
+  EXPECT_FALSE(arb_gt(bump_angle_to(C, c, lo).get(), target.get())) << at.t.str(30);
+  EXPECT_FALSE(arb_lt(bump_angle_to(C, c, hi).get(), target.get())) << at.t.str(30);
+  EXPECT_TRUE(at.t.meets_digits(15)) << at.t.str(30);
+}
+
+}  // namespace
+
+// Locating on bumps (t, 1/(1 + C (t - c)^2)), C of 50 to 60 digits: the
+// feature's scales (1/C, 1/sqrt(3C), C^(-1/3)) each need their own zoom, so
+// the balanced charts are a ladder of parts zooming by 2^16 at most (one
+// balanced chart spread 1/sqrt(C) and squeezed the rest next to u = 1: no
+// point within 60 s). Each located t brackets its target turning angle in
+// the closed form, by locate and by the exact samples.
+TEST(SpeedCharts, PointsLocatedOnBumpsBracketTheirTargets) {
+  TimeBudget budget(60);
+  std::mt19937 rng(20261205);
+  for (int trial = 0; trial < 2; ++trial) {
+    const std::string C = test_support::random_positive_digits(rng, 50 + 10 * trial);
+    const Rational c = test_support::random_inner_rational(rng);
+    const Curve p = Curve::parse("(t, 1/(1 + " + C + "*(t - " + c.str() + ")^2))");
+    SCOPED_TRACE(p.str());
+    const Speed s(p, SpeedKind::Angular);
+    for (const Rational& f : {Rational(1, 10), Rational(1 + static_cast<long>(rng() % 999), 1000)}) {
+      SCOPED_TRACE(f.str());
+      expect_bump_point(locate(p, s, f, LocateTarget::Fraction).at, C, c, f);
+    }
+    const ExactSamples ex = exact_samples(p, s, 5);
+    for (long k = 0; k < 5; ++k) {
+      SCOPED_TRACE(k);
+      expect_bump_point(ex.points[static_cast<std::size_t>(k)], C, c, Rational(k, 4));
+    }
+  }
+}

@@ -237,7 +237,9 @@ class Speed {
   /// (k1 - k0) m(u), m the balancing map of scaling.hpp), so that the
   /// feature is spread over u in [0, 1]: for locating points (locate,
   /// exact samples), where the cumulative integral must vary evenly in u.
-  /// Null exactly where charts() is; the same contract otherwise.
+  /// A part whose feature has several scales is cut into a ladder of
+  /// smaller parts first, each zooming by about 2^16. Null exactly where
+  /// charts() is; the same contract otherwise.
   const SpeedCharts* balanced_charts() const;
 
  private:
