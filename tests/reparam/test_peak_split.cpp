@@ -367,6 +367,21 @@ TEST(SpeedCharts, RadicalPiecesEndingAtZerosNextToPeaks) {
 
 namespace {
 
+// Locates each fraction of mu and K exact samples on p, and hands every
+// point with its fraction to expect.
+template <class Expect>
+void check_located(const Curve& p, const Speed& s, const std::vector<Rational>& fractions, long K, Expect expect) {
+  for (const Rational& f : fractions) {
+    SCOPED_TRACE(f.str());
+    expect(locate(p, s, f, LocateTarget::Fraction).at, f);
+  }
+  const ExactSamples ex = exact_samples(p, s, K);
+  for (long k = 0; k < K; ++k) {
+    SCOPED_TRACE(k);
+    expect(ex.points[static_cast<std::size_t>(k)], Rational(k, K - 1));
+  }
+}
+
 // The angular peak (t, C (t - c)^2): G(t) = atan(2 C (t - c)) + atan(2 C c),
 // so the point at the fraction f of mu is t = c + tan(f mu - atan(2 C c)) /
 // (2 C), and p(t) = (t, C (t - c)^2). Checks that `at` overlaps it.
@@ -413,15 +428,8 @@ TEST(SpeedCharts, LocatedPointsOfAPeakMatchTheClosedForm) {
     SCOPED_TRACE(p.str());
     const Speed s(p, SpeedKind::Angular);
     ASSERT_NE(s.charts(), nullptr);
-    for (const Rational& f : {Rational(1, 3), Rational(1 + static_cast<long>(rng() % 999), 1000), Rational(1, 1000000)}) {
-      SCOPED_TRACE(f.str());
-      expect_peak_point(locate(p, s, f, LocateTarget::Fraction).at, C, c, f);
-    }
-    const ExactSamples ex = exact_samples(p, s, 7);
-    for (long k = 0; k < 7; ++k) {
-      SCOPED_TRACE(k);
-      expect_peak_point(ex.points[static_cast<std::size_t>(k)], C, c, Rational(k, 6));
-    }
+    check_located(p, s, {Rational(1, 3), Rational(1 + static_cast<long>(rng() % 999), 1000), Rational(1, 1000000)}, 7,
+                  [&](const LocatedPoint& at, const Rational& f) { expect_peak_point(at, C, c, f); });
     const Speed sp(p, SpeedKind::Parametric);
     const Rational f(1 + static_cast<long>(rng() % 9), 10);
     const LocateResult r = locate(p, sp, f, LocateTarget::Fraction);
@@ -450,25 +458,23 @@ TEST(SpeedCharts, LocatedPointsOfAPeakMatchTheClosedForm) {
 
 namespace {
 
-// The turning angle of the bump (t, 1/(1 + C (t - c)^2)) over [0, 1]: y' rises
-// from y'(0) > 0 to m = 3 sqrt(3) sqrt(C) / 8 at the inflection c - 1/sqrt(3C),
-// falls to -m at c + 1/sqrt(3C) and rises to y'(1) < 0, so
-// mu = 4 atan(m) - atan(y'(0)) + atan(y'(1)).
-Ball bump_turning_angle(const std::string& C, const Rational& c) {
+// The turning angle G(t) of the bump (t, 1/(1 + C (t - c)^2)) from 0 to the
+// rational t, theta = atan y', A = atan m (m = 3 sqrt(3C) / 8, the largest |y'|):
+// theta(t) - theta(0) before the inflection i1 = c - 1/sqrt(3C),
+// 2A - theta(0) - theta(t) between i1 and i2 = c + 1/sqrt(3C), and
+// 4A - theta(0) + theta(t) after i2.
+Ball bump_angle_to(const std::string& C, const Rational& c, const Rational& t) {
   const long prec = 2400;
-  Ball Cb, m, mu;
+  Ball Cb, A, r3;
   arb_set_str(Cb.get(), C.c_str(), prec);
-  arb_sqrt(m.get(), Cb.get(), prec);
-  Ball r3;
   arb_sqrt_ui(r3.get(), 3, prec);
-  arb_mul(m.get(), m.get(), r3.get(), prec);
-  arb_mul_ui(m.get(), m.get(), 3, prec);
-  arb_mul_2exp_si(m.get(), m.get(), -3);
-  arb_atan(mu.get(), m.get(), prec);
-  arb_mul_2exp_si(mu.get(), mu.get(), 2);
-  // y'(t) = -2 C x / (1 + C x^2)^2, x = t - c
-  auto slope_angle = [&](const Rational& x) {
-    Ball xb(x, prec), den, num, a;
+  arb_sqrt(A.get(), Cb.get(), prec);
+  arb_mul(A.get(), A.get(), r3.get(), prec);
+  arb_mul_ui(A.get(), A.get(), 3, prec);
+  arb_mul_2exp_si(A.get(), A.get(), -3);
+  arb_atan(A.get(), A.get(), prec);
+  auto theta = [&](const Rational& x) {
+    Ball xb(x, prec), den, num;
     arb_sqr(den.get(), xb.get(), prec);
     arb_mul(den.get(), den.get(), Cb.get(), prec);
     arb_add_ui(den.get(), den.get(), 1, prec);
@@ -476,13 +482,34 @@ Ball bump_turning_angle(const std::string& C, const Rational& c) {
     arb_mul(num.get(), Cb.get(), xb.get(), prec);
     arb_mul_si(num.get(), num.get(), -2, prec);
     arb_div(num.get(), num.get(), den.get(), prec);
-    arb_atan(a.get(), num.get(), prec);
-    return a;
+    arb_atan(num.get(), num.get(), prec);
+    return num;
   };
-  arb_sub(mu.get(), mu.get(), slope_angle(Rational(0) - c).get(), prec);
-  arb_add(mu.get(), mu.get(), slope_angle(Rational(1) - c).get(), prec);
-  return mu;
+  // the side of t against the inflections: (t - c)^2 3C against 1
+  const Rational x = t - c;
+  Ball q(x * x * Rational(3), prec);
+  arb_mul(q.get(), q.get(), Cb.get(), prec);
+  const bool outside = arb_gt(q.get(), Ball(1).get());
+  const Ball th = theta(x), th0 = theta(Rational(0) - c);
+  Ball g;
+  if (!outside) {  // 2A - theta(0) - theta(t)
+    arb_mul_2exp_si(g.get(), A.get(), 1);
+    arb_sub(g.get(), g.get(), th.get(), prec);
+  } else if (x.sign() < 0) {
+    g = th;
+  } else {  // 4A + theta(t)
+    arb_mul_2exp_si(g.get(), A.get(), 2);
+    arb_add(g.get(), g.get(), th.get(), prec);
+  }
+  arb_sub(g.get(), g.get(), th0.get(), prec);
+  return g;
 }
+
+// The turning angle of the bump (t, 1/(1 + C (t - c)^2)) over [0, 1]: y' rises
+// from y'(0) > 0 to m = 3 sqrt(3) sqrt(C) / 8 at the inflection c - 1/sqrt(3C),
+// falls to -m at c + 1/sqrt(3C) and rises to y'(1) < 0, so
+// mu = 4 atan(m) - atan(y'(0)) + atan(y'(1)).
+Ball bump_turning_angle(const std::string& C, const Rational& c) { return bump_angle_to(C, c, Rational(1)); }
 
 }  // namespace
 
@@ -525,53 +552,6 @@ TEST(SpeedCharts, BumpsWithThreeScalesMatchTheClosedForm) {
 
 namespace {
 
-// The turning angle G(t) of the bump (t, 1/(1 + C (t - c)^2)) from 0 to the
-// rational t, theta = atan y', A = atan m (bump_turning_angle):
-// theta(t) - theta(0) before the inflection i1 = c - 1/sqrt(3C),
-// 2A - theta(0) - theta(t) between i1 and i2 = c + 1/sqrt(3C), and
-// 4A - theta(0) + theta(t) after i2.
-Ball bump_angle_to(const std::string& C, const Rational& c, const Rational& t) {
-  const long prec = 2400;
-  Ball Cb, A, r3, w;
-  arb_set_str(Cb.get(), C.c_str(), prec);
-  arb_sqrt_ui(r3.get(), 3, prec);
-  arb_sqrt(A.get(), Cb.get(), prec);
-  arb_mul(A.get(), A.get(), r3.get(), prec);
-  arb_mul_ui(A.get(), A.get(), 3, prec);
-  arb_mul_2exp_si(A.get(), A.get(), -3);
-  arb_atan(A.get(), A.get(), prec);
-  auto theta = [&](const Rational& x) {
-    Ball xb(x, prec), den, num;
-    arb_sqr(den.get(), xb.get(), prec);
-    arb_mul(den.get(), den.get(), Cb.get(), prec);
-    arb_add_ui(den.get(), den.get(), 1, prec);
-    arb_sqr(den.get(), den.get(), prec);
-    arb_mul(num.get(), Cb.get(), xb.get(), prec);
-    arb_mul_si(num.get(), num.get(), -2, prec);
-    arb_div(num.get(), num.get(), den.get(), prec);
-    arb_atan(num.get(), num.get(), prec);
-    return num;
-  };
-  // the side of t against the inflections: (t - c)^2 3C against 1
-  const Rational x = t - c;
-  Ball q(x * x * Rational(3), prec);
-  arb_mul(q.get(), q.get(), Cb.get(), prec);
-  const bool outside = arb_gt(q.get(), Ball(1).get());
-  const Ball th = theta(x), th0 = theta(Rational(0) - c);
-  Ball g;
-  if (!outside) {  // 2A - theta(0) - theta(t)
-    arb_mul_2exp_si(g.get(), A.get(), 1);
-    arb_sub(g.get(), g.get(), th.get(), prec);
-  } else if (x.sign() < 0) {
-    g = th;
-  } else {  // 4A + theta(t)
-    arb_mul_2exp_si(g.get(), A.get(), 2);
-    arb_add(g.get(), g.get(), th.get(), prec);
-  }
-  arb_sub(g.get(), g.get(), th0.get(), prec);
-  return g;
-}
-
 // Checks G(lo) <= f mu <= G(hi) at the rational ends of the located t's ball.
 void expect_bump_point(const LocatedPoint& at, const std::string& C, const Rational& c, const Rational& f) {
   const long prec = 2400;
@@ -609,14 +589,7 @@ TEST(SpeedCharts, PointsLocatedOnBumpsBracketTheirTargets) {
     const Curve p = Curve::parse("(t, 1/(1 + " + C + "*(t - " + c.str() + ")^2))");
     SCOPED_TRACE(p.str());
     const Speed s(p, SpeedKind::Angular);
-    for (const Rational& f : {Rational(1, 10), Rational(1 + static_cast<long>(rng() % 999), 1000)}) {
-      SCOPED_TRACE(f.str());
-      expect_bump_point(locate(p, s, f, LocateTarget::Fraction).at, C, c, f);
-    }
-    const ExactSamples ex = exact_samples(p, s, 5);
-    for (long k = 0; k < 5; ++k) {
-      SCOPED_TRACE(k);
-      expect_bump_point(ex.points[static_cast<std::size_t>(k)], C, c, Rational(k, 4));
-    }
+    check_located(p, s, {Rational(1, 10), Rational(1 + static_cast<long>(rng() % 999), 1000)}, 5,
+                  [&](const LocatedPoint& at, const Rational& f) { expect_bump_point(at, C, c, f); });
   }
 }
