@@ -66,6 +66,9 @@ const Integer& chart_b(const SpeedChart& c) {
   return c.bal ? c.bal->b : one;
 }
 
+// w0 = 1 / (a b |k1 - k0|) of the chart c.
+Rational chart_w0(const SpeedChart& c) { return Rational(1) / (Rational(chart_a(c) * chart_b(c)) * c.length()); }
+
 }  // namespace
 
 void SpeedChart::denominator(acb_t d, const acb_t z, long prec) const {
@@ -153,7 +156,8 @@ std::shared_ptr<const SpeedCharts> SpeedCharts::build(const Speed& s, const Curv
     const Rational& k0 = backwards ? k[j + 1] : k[j];
     const Rational& k1 = backwards ? k[j] : k[j + 1];
     const Curve part = restrict_to(c, k0, k1);
-    SpeedChart chart{k0, k1, std::nullopt, part, Speed(part, s.kind()), Rational(1) / (k1 > k0 ? k1 - k0 : k0 - k1)};
+    SpeedChart chart{k0, k1, std::nullopt, part, Speed(part, s.kind()), Rational(0)};
+    chart.w0_exact = chart_w0(chart);
     chart.speed.lazy_->curve.reset();  // no charts of its own
     out->charts.push_back(std::move(chart));
   }
@@ -162,14 +166,14 @@ std::shared_ptr<const SpeedCharts> SpeedCharts::build(const Speed& s, const Curv
 
 namespace {
 
-// A chart of the part [k0, k1] of p from its restriction q = p(k0 + (k1 - k0) u),
-// balanced where balance() balances q (its speed's charts still to be
-// switched off by the caller, a friend of Speed).
-SpeedChart balanced_chart(const Rational& k0, const Rational& k1, const Curve& q, SpeedKind kind) {
-  Speed sq(q, kind);
+// A chart of the part [k0, k1] of p from its restriction q = p(k0 + (k1 - k0) u)
+// and q's speed sq, balanced where balance() balances q (its speed's charts
+// still to be switched off by the caller, a friend of Speed).
+SpeedChart balanced_chart(const Rational& k0, const Rational& k1, const Curve& q, Speed sq) {
   std::optional<BalancedCurve> bal = balance(q, sq);
+  const SpeedKind kind = sq.kind();
   SpeedChart chart{k0, k1, bal, bal ? bal->q : q, bal ? Speed(bal->q, kind) : std::move(sq), Rational(0)};
-  chart.w0_exact = Rational(1) / (Rational(chart_a(chart) * chart_b(chart)) * chart.length());
+  chart.w0_exact = chart_w0(chart);
   return chart;
 }
 
@@ -210,7 +214,7 @@ std::shared_ptr<const SpeedCharts> SpeedCharts::balanced(const SpeedCharts& affi
   for (const SpeedChart& a : affine.charts) {
     const std::vector<std::pair<double, double>> scales = feature_scales(a.speed);
     if (scales.size() <= 1) {
-      add(balanced_chart(a.k0, a.k1, a.curve, kind));
+      add(balanced_chart(a.k0, a.k1, a.curve, a.speed));  // the affine chart's speed is q's
       continue;
     }
     // A feature with several scales (the bump 1/(1 + C x^2): 1/C, 1/sqrt(C),
@@ -228,8 +232,9 @@ std::shared_ptr<const SpeedCharts> SpeedCharts::balanced(const SpeedCharts& affi
     std::vector<SpeedChart> pieces;  // from the outermost in
     for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
       const Rational &outer = cuts[i], &inner = cuts[i + 1];
-      pieces.push_back(balanced_chart(a.k0 + (a.k1 - a.k0) * inner, a.k0 + (a.k1 - a.k0) * outer,
-                                      restrict_to(a.curve, inner, outer), kind));
+      const Curve rung = restrict_to(a.curve, inner, outer);
+      pieces.push_back(balanced_chart(a.k0 + (a.k1 - a.k0) * inner, a.k0 + (a.k1 - a.k0) * outer, rung,
+                                      Speed(rung, kind)));
     }
     if (a.k0 < a.k1) std::reverse(pieces.begin(), pieces.end());  // in the order of t
     for (SpeedChart& c : pieces) add(std::move(c));

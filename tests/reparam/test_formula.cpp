@@ -130,6 +130,8 @@ TEST(Formula, RadicalMapsKeepTheirShapeWhereAlphaIsNextToZeroOrOne) {
 }
 
 TEST(Formula, RadicalMapsMatchTheirCertifiedMapsOnRandomCurves) {
+  // a straight line's angular speed is 0: alpha = 1/2 exactly, the linear map
+  check_radical("(t, 2*t)", SpeedKind::Angular, 15);
   std::mt19937_64 rng(20261204);
   for (int k = 0; k < test_support::iterations(12); ++k) {
     const Poly x = test_support::random_poly(rng, 1 + k % 3, 5), y = test_support::random_poly(rng, 2 + k % 4, 9);

@@ -82,11 +82,13 @@ class LocalPoly {
   ///       size near z (within 2^-16 of 0: of the size of p's power-basis
   ///       terms at z, so next to a root at 0 of p itself); a wide one
   ///       (radius >= 2^-24) may be wider than p's variation on z by about
-  ///       2^-24 of p's size on the discs of the (coarse) cells used. A narrow ball wider than a point of prec
-  ///       (a real or imaginary radius from 2^(16 - prec), both below
-  ///       2^-24: a tiny subinterval's error bound) also gets the mean-value form p(m) + p'(z) (z - m) at its
-  ///       midpoint m (and p'(m) + p''(z) (z - m) for p'), intersected with
-  ///       the direct enclosure: so its enclosure stays about as wide as p's
+  ///       2^-24 of p's size on the discs of the (coarse) cells used. A
+  ///       narrow ball wider than a point of prec (a real or imaginary
+  ///       radius from 2^(16 - prec), both below 2^-24: a tiny
+  ///       subinterval's error bound) also gets the mean-value form
+  ///       p(m) + p'(z) (z - m) at its midpoint m (and p'(m) +
+  ///       p''(z) (z - m) for p'), intersected with the direct enclosure:
+  ///       so its enclosure stays about as wide as p's
   ///       variation on it next to a near double root of p, where Horner's
   ///       rule or a cell's expansion about a farther centre multiply the
   ///       radius by the size of p's coefficients.
