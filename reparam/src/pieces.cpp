@@ -68,6 +68,8 @@ class PieceEnds {
     const Entry& e = entry(prec);
     return e.dd_ok ? &e.dd : nullptr;
   }
+  /// The enclosure of the end a alone (at prec).
+  const Ball& a(long prec) { return entry(prec).a; }
   /// The enclosure of the end b alone (at prec, as a's).
   const Ball& b(long prec) { return entry(prec).b; }
 
@@ -424,11 +426,7 @@ std::optional<std::vector<Ball>> chart_piece_integrals(const Speed& s, const Spe
             acb_init(dg);
             acb_init(ug);
             acb_init(r);
-            if (u_g == &sp.u0) {
-              local.get(ug, r, prec);
-            } else {
-              acb_set_arb(ug, local.b(prec).get());
-            }
+            acb_set_arb(ug, (u_g == &sp.u0 ? local.a(prec) : local.b(prec)).get());
             c.denominator(dg, ug, prec);
             acb_mul(r, d, dg, prec);
             acb_mul_arb(r, r, c.w0(prec).get(), prec);
