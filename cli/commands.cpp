@@ -74,10 +74,9 @@ class Watchdog {
 std::vector<OptionSpec> common_options() {
   return {
       {"speed", "KIND", "speed to make uniform: angular or parametric (arc length; also 'arclength')", "angular"},
-      {"digits", "D", "correct decimal digits: every ball has radius <= 10^-D * max(1, |mid|)", "15"},
+      {"digits", "D", "correct decimal digits, 1 to 2000: every ball has radius <= 10^-D * max(1, |mid|)", "15"},
       {"json", "", "print JSON: certified reals as {\"mid\", \"rad\"}", ""},
-      {"max-prec", "BITS", "largest working precision before giving up",
-       "16384, or twice the bits the digits need where that is more"},
+      {"max-prec", "BITS", "largest working precision before giving up", "16384"},
       {"max-degree", "N", "largest degree of the curve and of any polynomial or exponent read in CURVE", "1000"},
       {"max-bits", "BITS", "largest size of a number or polynomial read in CURVE, (degree + 1) * coefficient bits",
        "268435456"},
@@ -95,8 +94,9 @@ std::vector<OptionSpec> common_options() {
 }
 
 Options read_options(const Args& a) {
+  static_assert(kMaxDigits == 2000, "the --digits help names the range");
   Options o;
-  o.digits = a.get_long("digits", o.digits, 1, 10000);
+  o.digits = a.get_long("digits", o.digits, 1, kMaxDigits);
   o.max_prec = a.get_long("max-prec", default_max_prec(o.digits), 64, 1L << 24);
   o.max_degree = a.get_long("max-degree", o.max_degree, 1, 20000);  // root isolation refuses degrees above 20000
   return o;

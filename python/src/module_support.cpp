@@ -15,7 +15,7 @@ long in_range(const char* name, long v, long lo, long hi) {
 /// The options of c, in the CLI's ranges (read_options).
 Options options_of(const Common& c) {
   Options o;
-  o.digits = in_range("digits", c.digits, 1, 10000);
+  o.digits = in_range("digits", c.digits, 1, kMaxDigits);
   o.max_prec = c.max_prec == 0 ? default_max_prec(o.digits) : in_range("max_prec", c.max_prec, 64, 1L << 24);
   o.max_degree = in_range("max_degree", c.max_degree, 1, 20000);
   return o;

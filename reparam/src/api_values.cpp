@@ -34,7 +34,7 @@ void in_range(const char* field, long v, long lo, long hi) {
 
 uniparam::Options engine_options(const Options& o) {
   kind_of(o);
-  in_range("digits", o.digits, 1, 10000);
+  in_range("digits", o.digits, 1, kMaxDigits);
   if (o.max_prec != 0) in_range("max_prec", o.max_prec, 64, 1L << 24);
   in_range("max_degree", o.max_degree, 1, 20000);
   if (o.max_input_length < 1 || o.max_input_length > (std::size_t(1) << 30))

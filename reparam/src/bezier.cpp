@@ -500,7 +500,7 @@ BezierResult optimal_rational(const BezierCurve& bz, const Curve& curve, const O
   Options o = opt;
   o.digits = opt.digits + static_cast<long>(std::to_string(v.size()).size()) + 1;
   for (;; o.digits += 10) {
-    if (o.digits > 10000) o.digits = 10000;
+    if (o.digits > kMaxEngineDigits) o.digits = kMaxEngineDigits;
     const MoebiusResult mr = moebius_optimal(curve, SpeedKind::Parametric, o);
     BezierResult r;
     r.exact = false;
@@ -513,7 +513,7 @@ BezierResult optimal_rational(const BezierCurve& bz, const Curve& curve, const O
     r.u_after = mr.u_after;
     const long prec = 2 * digits_to_bits(o.digits) + 64;
     r.weights = ball_weights(v, r.alpha, prec);
-    if (all_meet_digits(r.weights, d) || o.digits >= 10000) {
+    if (all_meet_digits(r.weights, d) || o.digits >= kMaxEngineDigits) {
       if (!all_meet_digits(r.weights, d))
         throw BudgetExceeded("could not certify the new weights to " + std::to_string(opt.digits) + " digits");
       return r;

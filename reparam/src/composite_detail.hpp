@@ -42,7 +42,7 @@ auto labelled(const std::string& label, F&& f) -> decltype(f()) {
 // sums and quotients over the segments still meet the digits asked for.
 inline Options segment_options(const Options& opt) {
   Options o = opt;
-  o.digits = std::min(opt.digits + 2, 10000L);
+  o.digits = std::min(opt.digits + 2, kMaxEngineDigits);
   return o;
 }
 

@@ -154,7 +154,8 @@ double rel_rad(const Ball& b) {
 
 Sampler::Sampler(const Curve& c, const Speed& sp, Reparameterization r, long digits, long max_prec)
     : c_(c), sp_(sp), r_(std::move(r)), digits_(digits), max_prec_(max_prec) {
-  if (digits < 1 || digits > 10000) throw InvalidArgument("sample: digits must be between 1 and 10000");
+  if (digits < 1 || digits > kMaxEngineDigits)
+    throw InvalidArgument("sample: digits must be between 1 and " + std::to_string(kMaxDigits));
   if (max_prec < 64) throw InvalidArgument("sample: the precision limit must be at least 64 bits");
 }
 
@@ -226,7 +227,8 @@ bool meets_digits(const Samples& s, long digits) {
 
 Samples sample(const Curve& c, const Speed& sp, const Reparameterization& r, long K, long digits, long max_prec) {
   if (K < 2 || K > 1000000) throw InvalidArgument("sample: the number of points must be between 2 and 1000000");
-  if (digits < 1 || digits > 10000) throw InvalidArgument("sample: digits must be between 1 and 10000");
+  if (digits < 1 || digits > kMaxEngineDigits)
+    throw InvalidArgument("sample: digits must be between 1 and " + std::to_string(kMaxDigits));
   const Reparameterization id = Reparameterization::identity(r.mu(), r.u_before());
   Samples out;
   out.before.reserve(static_cast<std::size_t>(K));

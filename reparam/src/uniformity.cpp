@@ -16,8 +16,9 @@
 namespace uniparam {
 
 void validate(const Options& o) {
-  if (o.digits < 1 || o.digits > 10000)
-    throw InvalidArgument("--digits must be between 1 and 10000, got " + std::to_string(o.digits));
+  if (o.digits < 1 || o.digits > kMaxEngineDigits)
+    throw InvalidArgument("--digits must be between 1 and " + std::to_string(kMaxDigits) + ", got " +
+                          std::to_string(o.digits));
   if (o.max_prec < 64 || o.max_prec > (1L << 24))
     throw InvalidArgument("--max-prec must be between 64 and 16777216 bits, got " + std::to_string(o.max_prec));
   if (o.max_degree < 1)

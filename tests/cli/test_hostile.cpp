@@ -42,9 +42,9 @@ std::vector<HostileRow> hostile_rows() {
       {{"--frobnicate"}, 2, "unknown command"},
       {{"uniformity"}, 2, "expects CURVE (or --control, --svg, --nurbs), got 0"},
       {{"uniformity", kCubic, "(t, t)"}, 2, "expects CURVE (or --control, --svg, --nurbs), got 2"},
-      {{"uniformity", kCubic, "--digits", "-3"}, 2, "--digits must be between 1 and 10000, got -3"},
+      {{"uniformity", kCubic, "--digits", "-3"}, 2, "--digits must be between 1 and 2000, got -3"},
       {{"uniformity", kCubic, "--digits", "0"}, 2, "--digits must be between"},
-      {{"uniformity", kCubic, "--digits", "10001"}, 2, "--digits must be between"},
+      {{"uniformity", kCubic, "--digits", "2001"}, 2, "--digits must be between"},
       {{"uniformity", kCubic, "--digits", "abc"}, 2, "--digits expects an integer, got 'abc'"},
       {{"uniformity", kCubic, "--digits", "1e3"}, 2, "--digits expects an integer"},
       {{"uniformity", kCubic, "--digits", ""}, 2, "--digits expects an integer"},
@@ -140,7 +140,7 @@ std::vector<HostileRow> hostile_rows() {
       {{"uniformity", "(t, ((((t)))))", "--max-depth", "3"}, 4, "depth limit of 3 (raise it with --max-depth)"},
       {{"uniformity", "(t, ----t)", "--max-depth", "3"}, 4, "--max-depth"},
       {{"uniformity", kCubic, "--digits", "30", "--max-prec", "64"}, 4, "precision limit of 64 bits (raise it with --max-prec)"},
-      {{"uniformity", kCubic, "--digits", "10000", "--max-prec", "16384"}, 4, "(raise it with --max-prec)"},
+      {{"uniformity", kCubic, "--digits", "2000", "--max-prec", "4096"}, 4, "(raise it with --max-prec)"},
       {{"radical", kCubic, "--digits", "30", "--max-prec", "100"}, 4, "--max-prec"},
       {{"moebius", kCubic, "--digits", "30", "--max-prec", "100"}, 4, "--max-prec"},
       {{"uniformity", kCubic, "--timeout", "0.000001"}, 4, "within 1e-06 s (raise it with --timeout SECONDS)"},
@@ -148,7 +148,7 @@ std::vector<HostileRow> hostile_rows() {
       {{"moebius", kCubic, "--timeout", "0.000001"}, 4, "--timeout"},
       // Minutes of uninterruptible Gauss-Legendre node computation inside Arb:
       // the CLI's watchdog still stops it shortly after the deadline.
-      {{"uniformity", kCubic, "--digits", "4000", "--max-prec", "65536", "--timeout", "0.5"}, 4, "--timeout"},
+      {{"uniformity", kCubic, "--digits", "2000", "--timeout", "0.5"}, 4, "--timeout"},
 
       // ---- reparam: the piecewise Moebius methods ---------------------------------
       {{"reparam", kCubic}, 2, "exactly one of --pieces N, --breakpoints LIST, --target U"},

@@ -15,7 +15,6 @@
 #include "uniparam/reparam/all.hpp"
 
 using uniparam::Ball;
-using uniparam::test_support::certified_real;
 using uniparam::test_support::json_ball;
 using uniparam::test_support::encloses;
 using uniparam::test_support::run_uniparam;
@@ -34,17 +33,40 @@ long help_default(const std::string& option) {
 
 }  // namespace
 
-// Must show: the advertised maximum of --digits (10000) is accepted with the
-// default --max-prec, and met: (3t, 4t) has |p'| = 5, so mu = 5 and u = 1.
+// The largest --digits that `uniformity --help` advertises ("D, 1 to N").
+long help_max_digits() {
+  const auto h = run_uniparam({"uniformity", "--help"});
+  std::smatch m;
+  if (!std::regex_search(h.out, m, std::regex("--digits D [^\\n]*1 to ([0-9]+)"))) return -1;
+  return std::stol(m[1]);
+}
+
+// Must show: the advertised maximum of --digits is accepted with the default
+// --max-prec, and met on a curve whose integrals need the quadrature's
+// highest rules: (t, t^3) turns its tangent by atan(3) in all (y'' >= 0), so
+// mu = atan(3) under the angular speed. One digit more is refused as an
+// invalid option, and an explicit --max-prec below what the digits need is
+// refused at once.
 TEST(CliLimits, AdvertisedMaxDigitsAcceptedByDefault) {
-  auto r = run_uniparam({"uniformity", "(3t, 4t)", "--speed", "parametric", "--digits", "10000", "--json",
-                         "--timeout", "300"});
+  const long digits = help_max_digits();
+  ASSERT_GE(digits, 1000);
+  const std::string ds = std::to_string(digits);
+  auto r = run_uniparam({"uniformity", "(t, t^3)", "--digits", ds, "--json", "--timeout", "300"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_TRUE(encloses(r.out, "mu", "5", "0", 10000));
-  EXPECT_TRUE(encloses(r.out, "u", "1", "0", 10000));
-  // An explicit --max-prec below what the digits need is still refused at once.
-  auto low = run_uniparam({"uniformity", "(3t, 4t)", "--speed", "parametric", "--digits", "10000", "--max-prec",
-                           "16384"});
+  // atan(3) to digits + 40 digits, read exactly with that slack.
+  Ball ref;
+  arb_set_si(ref.get(), 3);
+  arb_atan(ref.get(), ref.get(), 4 * digits + 256);
+  char* text = arb_get_str(ref.get(), digits + 40, ARB_STR_NO_RADIUS);
+  const std::string ref_text(text);
+  flint_free(text);
+  const std::string slack = "1e-" + std::to_string(digits + 38);
+  EXPECT_TRUE(encloses(r.out, "mu", ref_text.c_str(), slack.c_str(), digits));
+
+  auto over = run_uniparam({"uniformity", "(t, t^3)", "--digits", std::to_string(digits + 1)});
+  EXPECT_EQ(over.exit_code, 2) << over.err;
+  EXPECT_NE(over.err.find("--digits must be between 1 and " + ds), std::string::npos) << over.err;
+  auto low = run_uniparam({"uniformity", "(t, t^3)", "--digits", ds, "--max-prec", "4096"});
   EXPECT_EQ(low.exit_code, 4);
   EXPECT_NE(low.err.find("--max-prec"), std::string::npos) << low.err;
 }

@@ -173,11 +173,11 @@ TEST(OutputErrors, NothingIsPrintedWhenTheTimeRunsOutWhilePrinting) {
 }
 
 TEST(Timeout, StopsSoonAfterItsDeadline) {
-  // The Gauss-Legendre nodes at 3000 digits take far longer than the budget;
+  // The Gauss-Legendre nodes at 2000 digits take longer than the budget;
   // the command must stop within max(0.5 s, 10%) of --timeout 1, which this
   // bound leaves room for on a loaded machine (the old backstop fired at 3.05 s).
   const auto t0 = std::chrono::steady_clock::now();
-  const auto r = run_uniparam({"moebius", "(t, t^3)", "--digits", "3000", "--timeout", "1"});
+  const auto r = run_uniparam({"moebius", "(t, t^3)", "--digits", "2000", "--timeout", "1"});
   const double wall = seconds_since(t0);
   ASSERT_EQ(r.exit_code, 4) << r.err;
   EXPECT_NE(r.err.find("time limit exceeded"), std::string::npos) << r.err;
@@ -186,13 +186,13 @@ TEST(Timeout, StopsSoonAfterItsDeadline) {
 }
 
 TEST(Timeout, TheBudgetIsPolledWhileGaussLegendreNodesAreComputed) {
-  // In the library, without the CLI's watchdog: the quadrature at 3000
+  // In the library, without the CLI's watchdog: the quadrature at 2000
   // digits starts by computing Gauss-Legendre rules of hundreds of nodes at
-  // about 10^4 bits (seconds per rule); the budget must be noticed between
+  // 8192 bits (about a second per rule); the budget must be noticed between
   // two nodes, not after the rule.
   using namespace uniparam;
   Options opt;
-  opt.digits = 3000;
+  opt.digits = 2000;
   const Curve c = Curve::parse("(t, t^3)");
   const auto t0 = std::chrono::steady_clock::now();
   try {

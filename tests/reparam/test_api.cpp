@@ -255,7 +255,7 @@ TEST(Api, ErrorsHaveTheirTypesAndNameOptionsFields) {
   up::Options bad = o;
   bad.digits = 0;
   EXPECT_EQ(message_of<uniparam::InvalidArgument>([&] { up::Curve::parse("(t, t^2)", bad); }),
-            "Options::digits must be from 1 to 10000, got 0");
+            "Options::digits must be from 1 to 2000, got 0");
   bad = o;
   bad.time_limit = -1;
   EXPECT_TRUE(has(message_of<uniparam::InvalidArgument>([&] { up::Curve::parse("(t, t^2)", bad); }),

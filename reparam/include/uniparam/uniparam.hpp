@@ -136,11 +136,11 @@ class Ball {
 /// naming the field when one is out of range.
 struct Options {
   SpeedKind speed = SpeedKind::Angular;
-  /// Correct decimal digits of every reported ball, 1..10000.
+  /// Correct decimal digits of every reported ball, 1..2000 (past about 2000
+  /// digits the quadrature's cost grows exponentially with the digits).
   long digits = 15;
   /// Largest working precision in bits before BudgetExceeded; 0 (default)
-  /// means 16384 bits, or more for large `digits` (enough for any digits),
-  /// otherwise 64..2^24.
+  /// means 16384 bits (enough for any digits), otherwise 64..2^24.
   long max_prec = 0;
   /// Largest degree of a curve (or of any segment) accepted, 1..20000.
   long max_degree = 1000;

@@ -10,10 +10,26 @@
 
 namespace uniparam {
 
+/// The most correct decimal digits a caller may ask for (--digits, the
+/// public API's and Python's Options::digits). The quadrature's
+/// Gauss-Legendre rules have at most 1024 nodes (their nodes cost seconds
+/// each above that degree at these precisions), so past about 2000 digits
+/// it must subdivide until each subinterval is 2^(prec/2048) times smaller
+/// than its distance to the speed's nearest singularity: the cost grows
+/// exponentially with the digits ((t, t^3): 2.4 s at 2000 digits, 118 s at
+/// 4000).
+constexpr long kMaxDigits = 2000;
+/// The engine's own bound on Options::digits (validate()): kMaxDigits and
+/// the guard digits the engine adds to a caller's (a composite curve's
+/// segments, a rational Bezier curve's new weights).
+constexpr long kMaxEngineDigits = kMaxDigits + 100;
+
 /// Accuracy and budgets shared by every certified computation.
 struct Options {
   /// Correct decimal digits wanted: every reported ball has
-  /// rad <= 10^-digits * max(1, |mid|). 1 <= digits <= 10000.
+  /// rad <= 10^-digits * max(1, |mid|). 1 <= digits <= kMaxDigits from a
+  /// caller (the engine accepts up to kMaxEngineDigits, for its own guard
+  /// digits).
   long digits = 15;
   /// Largest working precision (bits) the quadrature may use before giving up
   /// with BudgetExceeded (CLI: --max-prec; its default there is
@@ -25,7 +41,8 @@ struct Options {
   long max_degree = 1000;
 };
 
-/// Throws InvalidArgument when an option is out of range.
+/// Throws InvalidArgument when an option is out of range (digits outside
+/// [1, kMaxEngineDigits], max_prec outside [64, 2^24], max_degree < 1).
 void validate(const Options& o);
 
 /// Bits of the scale on which sigma may vary next to an end of [0, 1]:
@@ -96,9 +113,10 @@ void check_degree(const Curve& c, const Options& opt);
 /// Bits of relative accuracy that give `digits` decimal digits with margin.
 long digits_to_bits(long digits);
 /// The precision limit for `digits` when none is chosen: 16384 bits, or
-/// twice digits_to_bits(digits) where that is more (from 2464 digits), so
-/// that every digits in [1, 10000] is accepted with the default limit.
-/// \pre 1 <= digits <= 10000.
+/// twice digits_to_bits(digits) where that is more (from 2464 digits, so
+/// never for digits <= kMaxEngineDigits: every digits a caller may ask for
+/// is accepted with the default limit, with room to double the precision).
+/// \pre digits >= 1.
 long default_max_prec(long digits);
 
 namespace detail {
