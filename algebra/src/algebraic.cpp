@@ -200,14 +200,14 @@ Ball RealAlgebraic::to_ball(long prec) const {
     // depends on (x, prec) alone, never on earlier refinements (results do
     // not depend on the order of evaluations, e.g. on threads).
     // Radius 2^-(prec + 2) <= 2^-prec max(1, |x|).
-    const long p = prec + 1;
+    const long p = prec + 1 + small_shift();
     // kToBallExtraBits - 1 bits beyond the grid: (lo, hi) then straddles a
     // grid point only with odds ~2^-10, so the exact comparison below (one
     // exact sign of the polynomial at a short dyadic, ~ one Arb evaluation)
     // is rare, and later calls at this or a lower precision need no
     // refinement. (Many more extra bits would cost a Newton step of refinement
     // on most roots of the critical numerators, for comparisons that are cheap.)
-    refine(prec + kToBallExtraBits);
+    refine(p - 1 + kToBallExtraBits);
     fmpz_t klo, khi;
     fmpz_init(klo);
     fmpz_init(khi);
@@ -234,6 +234,25 @@ Ball RealAlgebraic::to_ball(long prec) const {
   ball_ = b;
   ball_prec_ = prec;
   return b;
+}
+
+long RealAlgebraic::small_shift() const {
+  if (small_shift_ >= 0) return small_shift_;
+  sign();  // now 0 is not inside (lo, hi) (it may be an end)
+  for (long b = std::max(8L, current_bits(*this)); lo_.is_zero() || hi_.is_zero(); b *= 2) {
+    if (b > kMaxBits) throw BudgetExceeded("could not bound " + str() + " away from 0");
+    refine(b);
+  }
+  // |x| in (m, M): floor(log2 |x|) is in [floor_log2(m), floor_log2(M)],
+  // decided by exact comparisons with the powers of 2 in between (x is
+  // irrational: never equal to one).
+  const int s = lo_.sign() > 0 ? 1 : -1;
+  const Rational m = std::min(abs(lo_), abs(hi_)), M = std::max(abs(lo_), abs(hi_));
+  long e = floor_log2(m);
+  const long e_hi = floor_log2(M);
+  while (e < 0 && e < e_hi && s * compare_rational(*this, Rational(s) * pow2(e + 1)) > 0) ++e;
+  small_shift_ = std::max(0L, -e);
+  return small_shift_;
 }
 
 int RealAlgebraic::sign() const {

@@ -49,7 +49,13 @@ Poly critical_numerator(const Speed& s) {
 // (and, for an irrational end, re-refining) the ends at every evaluation.
 class PieceEnds {
  public:
-  PieceEnds(const RealAlgebraic& a, const RealAlgebraic& b) : a_(a), b_(b) {}
+  /// The length b - a at a precision (chart_piece_integrals: summed over
+  /// the piece's spans in their charts, where b - a from the two ends'
+  /// balls would cancel next to a feature).
+  using Length = std::function<Ball(long prec)>;
+  /// \pre a < b; length, when given, encloses b - a at every precision.
+  PieceEnds(const RealAlgebraic& a, const RealAlgebraic& b, Length length = {})
+      : a_(a), b_(b), length_(std::move(length)) {}
   PieceEnds(const PieceEnds&) = delete;
   PieceEnds& operator=(const PieceEnds&) = delete;
   /// ta = a, dt = b - a (real balls, imaginary part exactly 0).
@@ -87,7 +93,11 @@ class PieceEnds {
     e.prec = prec;
     e.a = a_.to_ball(prec);
     e.b = b_.to_ball(prec);
-    arb_sub(e.d.get(), e.b.get(), e.a.get(), prec + 16);
+    if (length_) {
+      e.d = length_(prec + 16);
+    } else {
+      arb_sub(e.d.get(), e.b.get(), e.a.get(), prec + 16);
+    }
     e.dd_ok = dd_set_arb(e.dd.a, e.a.get()) && dd_set_arb(e.dd.b, e.b.get()) && dd_set_arb(e.dd.dt, e.d.get()) &&
               dd_div(e.dd.inv_dt, dd_from_double(1), e.dd.dt);
     entries_.push_back(std::move(e));
@@ -95,6 +105,7 @@ class PieceEnds {
   }
   const RealAlgebraic& a_;
   const RealAlgebraic& b_;
+  Length length_;
   std::vector<Entry> entries_;  // a handful of precisions per piece
 };
 
@@ -310,6 +321,51 @@ void finish_piece(PieceIntegrals& r, std::vector<Ball> abc, long rel_goal_bits) 
   arb_inv(r.alpha.get(), t.get(), prec);
 }
 
+// An end e of a piece as k + delta (chart_piece_integrals): k the feature
+// end k0 of the chart of the span e ends, and delta = phi(u_e) - k0 from e's
+// coordinate u_e there (relative accuracy however close e is to k0); on a
+// plain span e's own ball serves. A span of another chart takes
+// d (t - e) = d (t - k) - d delta: t - k exactly, and no rounding of e
+// against k (e 10^-150 from the neighbouring part's feature end would
+// otherwise leave d (t - e) there no digits).
+struct EndAnchor {
+  Rational k;
+  const SpeedChart* chart = nullptr;  // e's chart; null on a plain span
+  const RealAlgebraic* at = nullptr;  // u_e, or e itself on a plain span
+
+  /// The anchor of the piece's start (start) or end, which the span sp
+  /// (its first or its last) ends at.
+  static EndAnchor of(const SpeedCharts& ch, const SpeedCharts::Span& sp, const RealAlgebraic& e, bool start) {
+    if (sp.plain) return EndAnchor{Rational(0), nullptr, &e};
+    const SpeedChart& c = ch.charts[sp.chart];
+    // in a chart where phi decreases, the span's start in t is u1
+    const bool reversed = c.k1 < c.k0;
+    return EndAnchor{c.k0, &c, start != reversed ? &sp.u0 : &sp.u1};
+  }
+  /// delta at prec. \pre chart.
+  Ball delta(long prec) const {
+    const Ball u = at->to_ball(prec), zero(0L);
+    Ball out = chart->length_between(zero.get(), u.get(), prec);
+    if (chart->k1 < chart->k0) arb_neg(out.get(), out.get());
+    return out;
+  }
+  /// d(z) (phi(z) - e) in the chart c.
+  void offset(const SpeedChart& c, acb_t out, const acb_t z, long prec) const {
+    if (!chart) {  // e away from every feature: its own ball
+      c.offset(out, z, at->to_ball(prec).get(), prec);
+      return;
+    }
+    const Ball dl = delta(prec);
+    acb_t d;
+    acb_init(d);
+    c.denominator(d, z, prec);
+    acb_mul_arb(d, d, dl.get(), prec);
+    c.offset(out, z, k, prec);
+    acb_sub(out, out, d, prec);
+    acb_clear(d);
+  }
+};
+
 // A, B, C of the piece [a, b] of s (piece_integrals), and next to a zero
 // of sigma at an end (side, zero with multiplicity mu) the integral of
 // sigma^2 besides, span by span in s's charts: sigma^2 dt = sigma_phi(u)^2
@@ -332,8 +388,27 @@ std::optional<std::vector<Ball>> chart_piece_integrals(const Speed& s, const Spe
                                                        int mu, long rel_goal_bits, long max_prec) {
   const std::size_t count = side == ZeroSide::None ? 3 : 4;
   std::vector<Ball> total(count, Ball(0));
-  PieceEnds ends(a, b);
   const std::vector<SpeedCharts::Span> spans = ch.spans(a, b);
+  // b - a as the sum of the spans' lengths, each from its ends in its own
+  // coordinate (relative enclosures): a piece next to a feature, e.g.
+  // between a peak and its inflections 10^-50 away, keeps its length's
+  // digits, which b - a from balls of a and b near 1/3 would cancel.
+  PieceEnds ends(a, b, [&spans, &ch](long prec) {
+    Ball sum(0L);
+    for (const SpeedCharts::Span& sp : spans) {
+      const Ball u0 = sp.u0.to_ball(prec), u1 = sp.u1.to_ball(prec);
+      Ball len;
+      if (sp.plain) {
+        arb_sub(len.get(), u1.get(), u0.get(), prec);
+      } else {
+        len = ch.charts[sp.chart].length_between(u0.get(), u1.get(), prec);
+      }
+      arb_add(sum.get(), sum.get(), len.get(), prec);
+    }
+    return sum;
+  });
+  const EndAnchor anchor_a = EndAnchor::of(ch, spans.front(), a, true);
+  const EndAnchor anchor_b = EndAnchor::of(ch, spans.back(), b, false);
   for (std::size_t j = 0; j < spans.size(); ++j) {
     const SpeedCharts::Span& sp = spans[j];
     const SpeedChart& c = ch.charts[sp.chart];
@@ -359,6 +434,10 @@ std::optional<std::vector<Ball>> chart_piece_integrals(const Speed& s, const Spe
     }
     // the span's ends in u, per precision (u_g is one of them)
     PieceEnds local(sp.u0, sp.u1);
+    // the piece's ends a and b where they end this span (its first and its
+    // last), as chart points: u0 and u1, swapped where phi decreases
+    const bool reversed = c.k1 < c.k0;
+    const bool ends_at_a = j == 0, ends_at_b = j + 1 == spans.size();
     Integrand raw = [&, plain = sp.plain, at_zero](acb_ptr out, const acb_t z, bool, long prec) {
       acb_t ta, dt, x, y, v, d, w;
       for (acb_ptr q : {ta, dt, x, y, v, d, w}) acb_init(q);
@@ -380,8 +459,18 @@ std::optional<std::vector<Ball>> chart_piece_integrals(const Speed& s, const Spe
         } else {
           speed.eval_squared(v, z, prec);
         }
-        c.offset(x, z, acb_realref(ta), prec);  // d (t - a)
-        c.offset(y, z, ends.b(prec).get(), prec);  // d (t - b)
+        // d (t - a) and d (t - b); from a's or b's chart coordinate where
+        // it ends this span, next to which t - a (t - b) is small
+        if (ends_at_a) {
+          c.offset_local(x, z, (reversed ? local.b(prec) : local.a(prec)).get(), prec);
+        } else {
+          anchor_a.offset(c, x, z, prec);
+        }
+        if (ends_at_b) {
+          c.offset_local(y, z, (reversed ? local.a(prec) : local.b(prec)).get(), prec);
+        } else {
+          anchor_b.offset(c, y, z, prec);
+        }
         if (side == ZeroSide::None) {
           // f_k = v Y^2, 2 v X Y, v X^2 with X = d t~, Y = d (1 - t~) and
           // v = sigma_phi^2 w0 Delta t: d^2 w0 = dt/du is in X^2, and the

@@ -108,6 +108,62 @@ void SpeedChart::offset(acb_t out, const acb_t z, const arb_t x, long prec) cons
   acb_clear(t);
 }
 
+void SpeedChart::offset(acb_t out, const acb_t z, const Rational& x, long prec) const {
+  arb_t k;
+  acb_t t;
+  arb_init(k);
+  acb_init(t);
+  arb_set_fmpq(k, (k1 - x).get(), prec);
+  arb_mul_fmpz(k, k, chart_a(*this).get(), prec);
+  acb_mul_arb(out, z, k, prec);
+  arb_set_fmpq(k, (k0 - x).get(), prec);
+  arb_mul_fmpz(k, k, chart_b(*this).get(), prec);
+  acb_neg(t, z);
+  acb_add_si(t, t, 1, prec);
+  acb_mul_arb(t, t, k, prec);
+  acb_add(out, out, t, prec);
+  arb_clear(k);
+  acb_clear(t);
+}
+
+void SpeedChart::offset_local(acb_t out, const acb_t z, const arb_t v, long prec) const {
+  acb_t dv;
+  arb_t k;
+  acb_init(dv);
+  arb_init(k);
+  acb_set_arb(dv, v);
+  denominator(dv, dv, prec);
+  acb_sub_arb(out, z, v, prec);
+  arb_set_fmpq(k, (k1 - k0).get(), prec);
+  arb_mul_fmpz(k, k, chart_a(*this).get(), prec);
+  arb_mul_fmpz(k, k, chart_b(*this).get(), prec);
+  acb_mul_arb(out, out, k, prec);
+  acb_div(out, out, dv, prec);
+  arb_clear(k);
+  acb_clear(dv);
+}
+
+Ball SpeedChart::length_between(const arb_t v0, const arb_t v1, long prec) const {
+  acb_t d0, d1;
+  acb_init(d0);
+  acb_init(d1);
+  acb_set_arb(d0, v0);
+  denominator(d0, d0, prec);
+  acb_set_arb(d1, v1);
+  denominator(d1, d1, prec);
+  acb_mul(d0, d0, d1, prec);
+  Ball out;
+  arb_sub(out.get(), v1, v0, prec);
+  arb_mul_fmpz(out.get(), out.get(), chart_a(*this).get(), prec);
+  arb_mul_fmpz(out.get(), out.get(), chart_b(*this).get(), prec);
+  Ball len(length(), prec);
+  arb_mul(out.get(), out.get(), len.get(), prec);
+  arb_div(out.get(), out.get(), acb_realref(d0), prec);
+  acb_clear(d0);
+  acb_clear(d1);
+  return out;
+}
+
 namespace {
 
 // Whether [x, y] (inside c's part) is certainly farther from k0 than a

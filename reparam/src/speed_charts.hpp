@@ -60,6 +60,21 @@ struct SpeedChart {
   /// is at most about 2^-prec d(z) on [0, 1], as that of phi(z) - x would
   /// be, times d(z).
   void offset(acb_t out, const acb_t z, const arb_t x, long prec) const;
+  /// The same for an exact x: k1 - x and k0 - x are formed exactly, so
+  /// x = k0 (a point of the neighbouring part given as k0 + delta) leaves
+  /// no rounding of x in the result.
+  void offset(acb_t out, const acb_t z, const Rational& x, long prec) const;
+  /// d(z) (phi(z) - phi(v)) = (k1 - k0) a b (z - v) / d(v) for the real
+  /// ball v in [0, 1] (a point given by its chart coordinate): m's
+  /// difference quotient, so next to v the result keeps the relative
+  /// accuracy of z - v (that of v's ball: a breakpoint's image next to the
+  /// feature at u = 0, enclosed relatively), where offset(z, phi(v)) would
+  /// lose phi(v)'s absolute rounding to cancellation.
+  void offset_local(acb_t out, const acb_t z, const arb_t v, long prec) const;
+  /// |phi(v1) - phi(v0)| = |k1 - k0| a b (v1 - v0) / (d(v0) d(v1)) for the
+  /// real balls 0 <= v0 <= v1 <= 1: the length in t of the span between
+  /// two chart points, with the relative accuracy of v1 - v0.
+  Ball length_between(const arb_t v0, const arb_t v1, long prec) const;
 };
 
 struct SpeedCharts {

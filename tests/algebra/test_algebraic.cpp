@@ -7,6 +7,7 @@
 
 #include <flint/flint.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <random>
 #include <string>
@@ -87,16 +88,17 @@ std::pair<Rational, Rational> bounds(const Ball& b) {
   return {mid - rad, mid + rad};
 }
 
-/// rad(b) <= 2^-prec * max(1, |x|), checked with the exact oracle |x| >= m.
+/// rad(b) <= 2^-prec * |x| (relative at every size), checked with the
+/// exact oracle |x| >= m.
 void expect_radius_contract(const Ball& b, long prec, const Quad& x) {
   ASSERT_TRUE(b.is_finite());
   const auto [lo, hi] = bounds(b);
   EXPECT_GE(x.cmp(lo), 0) << x.str() << " not in " << b.str();
   EXPECT_LE(x.cmp(hi), 0) << x.str() << " not in " << b.str();
-  // |x| > min(|lo|, |hi|) when the ball excludes 0.
-  Rational m(1);
-  if (lo.sign() > 0 && lo > m) m = lo;
-  if (hi.sign() < 0 && -hi > m) m = -hi;
+  // |x| > min(|lo|, |hi|) when the ball excludes 0 (x = 0: an exact ball)
+  Rational m(0);
+  if (lo.sign() > 0) m = lo;
+  if (hi.sign() < 0) m = -hi;
   const Rational rad = (hi - lo) * Rational(1, 2);
   EXPECT_TRUE(rad <= pow2(-prec) * m) << "radius " << b.str() << " too large for prec " << prec;
 }
@@ -361,7 +363,8 @@ TEST(Algebraic, CopiesShareRefinement) {
   }
 }
 
-// to_ball(prec) is the grid cell [k, k + 1] 2^-(prec+1) holding x, whatever
+// to_ball(prec) is the grid cell [k, k + 1] 2^-(prec+1+e) holding x, e =
+// max(0, -floor(log2 x)), whatever
 // was refined before (not at all, or to more bits than to_ball refines to
 // itself), also where the isolating interval holds a grid point so that the
 // exact comparison decides: x = c + s 2^(1/3) 2^-200, the one real root of
@@ -389,9 +392,15 @@ TEST(Algebraic, ToBallIsTheGridCellWhateverWasRefinedBefore) {
     const Ball b0 = fresh.to_ball(prec), b1 = deep.to_ball(prec);
     SCOPED_TRACE("iteration " + std::to_string(it) + ", c = " + c.str() + ", side " + std::to_string(side) +
                  ", prec " + std::to_string(prec));
-    // the cell [c, c + 2^-p] (side +1) or [c - 2^-p, c] (side -1), p = prec + 1
-    Ball cell(c + pow2(-(prec + 2)) * Rational(side), prec + 64);
-    mag_set_ui_2exp_si(arb_radref(cell.get()), 1, -(prec + 2));
+    // the cell [c, c + 2^-p] (side +1) or [c - 2^-p, c] (side -1), p =
+    // prec + 1 + e; x lies within 2^-199 of c on that side, where no power
+    // of 2 but c itself lies: floor(log2 x) is that of c or of c - 2^-199
+    const Rational below = side > 0 ? c : c - pow2(-199);
+    long e = 0;  // -floor(log2 below), below in (0, 1)
+    while (pow2(-e) > below) ++e;
+    const long p = prec + 1 + e;
+    Ball cell(c + pow2(-(p + 1)) * Rational(side), p + 64);
+    mag_set_ui_2exp_si(arb_radref(cell.get()), 1, -(p + 1));
     EXPECT_TRUE(arb_equal(b0.get(), cell.get())) << b0.str(30) << " vs " << cell.str(30);
     EXPECT_TRUE(arb_equal(b1.get(), cell.get())) << b1.str(30) << " vs " << cell.str(30);
   }

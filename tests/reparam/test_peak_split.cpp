@@ -593,3 +593,47 @@ TEST(SpeedCharts, PointsLocatedOnBumpsBracketTheirTargets) {
                   [&](const LocatedPoint& at, const Rational& f) { expect_bump_point(at, C, c, f); });
   }
 }
+
+// radical on features whose pieces end next to them: the bump
+// (t, 1/(1 + C (t - c)^2)) with a 250-digit C, cut at its inflections
+// c -+ 1/sqrt(3C), 10^-125 from the peak, and (t, C t^2 + t^3) with a
+// 100-digit C, whose piece [0, t1] ends 10^-300 from the peak at t = 0. A
+// piece's length and its ends' offsets t - a, t - b came from balls of a
+// and b with absolute radii 2^-prec (near c, or across the part's end from
+// the neighbouring chart): the digits of a 10^-125 length cost 415 bits
+// more than asked, by failed doublings, and the pieces took over 40 s.
+// They now come from the ends' chart coordinates, enclosed relatively.
+// Within a TimeBudget: mu is the closed form (the bump's from its
+// inflections; atan(y'(1)) = atan(2C + 3) for y'' > 0), u(p) from the
+// pieces' integrals of omega^2 agrees with uniformity()'s, and the Moebius
+// step does not lower u.
+TEST(SpeedCharts, RadicalPiecesNextToFeaturesKeepTheirDigits) {
+  TimeBudget budget(30);
+  std::mt19937 rng(20261209);
+  const std::string Cb = test_support::random_positive_digits(rng, 250);
+  const Rational c = test_support::random_inner_rational(rng);
+  const std::string Cc = test_support::random_positive_digits(rng, 100);
+  const long prec = 2400;
+  Ball cubic_mu;
+  arb_set_str(cubic_mu.get(), Cc.c_str(), prec);
+  arb_mul_2exp_si(cubic_mu.get(), cubic_mu.get(), 1);
+  arb_add_ui(cubic_mu.get(), cubic_mu.get(), 3, prec);
+  arb_atan(cubic_mu.get(), cubic_mu.get(), prec);
+  const struct {
+    Curve p;
+    Ball mu;
+  } cases[] = {{Curve::parse("(t, 1/(1 + " + Cb + "*(t - " + c.str() + ")^2))"), bump_turning_angle(Cb, c)},
+               {Curve::parse("(t, " + Cc + "*t^2 + t^3)"), cubic_mu}};
+  for (const auto& k : cases) {
+    SCOPED_TRACE(k.p.str().substr(0, 60));
+    Options o;
+    o.digits = 20;
+    const RadicalResult r = radical(k.p, SpeedKind::Angular, o);
+    EXPECT_TRUE(arb_overlaps(r.mu.get(), k.mu.get())) << r.mu.str(25) << " vs " << k.mu.str(25);
+    const UniformityResult u = uniformity(k.p, SpeedKind::Angular, o);
+    EXPECT_TRUE(arb_overlaps(r.u_before.get(), u.u.get())) << r.u_before.str(25) << " vs " << u.u.str(25);
+    EXPECT_TRUE(r.u_before.meets_digits(20));
+    EXPECT_TRUE(r.u_after.meets_digits(20));
+    EXPECT_FALSE(arb_lt(r.u_after.get(), r.u_before.get())) << r.u_after.str(25) << " < " << r.u_before.str(25);
+  }
+}

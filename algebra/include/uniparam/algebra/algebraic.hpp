@@ -68,13 +68,18 @@ class RealAlgebraic {
   /// Value-neutral: lo() and hi() only ever narrow, and to_ball() does not
   /// depend on earlier refinements.
   void refine(long bits) const;
-  /// Ball containing the number with radius <= 2^-prec * max(1, |x|).
-  /// Canonical: a function of (x, prec) alone, whatever was refined before
-  /// (irrational x: the dyadic cell [k, k + 1] 2^-(prec+1) holding x, k
-  /// decided exactly), so computations do not depend on evaluation order.
-  /// Memoised for the last precision asked. Refines to
-  /// prec + kToBallExtraBits bits first (callers refining beforehand, e.g.
-  /// on worker threads, ask for that much).
+  /// Ball containing the number with radius <= 2^-prec * |x| (relative
+  /// accuracy at every size: a number next to 0, such as the image of a
+  /// breakpoint in a chart that zooms in on it, keeps its digits; exact for
+  /// x = 0). Canonical: a function of (x, prec) alone, whatever was refined
+  /// before (irrational x: the dyadic cell [k, k + 1] 2^-(prec+1+e) holding
+  /// x, with e = max(0, -floor(log2 |x|)) and k decided exactly), so
+  /// computations do not depend on evaluation order. Memoised for the last
+  /// precision asked. Refines to prec + e + kToBallExtraBits bits first
+  /// (callers refining beforehand, e.g. on worker threads, ask for
+  /// prec + kToBallExtraBits; the shift e is found once per object).
+  /// \throws BudgetExceeded when |x| < 2^-(2^20) (not bounded away from 0
+  /// within the refinement limit).
   Ball to_ball(long prec) const;
   static constexpr long kToBallExtraBits = 11;
   /// Exact sign.
@@ -110,6 +115,9 @@ class RealAlgebraic {
   // same precision many thousand times per quadrature).
   mutable Ball ball_;
   mutable long ball_prec_ = -1;
+  // max(0, -floor(log2 |x|)) for an irrational x, once found (-1: not yet).
+  mutable long small_shift_ = -1;
+  long small_shift() const;
 };
 
 /// Exact comparison: -1, 0, 1. Equality is decided exactly (gcd of the two
