@@ -100,18 +100,11 @@ LocalMap local_moebius(const Fmt& F, const Ball& a, const Ball& one_minus_a, con
 // digits when alpha is next to 1, where 1 - alpha from the ball alone would
 // not; the result is the intersection of both enclosures.
 Ball one_minus_alpha(const Ball& alpha, const PieceIntegrals* pi, long prec) {
+  if (pi != nullptr) return pi->one_minus_alpha(prec);
   Ball r;
   arb_sub_ui(r.get(), alpha.get(), 1, prec);
   arb_neg(r.get(), r.get());
-  if (pi == nullptr || !arb_is_positive(pi->A.get()) || !arb_is_positive(pi->C.get())) return r;
-  Ball q;
-  arb_div(q.get(), pi->A.get(), pi->C.get(), prec);
-  arb_sqrt(q.get(), q.get(), prec);
-  arb_add_ui(q.get(), q.get(), 1, prec);
-  arb_inv(q.get(), q.get(), prec);
-  Ball both;
-  if (arb_intersection(both.get(), r.get(), q.get(), prec)) return both;
-  return r;  // unreachable: both enclose 1 - alpha
+  return r;
 }
 
 // Replaces every standalone 't' in a component printed in format f by (arg).

@@ -588,6 +588,21 @@ std::optional<std::vector<Ball>> chart_piece_integrals(const Speed& s, const Spe
 
 }  // namespace
 
+Ball PieceIntegrals::one_minus_alpha(long prec) const {
+  Ball r;
+  arb_sub_ui(r.get(), alpha.get(), 1, prec);
+  arb_neg(r.get(), r.get());
+  if (!arb_is_positive(A.get()) || !arb_is_positive(C.get())) return r;
+  Ball q;
+  arb_div(q.get(), A.get(), C.get(), prec);
+  arb_sqrt(q.get(), q.get(), prec);
+  arb_add_ui(q.get(), q.get(), 1, prec);
+  arb_inv(q.get(), q.get(), prec);
+  Ball both;
+  if (arb_intersection(both.get(), r.get(), q.get(), prec)) return both;
+  return r;  // unreachable under the precondition: both enclose 1 - alpha
+}
+
 PieceIntegrals piece_integrals(const Speed& s, const Breakpoint& a, const Breakpoint& b, long rel_goal_bits,
                                long max_prec) {
   if (a.multiplicity > 0 && b.multiplicity > 0)

@@ -153,22 +153,44 @@ RadicalResult radical(const Curve& c, SpeedKind kind, const Options& opt) {
 
 namespace {
 
-// The local Moebius map of piece i (moebius_map.hpp) on complex balls: x
-// and dx/dzt (if non-null) at zt.
-void moebius(acb_t x, acb_t dx, const acb_t zt, const arb_t alpha, long prec) {
-  AcbBox a;
-  acb_set_arb(a, alpha);
-  detail::moebius_alpha_map(detail::AcbMapArith{prec}, x, dx, zt, a);
+// The local Moebius map of a piece (moebius_map.hpp) with the piece's
+// integrals pi on complex balls: x, 1 - x (xm) and dx/dzt (if non-null) at
+// zt, with ztm = 1 - zt. 1 - alpha is pi's own enclosure
+// (PieceIntegrals::one_minus_alpha): next to a narrow feature alpha is
+// within 10^-100 of 1, and 1 - alpha from alpha's ball would hold 0 until
+// the map's data had more digits than that. 1 - x = alpha ztm / den keeps
+// its relative accuracy where x is next to 1 (a point 10^-300 from the
+// piece's end), which 1 - x by subtraction would lose.
+void moebius(acb_t x, acb_t xm, acb_t dx, const acb_t zt, const acb_t ztm, const PieceIntegrals& pi, long prec) {
+  AcbBox a, q, den;
+  acb_set_arb(a, pi.alpha.get());
+  acb_set_arb(q, pi.one_minus_alpha(prec).get());
+  detail::moebius_map(detail::AcbMapArith{prec}, x, dx, den, zt, q, a);
+  // the exact ends stay exact: x = zt there (moebius_map), and 1 - x with it
+  if (acb_is_zero(zt) || acb_is_one(zt)) {
+    acb_sub_ui(xm, x, 1, prec);
+    acb_neg(xm, xm);
+  } else {
+    acb_mul(xm, a, ztm, prec);
+    acb_div(xm, xm, den, prec);
+  }
 }
 
 // y -> k y / (k y + 1 - y), the balancing map m on a piece
 // (RadicalResult::outer_k; moebius_map.hpp with p = k, q = 1), with den =
-// k y + 1 - y where asked.
-void outer_moebius(acb_t y, acb_t den, const arb_t k, long prec) {
-  AcbBox kc, w;
+// k y + 1 - y where asked; ym = 1 - y becomes (1 - y) / den.
+void outer_moebius(acb_t y, acb_t ym, acb_t den, const arb_t k, long prec) {
+  AcbBox kc, w, d;
   acb_set_arb(kc, k);
-  detail::moebius_map(detail::AcbMapArith{prec}, w, nullptr, den, y, kc, nullptr);
+  detail::moebius_map(detail::AcbMapArith{prec}, w, nullptr, d, y, kc, nullptr);
   acb_swap(y, w);
+  if (acb_is_zero(y) || acb_is_one(y)) {
+    acb_sub_ui(ym, y, 1, prec);
+    acb_neg(ym, ym);
+  } else {
+    acb_div(ym, ym, d, prec);
+  }
+  if (den) acb_set(den, d);
 }
 
 // Principal k-th root; for a ball containing 0 (where Arb's root is
@@ -197,19 +219,89 @@ void root_enclosure(acb_t out, const acb_t x, int k, long prec) {
   arb_clear(m);
 }
 
-// psi(x) of the elementary radical piece; returns false when analytic is
-// requested and the root's branch cut cannot be excluded.
-bool psi(acb_t out, const acb_t x, ZeroSide side, int k, bool analytic, long prec) {
-  if (side == ZeroSide::None) { acb_set(out, x); return true; }
-  acb_t base;
-  acb_init(base);
-  if (side == ZeroSide::Left) acb_set(base, x);
-  else { acb_sub_ui(base, x, 1, prec); acb_neg(base, base); }
-  bool ok = !analytic || arb_is_positive(acb_realref(base));
-  root_enclosure(out, base, k, prec);
-  if (side == ZeroSide::Right) { acb_sub_ui(out, out, 1, prec); acb_neg(out, out); }
-  acb_clear(base);
+// sum_{j<k} w^j (k >= 1).
+void geometric_sum(acb_t out, const acb_t w, int k, long prec) {
+  acb_t p;
+  acb_init(p);
+  acb_one(out);
+  acb_one(p);
+  for (int j = 1; j < k; ++j) {
+    acb_mul(p, p, w, prec);
+    acb_add(out, out, p, prec);
+  }
+  acb_clear(p);
+}
+
+// psi(x) of the elementary radical piece (out) and 1 - psi(x) (out_m), from
+// x and xm = 1 - x; returns false when analytic is requested and the root's
+// branch cut cannot be excluded. Each complement comes without a
+// subtraction next to its end: for y = x^(1/k), 1 - y = (1 - x) /
+// sum_{j<k} y^j, and for 1 - y = (1 - x)^(1/k), y = x / sum_{j<k} (1 - y)^j.
+bool psi(acb_t out, acb_t out_m, const acb_t x, const acb_t xm, ZeroSide side, int k, bool analytic, long prec) {
+  if (side == ZeroSide::None) {
+    acb_set(out, x);
+    acb_set(out_m, xm);
+    return true;
+  }
+  const acb_srcptr base = side == ZeroSide::Left ? x : xm;
+  const bool ok = !analytic || arb_is_positive(acb_realref(base));
+  acb_ptr root = side == ZeroSide::Left ? out : out_m;
+  acb_ptr other = side == ZeroSide::Left ? out_m : out;
+  root_enclosure(root, base, k, prec);
+  acb_t g;
+  acb_init(g);
+  geometric_sum(g, root, k, prec);
+  if (acb_contains_zero(g)) {  // (a disk from root_enclosure)
+    acb_sub_ui(other, root, 1, prec);
+    acb_neg(other, other);
+  } else {
+    acb_div(other, side == ZeroSide::Left ? xm : x, g, prec);
+  }
+  acb_clear(g);
   return ok;
+}
+
+// t = phi_i(y) on piece i from y and ym = 1 - y (the outer balancing map
+// applied where the map has one), taken from the nearer end: t_i + Delta t
+// y, or t_{i+1} - Delta t (1 - y) where y > 1/2, so that t keeps the
+// accuracy of its distance to that end (a point 10^-300 from a peak at
+// t_{i+1}, where the speed varies on that scale). The enclosures ta, tb, dt
+// of t_i, t_{i+1}, t_{i+1} - t_i.
+// The local coordinate zt = (z - lo) / (hi - lo) of z on the piece [lo,
+// hi] = [Z_i, Z_{i+1}], clamped to [0, 1], and ztm = (hi - z) / (hi - lo) =
+// 1 - zt without a subtraction next to 1. An exact end keeps an exact local
+// coordinate: the radius of the other breakpoint, which a radical at a zero
+// of the speed at t = 1 blows up to its square root whatever the precision,
+// stays out.
+void local_coordinate(acb_t zt, acb_t ztm, const Ball& z, const Ball& lo, const Ball& hi, long prec) {
+  Ball dz, u, um;
+  arb_sub(dz.get(), hi.get(), lo.get(), prec);
+  arb_sub(u.get(), z.get(), lo.get(), prec);
+  arb_div(u.get(), u.get(), dz.get(), prec);
+  clamp_unit(u.get(), prec);
+  detail::pin_exact_end(u.get(), z, lo, hi);
+  if (arb_is_zero(u.get()) || arb_is_one(u.get())) {
+    arb_sub_ui(um.get(), u.get(), 1, prec);
+    arb_neg(um.get(), um.get());
+  } else {
+    arb_sub(um.get(), hi.get(), z.get(), prec);
+    arb_div(um.get(), um.get(), dz.get(), prec);
+    clamp_unit(um.get(), prec);
+  }
+  acb_set_arb(zt, u.get());
+  acb_set_arb(ztm, um.get());
+}
+
+void piece_t(acb_t t, const acb_t y, const acb_t ym, const arb_t ta, const arb_t tb, const arb_t dt, long prec) {
+  const bool far = arf_cmp_2exp_si(arb_midref(acb_realref(y)), -1) > 0;
+  if (far) {
+    acb_mul_arb(t, ym, dt, prec);
+    acb_neg(t, t);
+    acb_add_arb(t, t, tb, prec);
+  } else {
+    acb_mul_arb(t, y, dt, prec);
+    acb_add_arb(t, t, ta, prec);
+  }
 }
 
 }  // namespace
@@ -221,40 +313,30 @@ Ball eval_r(const RadicalResult& r, const Ball& z, long prec) {
     // pieces whose [Z_i, Z_{i+1}] may meet z
     Ball lo = r.Z[i], hi = r.Z[i + 1];
     if (arb_lt(z.get(), lo.get()) || arb_gt(z.get(), hi.get())) continue;
-    Ball dz, zt, dt, ta = r.T[i].t.to_ball(prec), tb = r.T[i + 1].t.to_ball(prec);
-    arb_sub(dz.get(), hi.get(), lo.get(), prec);
-    arb_sub(zt.get(), z.get(), lo.get(), prec);
-    arb_div(zt.get(), zt.get(), dz.get(), prec);
-    clamp_unit(zt.get(), prec);
-    // an exact end keeps an exact local coordinate: the radius of the other
-    // breakpoint, which a radical at a zero of the speed at t = 1 blows up
-    // to its square root whatever the precision, stays out
-    detail::pin_exact_end(zt.get(), z, lo, hi);
+    Ball dt, ta = r.T[i].t.to_ball(prec), tb = r.T[i + 1].t.to_ball(prec);
+    acb_t x, xm, y, ym, zc, zcm;
+    for (acb_ptr q : {x, xm, y, ym, zc, zcm}) acb_init(q);
+    local_coordinate(zc, zcm, z, lo, hi, prec);
     arb_sub(dt.get(), tb.get(), ta.get(), prec);
-    acb_t x, y, zc;
-    acb_init(x);
-    acb_init(y);
-    acb_init(zc);
-    acb_set_arb(zc, zt.get());
-    moebius(x, nullptr, zc, r.integrals[i].alpha.get(), prec);
-    psi(y, x, r.side(i), r.root_index(i), false, prec);
-    if (!r.outer_k.empty()) outer_moebius(y, nullptr, r.outer_k[i].get(), prec);
+    moebius(x, xm, nullptr, zc, zcm, r.integrals[i], prec);
+    psi(y, ym, x, xm, r.side(i), r.root_index(i), false, prec);
+    if (!r.outer_k.empty()) outer_moebius(y, ym, nullptr, r.outer_k[i].get(), prec);
     Ball v;
     // an exact end maps to its breakpoint exactly (psi and the Moebius map fix
     // 0 and 1); t_i + 1 * (t_{i+1} - t_i) would add t_i's radius twice
-    if (arb_is_zero(zt.get())) v = ta;
-    else if (arb_is_one(zt.get())) v = tb;
+    if (acb_is_zero(zc)) v = ta;
+    else if (acb_is_one(zc)) v = tb;
     else {
-      arb_set(v.get(), acb_realref(y));
-      arb_mul(v.get(), v.get(), dt.get(), prec);
-      arb_add(v.get(), v.get(), ta.get(), prec);
+      acb_t t;
+      acb_init(t);
+      piece_t(t, y, ym, ta.get(), tb.get(), dt.get(), prec);
+      arb_set(v.get(), acb_realref(t));
+      acb_clear(t);
     }
     if (!any) result = v;
     else arb_union(result.get(), result.get(), v.get(), prec);
     any = true;
-    acb_clear(x);
-    acb_clear(y);
-    acb_clear(zc);
+    for (acb_ptr q : {x, xm, y, ym, zc, zcm}) acb_clear(q);
   }
   if (!any) throw InvalidArgument("eval_r: z must lie in [0, 1]");
   return result;
@@ -263,19 +345,21 @@ Ball eval_r(const RadicalResult& r, const Ball& z, long prec) {
 namespace {
 
 // [sigma_p(t) * Delta t * psi'(x)]^2 at t = t_i + Delta t psi(x), piece i, from
-// the local Moebius coordinate x. With a zero at an end the singular factors
+// the local Moebius coordinate x and xm = 1 - x (t from the nearer end,
+// piece_t). With a zero at an end the singular factors
 // cancel exactly (Hong, Wang, Yang 2023, Theorem 7): the value is
 // Shat(t) (Delta t^(mu+1) / (mu+1))^2 with Shat = sigma^2 / (t - gamma)^(2 mu).
 bool radical_speed_sq_local(acb_t out, const RadicalResult& r, const Speed& s, std::size_t i, const acb_t x,
-                            bool analytic, long prec) {
+                            const acb_t xm, bool analytic, long prec) {
   Ball ta = r.T[i].t.to_ball(prec + 16), tb = r.T[i + 1].t.to_ball(prec + 16);
-  acb_t y, t, dt;
+  acb_t y, ym, t, dt;
   acb_init(y);
+  acb_init(ym);
   acb_init(t);
   acb_init(dt);
   const ZeroSide side = r.side(i);
   const int k = r.root_index(i);
-  bool ok = psi(y, x, side, k, analytic, prec);
+  bool ok = psi(y, ym, x, xm, side, k, analytic, prec);
   // With the balancing map on the piece, w = ko y / D (D = ko y + 1 - y):
   // dw/dy = ko / D^2, w = (ko / D) y and 1 - w = (1 - y) / D, so the
   // factor below multiplies the value without it by (ko^e / D^(k + 1))^2,
@@ -283,10 +367,9 @@ bool radical_speed_sq_local(acb_t out, const RadicalResult& r, const Speed& s, s
   acb_t den;
   acb_init(den);
   const bool outer = !r.outer_k.empty();
-  if (outer) outer_moebius(y, den, r.outer_k[i].get(), prec);
+  if (outer) outer_moebius(y, ym, den, r.outer_k[i].get(), prec);
   arb_sub(acb_realref(dt), tb.get(), ta.get(), prec);
-  acb_mul(t, y, dt, prec);
-  acb_add_arb(t, t, ta.get(), prec);
+  piece_t(t, y, ym, ta.get(), tb.get(), acb_realref(dt), prec);
   if (side == ZeroSide::None) {
     s.eval_squared(out, t, prec);
     acb_mul(out, out, dt, prec);
@@ -312,6 +395,7 @@ bool radical_speed_sq_local(acb_t out, const RadicalResult& r, const Speed& s, s
   }
   acb_clear(den);
   acb_clear(y);
+  acb_clear(ym);
   acb_clear(t);
   acb_clear(dt);
   return ok;
@@ -325,20 +409,13 @@ Ball eval_speed(const RadicalResult& r, const Speed& s, const Ball& z, long prec
   for (std::size_t i = 0; i < r.pieces(); ++i) {
     Ball lo = r.Z[i], hi = r.Z[i + 1];
     if (arb_lt(z.get(), lo.get()) || arb_gt(z.get(), hi.get())) continue;
-    Ball dz, zt;
+    Ball dz;
     arb_sub(dz.get(), hi.get(), lo.get(), prec);
-    arb_sub(zt.get(), z.get(), lo.get(), prec);
-    arb_div(zt.get(), zt.get(), dz.get(), prec);
-    clamp_unit(zt.get(), prec);
-    detail::pin_exact_end(zt.get(), z, lo, hi);
-    acb_t x, dx, zc, v;
-    acb_init(x);
-    acb_init(dx);
-    acb_init(zc);
-    acb_init(v);
-    acb_set_arb(zc, zt.get());
-    moebius(x, dx, zc, r.integrals[i].alpha.get(), prec);
-    radical_speed_sq_local(v, r, s, i, x, false, prec);
+    acb_t x, xm, dx, zc, zcm, v;
+    for (acb_ptr q : {x, xm, dx, zc, zcm, v}) acb_init(q);
+    local_coordinate(zc, zcm, z, lo, hi, prec);
+    moebius(x, xm, dx, zc, zcm, r.integrals[i], prec);
+    radical_speed_sq_local(v, r, s, i, x, xm, false, prec);
     Ball w;
     arb_sqrt(w.get(), acb_realref(v), prec);
     arb_mul(w.get(), w.get(), acb_realref(dx), prec);
@@ -346,10 +423,7 @@ Ball eval_speed(const RadicalResult& r, const Speed& s, const Ball& z, long prec
     if (!any) result = w;
     else arb_union(result.get(), result.get(), w.get(), prec);
     any = true;
-    acb_clear(x);
-    acb_clear(dx);
-    acb_clear(zc);
-    acb_clear(v);
+    for (acb_ptr q : {x, xm, dx, zc, zcm, v}) acb_clear(q);
   }
   if (!any) throw InvalidArgument("eval_speed: z must lie in [0, 1]");
   return result;
@@ -370,17 +444,17 @@ Ball radical_direct_uniformity(const RadicalResult& r, const Speed& s, long digi
   for (std::size_t i = 0; i < r.pieces(); ++i) {
     // int_{Z_i}^{Z_{i+1}} sigma_{p o r}^2 dz = (1 / Delta z) int_0^1 F(x(zt)) x'(zt)^2 dzt
     Integrand f = [&r, &s, i](acb_t out, const acb_t zt, bool analytic, long p) {
-      acb_t x, dx;
-      acb_init(x);
-      acb_init(dx);
-      moebius(x, dx, zt, r.integrals[i].alpha.get(), p);
-      if (!radical_speed_sq_local(out, r, s, i, x, analytic, p)) acb_indeterminate(out);
+      acb_t x, xm, dx, ztm;
+      for (acb_ptr q : {x, xm, dx, ztm}) acb_init(q);
+      acb_sub_ui(ztm, zt, 1, p);
+      acb_neg(ztm, ztm);
+      moebius(x, xm, dx, zt, ztm, r.integrals[i], p);
+      if (!radical_speed_sq_local(out, r, s, i, x, xm, analytic, p)) acb_indeterminate(out);
       else {
         acb_mul(out, out, dx, p);
         acb_mul(out, out, dx, p);
       }
-      acb_clear(x);
-      acb_clear(dx);
+      for (acb_ptr q : {x, xm, dx, ztm}) acb_clear(q);
     };
     QuadratureOptions qo;
     qo.rel_goal_bits = bits;

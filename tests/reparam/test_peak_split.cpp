@@ -637,3 +637,79 @@ TEST(SpeedCharts, RadicalPiecesNextToFeaturesKeepTheirDigits) {
     EXPECT_FALSE(arb_lt(r.u_after.get(), r.u_before.get())) << r.u_after.str(25) << " < " << r.u_before.str(25);
   }
 }
+
+// The radical map evaluated next to a peak at a piece's end: on
+// (t, C t^2 (1 - t)^2) with a 100-digit C the piece [i1, 1/2] (a zero of
+// omega at the inflection i1, the peak at 1/2) has alpha ~ 10^-100, and r(z)
+// for z inside it lies about 10^-100 from 1/2, where omega varies on that
+// scale. t and the new speed come from the nearer end, 1 - x and 1 - y as
+// complements, so the map's data at the digits asked suffice; from t_i,
+// t - 1/2 kept the data's absolute error, and the data had to be refined
+// past 100 digits (with a 300-digit C, to 600 digits: 20 s for `radical
+// --at`). Oracle: the same map with data refined to 250 digits, evaluated
+// here by the plain formulas at 2000 bits:
+// t = t_i + dt sqrt(x), speed = sigma(t) dt x'(zt) / (2 sqrt(x) dz) with
+// x = (1 - a) zt / ((1 - a) zt + a (1 - zt)), x' = a (1 - a) / den^2.
+TEST(SpeedCharts, RadicalMapNextToAPeakEndFromTheNearerEnd) {
+  TimeBudget budget(60);
+  std::mt19937 rng(20261210);
+  const std::string C = test_support::random_positive_digits(rng, 100);
+  const Curve p = Curve::parse("(t, " + C + "*t^2*(1 - t)^2)");
+  const Speed s(p, SpeedKind::Angular);
+  Options o;
+  o.digits = 20;
+  const RadicalResult r = radical(p, SpeedKind::Angular, o);
+  ASSERT_EQ(r.pieces(), 4u);
+  ASSERT_EQ(r.side(1), ZeroSide::Left);
+  ASSERT_EQ(r.root_index(1), 2);
+  const RadicalResult fine = refine_radical_data(s, r, 250, 1L << 14);
+  const long hp = 2000;
+  for (int trial = 0; trial < 3; ++trial) {
+    // z in (0.26, 0.49), inside [Z_1, Z_2] = [1/4, 1/2] (by symmetry)
+    const Rational z(26000 + static_cast<long>(rng() % 23000), 100000);
+    SCOPED_TRACE(z.str());
+    Ball zt, dz, a, am, den, x, dx, y, t, dt, speed;
+    arb_sub(dz.get(), fine.Z[2].get(), fine.Z[1].get(), hp);
+    arb_sub(zt.get(), Ball(z, hp).get(), fine.Z[1].get(), hp);
+    arb_div(zt.get(), zt.get(), dz.get(), hp);
+    a = fine.integrals[1].alpha;
+    arb_sub_ui(am.get(), a.get(), 1, hp);
+    arb_neg(am.get(), am.get());
+    Ball zm, u, v;
+    arb_sub_ui(zm.get(), zt.get(), 1, hp);
+    arb_neg(zm.get(), zm.get());
+    arb_mul(u.get(), am.get(), zt.get(), hp);
+    arb_mul(v.get(), a.get(), zm.get(), hp);
+    arb_add(den.get(), u.get(), v.get(), hp);
+    arb_div(x.get(), u.get(), den.get(), hp);
+    arb_mul(dx.get(), a.get(), am.get(), hp);
+    arb_div(dx.get(), dx.get(), den.get(), hp);
+    arb_div(dx.get(), dx.get(), den.get(), hp);
+    arb_sqrt(y.get(), x.get(), hp);
+    const Ball ta = fine.T[1].t.to_ball(hp), tb = fine.T[2].t.to_ball(hp);
+    arb_sub(dt.get(), tb.get(), ta.get(), hp);
+    arb_mul(t.get(), y.get(), dt.get(), hp);
+    arb_add(t.get(), t.get(), ta.get(), hp);
+    speed = s.eval_real(t, hp);
+    arb_mul(speed.get(), speed.get(), dt.get(), hp);
+    arb_mul(speed.get(), speed.get(), dx.get(), hp);
+    arb_div(speed.get(), speed.get(), y.get(), hp);
+    arb_mul_2exp_si(speed.get(), speed.get(), -1);
+    arb_div(speed.get(), speed.get(), dz.get(), hp);
+    ASSERT_TRUE(speed.meets_digits(20)) << speed.str(30);
+    Ball t_minus_half;
+    arb_sub(t_minus_half.get(), t.get(), Ball(Rational(1, 2), hp).get(), hp);
+    ASSERT_TRUE(arb_is_negative(t_minus_half.get()));
+    // the map with its 20-digit data, at a working precision that resolves
+    // t - 1/2 (about 10^-100)
+    const long prec = 500;
+    const Ball zb(z, prec);
+    const Ball tf = eval_r(r, zb, prec), sf = eval_speed(r, s, zb, prec);
+    EXPECT_TRUE(arb_overlaps(tf.get(), t.get())) << tf.str(30) << " vs " << t.str(30);
+    EXPECT_TRUE(arb_overlaps(sf.get(), speed.get())) << sf.str(30) << " vs " << speed.str(30);
+    EXPECT_TRUE(sf.meets_digits(15)) << sf.str(30);
+    Ball df;
+    arb_sub(df.get(), tf.get(), Ball(Rational(1, 2), prec).get(), prec);
+    EXPECT_TRUE(df.meets_digits(15)) << "t - 1/2 = " << df.str(30);
+  }
+}

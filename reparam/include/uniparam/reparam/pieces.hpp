@@ -66,6 +66,15 @@ struct PieceIntegrals {
   /// (there it is L / Delta t: see piece_square_integral).
   Ball square;
   long square_bits = 0;
+
+  /// 1 - alpha with the digits it has: 1/(1 + sqrt(A/C)), intersected with
+  /// 1 - alpha from alpha's ball (which alone leaves no digits of it when
+  /// alpha is within its radius of 1, next to a narrow feature).
+  /// \pre alpha is the optimum 1/(1 + sqrt(C/A)) of these A and C (as
+  ///      piece_integrals and every refinement of a radical map leave it;
+  ///      not a C1 map's alpha); where A or C is not certainly positive, 1 -
+  ///      alpha from alpha's ball alone.
+  Ball one_minus_alpha(long prec) const;
 };
 
 /// The integrals above of s over the piece [a, b].
