@@ -261,12 +261,6 @@ bool psi(acb_t out, acb_t out_m, const acb_t x, const acb_t xm, ZeroSide side, i
   return ok;
 }
 
-// t = phi_i(y) on piece i from y and ym = 1 - y (the outer balancing map
-// applied where the map has one), taken from the nearer end: t_i + Delta t
-// y, or t_{i+1} - Delta t (1 - y) where y > 1/2, so that t keeps the
-// accuracy of its distance to that end (a point 10^-300 from a peak at
-// t_{i+1}, where the speed varies on that scale). The enclosures ta, tb, dt
-// of t_i, t_{i+1}, t_{i+1} - t_i.
 // The local coordinate zt = (z - lo) / (hi - lo) of z on the piece [lo,
 // hi] = [Z_i, Z_{i+1}], clamped to [0, 1], and ztm = (hi - z) / (hi - lo) =
 // 1 - zt without a subtraction next to 1. An exact end keeps an exact local
@@ -292,6 +286,12 @@ void local_coordinate(acb_t zt, acb_t ztm, const Ball& z, const Ball& lo, const 
   acb_set_arb(ztm, um.get());
 }
 
+// t = phi_i(y) on piece i from y and ym = 1 - y (the outer balancing map
+// applied where the map has one), taken from the nearer end: t_i + Delta t
+// y, or t_{i+1} - Delta t (1 - y) where y > 1/2, so that t keeps the
+// accuracy of its distance to that end (a point 10^-300 from a peak at
+// t_{i+1}, where the speed varies on that scale). The enclosures ta, tb, dt
+// of t_i, t_{i+1}, t_{i+1} - t_i.
 void piece_t(acb_t t, const acb_t y, const acb_t ym, const arb_t ta, const arb_t tb, const arb_t dt, long prec) {
   const bool far = arf_cmp_2exp_si(arb_midref(acb_realref(y)), -1) > 0;
   if (far) {

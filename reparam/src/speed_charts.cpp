@@ -86,44 +86,46 @@ void SpeedChart::denominator(acb_t d, const acb_t z, long prec) const {
   acb_clear(t);
 }
 
-void SpeedChart::offset(acb_t out, const acb_t z, const arb_t x, long prec) const {
-  arb_t k;
+namespace {
+
+// c1 a z + c0 b (1 - z): d(z) (phi(z) - x) with c1 = k1 - x, c0 = k0 - x.
+void offset_terms(const SpeedChart& c, acb_t out, const acb_t z, arb_t c1, arb_t c0, long prec) {
   acb_t t;
-  arb_init(k);
   acb_init(t);
-  // (k1 - x) a z
-  arb_set_fmpq(k, k1.get(), prec);
-  arb_sub(k, k, x, prec);
-  arb_mul_fmpz(k, k, chart_a(*this).get(), prec);
-  acb_mul_arb(out, z, k, prec);
-  // (k0 - x) b (1 - z)
-  arb_set_fmpq(k, k0.get(), prec);
-  arb_sub(k, k, x, prec);
-  arb_mul_fmpz(k, k, chart_b(*this).get(), prec);
+  arb_mul_fmpz(c1, c1, chart_a(c).get(), prec);
+  acb_mul_arb(out, z, c1, prec);
+  arb_mul_fmpz(c0, c0, chart_b(c).get(), prec);
   acb_neg(t, z);
   acb_add_si(t, t, 1, prec);
-  acb_mul_arb(t, t, k, prec);
+  acb_mul_arb(t, t, c0, prec);
   acb_add(out, out, t, prec);
-  arb_clear(k);
   acb_clear(t);
 }
 
+}  // namespace
+
+void SpeedChart::offset(acb_t out, const acb_t z, const arb_t x, long prec) const {
+  arb_t c1, c0;
+  arb_init(c1);
+  arb_init(c0);
+  arb_set_fmpq(c1, k1.get(), prec);
+  arb_sub(c1, c1, x, prec);
+  arb_set_fmpq(c0, k0.get(), prec);
+  arb_sub(c0, c0, x, prec);
+  offset_terms(*this, out, z, c1, c0, prec);
+  arb_clear(c1);
+  arb_clear(c0);
+}
+
 void SpeedChart::offset(acb_t out, const acb_t z, const Rational& x, long prec) const {
-  arb_t k;
-  acb_t t;
-  arb_init(k);
-  acb_init(t);
-  arb_set_fmpq(k, (k1 - x).get(), prec);
-  arb_mul_fmpz(k, k, chart_a(*this).get(), prec);
-  acb_mul_arb(out, z, k, prec);
-  arb_set_fmpq(k, (k0 - x).get(), prec);
-  arb_mul_fmpz(k, k, chart_b(*this).get(), prec);
-  acb_neg(t, z);
-  acb_add_si(t, t, 1, prec);
-  acb_mul_arb(t, t, k, prec);
-  acb_add(out, out, t, prec);
-  arb_clear(k);
-  acb_clear(t);
+  arb_t c1, c0;
+  arb_init(c1);
+  arb_init(c0);
+  arb_set_fmpq(c1, (k1 - x).get(), prec);
+  arb_set_fmpq(c0, (k0 - x).get(), prec);
+  offset_terms(*this, out, z, c1, c0, prec);
+  arb_clear(c1);
+  arb_clear(c0);
 }
 
 void SpeedChart::offset_local(acb_t out, const acb_t z, const arb_t v, long prec) const {
