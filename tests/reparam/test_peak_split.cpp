@@ -668,23 +668,11 @@ TEST(SpeedCharts, RadicalMapNextToAPeakEndFromTheNearerEnd) {
     // z in (0.26, 0.49), inside [Z_1, Z_2] = [1/4, 1/2] (by symmetry)
     const Rational z(26000 + static_cast<long>(rng() % 23000), 100000);
     SCOPED_TRACE(z.str());
-    Ball zt, dz, a, am, den, x, dx, y, t, dt, speed;
+    Ball zt, dz, x, dx, y, t, dt, speed;
     arb_sub(dz.get(), fine.Z[2].get(), fine.Z[1].get(), hp);
     arb_sub(zt.get(), Ball(z, hp).get(), fine.Z[1].get(), hp);
     arb_div(zt.get(), zt.get(), dz.get(), hp);
-    a = fine.integrals[1].alpha;
-    arb_sub_ui(am.get(), a.get(), 1, hp);
-    arb_neg(am.get(), am.get());
-    Ball zm, u, v;
-    arb_sub_ui(zm.get(), zt.get(), 1, hp);
-    arb_neg(zm.get(), zm.get());
-    arb_mul(u.get(), am.get(), zt.get(), hp);
-    arb_mul(v.get(), a.get(), zm.get(), hp);
-    arb_add(den.get(), u.get(), v.get(), hp);
-    arb_div(x.get(), u.get(), den.get(), hp);
-    arb_mul(dx.get(), a.get(), am.get(), hp);
-    arb_div(dx.get(), dx.get(), den.get(), hp);
-    arb_div(dx.get(), dx.get(), den.get(), hp);
+    test_support::local_moebius(x, dx, zt, fine.integrals[1].alpha, hp);
     arb_sqrt(y.get(), x.get(), hp);
     const Ball ta = fine.T[1].t.to_ball(hp), tb = fine.T[2].t.to_ball(hp);
     arb_sub(dt.get(), tb.get(), ta.get(), hp);

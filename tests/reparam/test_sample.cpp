@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "support/reference.hpp"
 #include "uniparam/reparam/all.hpp"
 
 using namespace uniparam;
@@ -36,22 +37,6 @@ long piece_of(const std::vector<Ball>& joints, const Ball& s) {
   return -1;
 }
 
-// The local Moebius map x = (1-a) u / ((1-a) u + a (1-u)) and dx/du = a (1-a) / den^2.
-void local_moebius(Ball& x, Ball& dx, const Ball& u, const Ball& a, long prec) {
-  Ball one_a, den, w;
-  arb_sub_si(one_a.get(), a.get(), 1, prec);
-  arb_neg(one_a.get(), one_a.get());
-  arb_mul(x.get(), one_a.get(), u.get(), prec);
-  arb_sub_si(w.get(), u.get(), 1, prec);
-  arb_neg(w.get(), w.get());
-  arb_mul(w.get(), w.get(), a.get(), prec);
-  arb_add(den.get(), x.get(), w.get(), prec);
-  arb_div(x.get(), x.get(), den.get(), prec);
-  arb_mul(dx.get(), a.get(), one_a.get(), prec);
-  arb_div(dx.get(), dx.get(), den.get(), prec);
-  arb_div(dx.get(), dx.get(), den.get(), prec);
-}
-
 // Piecewise Moebius (ImUp): r(s) = t_i + Dt x(u), u = (s - s_i)/Ds.
 Independent moebius_independent(const MoebiusResult& r, const Rational& s, long prec) {
   Independent out;
@@ -64,7 +49,7 @@ Independent moebius_independent(const MoebiusResult& r, const Rational& s, long 
   arb_sub(Ds.get(), r.S[k + 1].get(), r.S[k].get(), prec);
   arb_sub(u.get(), sb.get(), r.S[k].get(), prec);
   arb_div(u.get(), u.get(), Ds.get(), prec);
-  local_moebius(x, dx, u, r.alpha[k], prec);
+  test_support::local_moebius(x, dx, u, r.alpha[k], prec);
   arb_mul(out.t.get(), x.get(), Dt.get(), prec);
   arb_add(out.t.get(), out.t.get(), ta.get(), prec);
   arb_mul(out.dt.get(), dx.get(), Dt.get(), prec);
@@ -86,7 +71,7 @@ Independent radical_independent(const RadicalResult& r, const Rational& z, long 
   arb_sub(Dz.get(), r.Z[k + 1].get(), r.Z[k].get(), prec);
   arb_sub(u.get(), zb.get(), r.Z[k].get(), prec);
   arb_div(u.get(), u.get(), Dz.get(), prec);
-  local_moebius(x, dx, u, r.integrals[k].alpha, prec);
+  test_support::local_moebius(x, dx, u, r.integrals[k].alpha, prec);
   const int n = r.root_index(k);
   const ZeroSide side = r.side(k);
   if (side == ZeroSide::None) {

@@ -48,4 +48,21 @@ inline ParabolaAngular parabola_angular(const Ball& c, long prec) {
   return r;
 }
 
+/// The local Moebius map x = (1-a) u / ((1-a) u + a (1-u)) and dx/du =
+/// a (1-a) / den^2, by the plain formulas (a test oracle).
+inline void local_moebius(Ball& x, Ball& dx, const Ball& u, const Ball& a, long prec) {
+  Ball one_a, den, w;
+  arb_sub_si(one_a.get(), a.get(), 1, prec);
+  arb_neg(one_a.get(), one_a.get());
+  arb_mul(x.get(), one_a.get(), u.get(), prec);
+  arb_sub_si(w.get(), u.get(), 1, prec);
+  arb_neg(w.get(), w.get());
+  arb_mul(w.get(), w.get(), a.get(), prec);
+  arb_add(den.get(), x.get(), w.get(), prec);
+  arb_div(x.get(), x.get(), den.get(), prec);
+  arb_mul(dx.get(), a.get(), one_a.get(), prec);
+  arb_div(dx.get(), dx.get(), den.get(), prec);
+  arb_div(dx.get(), dx.get(), den.get(), prec);
+}
+
 }  // namespace uniparam::test_support
