@@ -196,10 +196,11 @@ Ball RealAlgebraic::to_ball(long prec) const {
     b = Ball(lo_, prec + 4);
   } else {
     // Canonical: the ball of the grid cell [k, k + 1] 2^-p holding x, with
-    // p = prec + 1 and k = floor(x 2^p) decided exactly, so the enclosure
+    // p = prec + 1 + e and k = floor(x 2^p) decided exactly, so the enclosure
     // depends on (x, prec) alone, never on earlier refinements (results do
     // not depend on the order of evaluations, e.g. on threads).
-    // Radius 2^-(prec + 2) <= 2^-prec max(1, |x|).
+    // Radius 2^-(p + 1) = 2^-(prec + 2 + e) <= 2^-prec |x| / 2, with
+    // e = small_shift() = max(0, -floor(log2 |x|)).
     const long p = prec + 1 + small_shift();
     // kToBallExtraBits - 1 bits beyond the grid: (lo, hi) then straddles a
     // grid point only with odds ~2^-10, so the exact comparison below (one
