@@ -332,6 +332,12 @@ struct EndAnchor {
   Rational k;
   const SpeedChart* chart = nullptr;  // e's chart; null on a plain span
   const RealAlgebraic* at = nullptr;  // u_e, or e itself on a plain span
+  // delta at the last precision asked (the integrands ask at every node)
+  mutable long delta_prec = -1;
+  mutable Ball delta_ball;
+
+  EndAnchor(Rational k_, const SpeedChart* chart_, const RealAlgebraic* at_)
+      : k(std::move(k_)), chart(chart_), at(at_) {}
 
   /// The anchor of the piece's start (start) or end, which the span sp
   /// (its first or its last) ends at.
@@ -342,12 +348,14 @@ struct EndAnchor {
     const bool reversed = c.k1 < c.k0;
     return EndAnchor{c.k0, &c, start != reversed ? &sp.u0 : &sp.u1};
   }
-  /// delta at prec. \pre chart.
-  Ball delta(long prec) const {
+  /// delta at prec, memoised for the last precision. \pre chart.
+  const Ball& delta(long prec) const {
+    if (prec == delta_prec) return delta_ball;
     const Ball u = at->to_ball(prec), zero(0L);
-    Ball out = chart->length_between(zero.get(), u.get(), prec);
-    if (chart->k1 < chart->k0) arb_neg(out.get(), out.get());
-    return out;
+    delta_ball = chart->length_between(zero.get(), u.get(), prec);
+    if (chart->k1 < chart->k0) arb_neg(delta_ball.get(), delta_ball.get());
+    delta_prec = prec;
+    return delta_ball;
   }
   /// d(z) (phi(z) - e) in the chart c.
   void offset(const SpeedChart& c, acb_t out, const acb_t z, long prec) const {
@@ -355,7 +363,7 @@ struct EndAnchor {
       c.offset(out, z, at->to_ball(prec).get(), prec);
       return;
     }
-    const Ball dl = delta(prec);
+    const Ball& dl = delta(prec);
     acb_t d;
     acb_init(d);
     c.denominator(d, z, prec);

@@ -153,18 +153,20 @@ RadicalResult radical(const Curve& c, SpeedKind kind, const Options& opt) {
 
 namespace {
 
-// The local Moebius map of a piece (moebius_map.hpp) with the piece's
-// integrals pi on complex balls: x, 1 - x (xm) and dx/dzt (if non-null) at
-// zt, with ztm = 1 - zt. 1 - alpha is pi's own enclosure
-// (PieceIntegrals::one_minus_alpha): next to a narrow feature alpha is
+// The local Moebius map of a piece (moebius_map.hpp) with parameter alpha
+// on complex balls: x, 1 - x (xm) and dx/dzt (if non-null) at zt, with
+// ztm = 1 - zt. one_minus_alpha is the piece's own enclosure of 1 - alpha
+// (PieceIntegrals::one_minus_alpha, made once by the caller, not per
+// point): next to a narrow feature alpha is
 // within 10^-100 of 1, and 1 - alpha from alpha's ball would hold 0 until
 // the map's data had more digits than that. 1 - x = alpha ztm / den keeps
 // its relative accuracy where x is next to 1 (a point 10^-300 from the
 // piece's end), which 1 - x by subtraction would lose.
-void moebius(acb_t x, acb_t xm, acb_t dx, const acb_t zt, const acb_t ztm, const PieceIntegrals& pi, long prec) {
+void moebius(acb_t x, acb_t xm, acb_t dx, const acb_t zt, const acb_t ztm, const Ball& alpha,
+             const Ball& one_minus_alpha, long prec) {
   AcbBox a, q, den;
-  acb_set_arb(a, pi.alpha.get());
-  acb_set_arb(q, pi.one_minus_alpha(prec).get());
+  acb_set_arb(a, alpha.get());
+  acb_set_arb(q, one_minus_alpha.get());
   detail::moebius_map(detail::AcbMapArith{prec}, x, dx, den, zt, q, a);
   // the exact ends stay exact: x = zt there (moebius_map), and 1 - x with it
   if (acb_is_zero(zt) || acb_is_one(zt)) {
@@ -318,7 +320,7 @@ Ball eval_r(const RadicalResult& r, const Ball& z, long prec) {
     for (acb_ptr q : {x, xm, y, ym, zc, zcm}) acb_init(q);
     local_coordinate(zc, zcm, z, lo, hi, prec);
     arb_sub(dt.get(), tb.get(), ta.get(), prec);
-    moebius(x, xm, nullptr, zc, zcm, r.integrals[i], prec);
+    moebius(x, xm, nullptr, zc, zcm, r.integrals[i].alpha, r.integrals[i].one_minus_alpha(prec), prec);
     psi(y, ym, x, xm, r.side(i), r.root_index(i), false, prec);
     if (!r.outer_k.empty()) outer_moebius(y, ym, nullptr, r.outer_k[i].get(), prec);
     Ball v;
@@ -414,7 +416,7 @@ Ball eval_speed(const RadicalResult& r, const Speed& s, const Ball& z, long prec
     acb_t x, xm, dx, zc, zcm, v;
     for (acb_ptr q : {x, xm, dx, zc, zcm, v}) acb_init(q);
     local_coordinate(zc, zcm, z, lo, hi, prec);
-    moebius(x, xm, dx, zc, zcm, r.integrals[i], prec);
+    moebius(x, xm, dx, zc, zcm, r.integrals[i].alpha, r.integrals[i].one_minus_alpha(prec), prec);
     radical_speed_sq_local(v, r, s, i, x, xm, false, prec);
     Ball w;
     arb_sqrt(w.get(), acb_realref(v), prec);
@@ -443,12 +445,19 @@ Ball radical_direct_uniformity(const RadicalResult& r, const Speed& s, long digi
   Ball total(0);
   for (std::size_t i = 0; i < r.pieces(); ++i) {
     // int_{Z_i}^{Z_{i+1}} sigma_{p o r}^2 dz = (1 / Delta z) int_0^1 F(x(zt)) x'(zt)^2 dzt
-    Integrand f = [&r, &s, i](acb_t out, const acb_t zt, bool analytic, long p) {
+    // 1 - alpha per working precision, not per node
+    Ball oma;
+    long oma_prec = -1;
+    Integrand f = [&r, &s, i, &oma, &oma_prec](acb_t out, const acb_t zt, bool analytic, long p) {
+      if (p != oma_prec) {
+        oma = r.integrals[i].one_minus_alpha(p);
+        oma_prec = p;
+      }
       acb_t x, xm, dx, ztm;
       for (acb_ptr q : {x, xm, dx, ztm}) acb_init(q);
       acb_sub_ui(ztm, zt, 1, p);
       acb_neg(ztm, ztm);
-      moebius(x, xm, dx, zt, ztm, r.integrals[i], p);
+      moebius(x, xm, dx, zt, ztm, r.integrals[i].alpha, oma, p);
       if (!radical_speed_sq_local(out, r, s, i, x, xm, analytic, p)) acb_indeterminate(out);
       else {
         acb_mul(out, out, dx, p);
