@@ -22,12 +22,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <string>
 #include <vector>
 
 #include "bench_curves.hpp"
 #include "float_baseline.hpp"
+#include "uniparam/core/parallel.hpp"
 
 namespace ub = uniparam::bench;
 namespace fp = uniparam::fp;
@@ -126,6 +128,7 @@ void run_cert(benchmark::State& st, const std::string& fam, long deg, const std:
   const uniparam::Curve c = ub::make_curve(fam, deg);
   uniparam::Options o;
   o.digits = digits;
+  const std::uint64_t dispatched_before = uniparam::parallel_dispatches();
   for (auto _ : st) {
     if (op == "uniformity") benchmark::DoNotOptimize(uniparam::uniformity(c, kKind, o));
     else if (op == "radical") benchmark::DoNotOptimize(uniparam::radical(c, kKind, o));
@@ -139,6 +142,11 @@ void run_cert(benchmark::State& st, const std::string& fam, long deg, const std:
   }
   st.counters["maxrss_MB"] = maxrss_mb();
   st.counters["degree"] = static_cast<double>(deg);
+  // Whether the default thread count woke other threads in this process, and
+  // how often per iteration (0 with UNIPARAM_THREADS=1).
+  st.counters["threads"] = uniparam::parallel_threads_started() ? 1 : 0;
+  st.counters["dispatches"] = benchmark::Counter(static_cast<double>(uniparam::parallel_dispatches() - dispatched_before),
+                                                 benchmark::Counter::kAvgIterations);
 }
 
 void run_float(benchmark::State& st, const std::string& fam, long deg, const std::string& op) {

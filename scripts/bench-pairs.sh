@@ -1,57 +1,87 @@
 #!/bin/bash
 # Default threads against one thread, paired: every certified 15-digit row
-# of uniparam_bench, each run its own process, the default thread count and
-# UNIPARAM_THREADS=1 alternating (PAIR_RUNS runs of each, default 3 at
-# degrees 6 and 12, 2 above), then a Markdown table of the fastest and median
-# run of each kind and their ratios (above 1: the default was slower).
+# of uniparam_bench, each run its own process. For each row, PAIR_RUNS pairs
+# (default 9) of one run with the default thread count and one with
+# UNIPARAM_THREADS=1, the order inside each pair drawn at random, so that a
+# drift of the machine's speed hits both kinds alike. Then a Markdown table
+# (scripts/bench-pairs-report.py): the fastest run of each kind, the median
+# of the pairs' ratios (above 1: the default was slower) with a
+# distribution-free confidence interval, and a verdict: "slower" only when
+# the whole interval lies above 1. With 72 rows, a 90% interval lies above 1
+# by chance in about one row of every twenty where the two kinds are equal,
+# so the rows judged "slower" are paired again (PAIR_CONFIRM_RUNS pairs,
+# default 15, into OUT.confirm) and judged on the new pairs alone: a second
+# table, whose "slower" rows are the findings.
 #
 #   bash scripts/bench-pairs.sh [BENCH_BINARY] [OUT]
 #
 # BENCH_BINARY defaults to build/bench/uniparam_bench (build it first, in
 # Release: scripts/bench.sh does); OUT (default build/bench-pairs.txt) gets
-# the raw times, one line per row, with the load average after the row.
+# the raw times in ms, one line per row (the default runs, the one-thread
+# runs in the same pair order, the load average after the row).
+# The default runs get UNIPARAM_PADDING=1 in their environment, as long as
+# the one-thread runs' UNIPARAM_THREADS=1: the size of the environment moves
+# the initial stack, which can change a process's speed by itself.
 # PAIR_FILTER (a grep -E pattern on the benchmark names) selects rows.
-# About 12 minutes for all 72 rows on 2 cores; run it on a quiet machine.
+# PAIR_LOAD=N (default 0) keeps N busy loops running beside the benchmark
+# (a busy machine: with N equal to the cores, every core is taken); they are
+# stopped on every exit path.
+# About 15 minutes for all 72 rows on 2 cores with nothing else running.
 set -euo pipefail
 B=${1:-build/bench/uniparam_bench}
 OUT=${2:-build/bench-pairs.txt}
 FILTER=${PAIR_FILTER:-.}
+RUNS=${PAIR_RUNS:-9}
+CONFIRM=${PAIR_CONFIRM_RUNS:-15}
+LOAD=${PAIR_LOAD:-0}
 [ -x "$B" ] || { echo "bench-pairs.sh: no benchmark binary at $B (build it first)" >&2; exit 2; }
+[[ $RUNS =~ ^[1-9][0-9]*$ ]] || { echo "bench-pairs.sh: PAIR_RUNS must be a positive integer, got '$RUNS'" >&2; exit 2; }
+[[ $CONFIRM =~ ^[1-9][0-9]*$ ]] || { echo "bench-pairs.sh: PAIR_CONFIRM_RUNS must be a positive integer, got '$CONFIRM'" >&2; exit 2; }
+[[ $LOAD =~ ^[0-9]+$ ]] || { echo "bench-pairs.sh: PAIR_LOAD must be a non-negative integer, got '$LOAD'" >&2; exit 2; }
+loaders=()
+stop_load() { for p in "${loaders[@]}"; do kill "$p" 2>/dev/null || true; done; }
+trap stop_load EXIT
+trap 'exit 130' INT TERM
+for _ in $(seq "$LOAD"); do
+  (while :; do :; done) &
+  loaders+=($!)
+done
 : > "$OUT"
 time_of() {  # time_of ROW THREADS: the run's real time in ms
   local r
   if [ "$2" = default ]; then
-    r=$(env -u UNIPARAM_THREADS "$B" --benchmark_filter="^$1\$" --benchmark_min_time=0.3 --benchmark_format=csv 2>/dev/null | grep '^"cert')
+    r=$(env -u UNIPARAM_THREADS UNIPARAM_PADDING=1 "$B" --benchmark_filter="^$1\$" --benchmark_min_time=0.3 --benchmark_format=csv 2>/dev/null | grep '^"cert')
   else
     r=$(UNIPARAM_THREADS=1 "$B" --benchmark_filter="^$1\$" --benchmark_min_time=0.3 --benchmark_format=csv 2>/dev/null | grep '^"cert')
   fi
   echo "$r" | awk -F, '{ t = $3; if ($5 == "us") t /= 1000; if ($5 == "s") t *= 1000; printf "%.6g", t }'
 }
-for row in $("$B" --benchmark_list_tests 2>/dev/null | grep '^cert/.*/15$' | grep -E "$FILTER"); do
-  deg=$(echo "$row" | cut -d/ -f3)
-  runs=${PAIR_RUNS:-$([ "$deg" -le 12 ] && echo 3 || echo 2)}
-  d=""; o=""
-  for _ in $(seq "$runs"); do
-    d="$d $(time_of "$row" default)"
-    o="$o $(time_of "$row" one)"
+pairs() {  # pairs OUT RUNS ROW...: RUNS pairs of each row, appended to OUT
+  local out=$1 runs=$2 row d o td to
+  shift 2
+  for row in "$@"; do
+    d=""; o=""
+    for _ in $(seq "$runs"); do
+      if [ $((RANDOM % 2)) = 0 ]; then
+        td=$(time_of "$row" default); to=$(time_of "$row" one)
+      else
+        to=$(time_of "$row" one); td=$(time_of "$row" default)
+      fi
+      d="$d $td"; o="$o $to"
+    done
+    echo "$row |$d |$o | $(cut -d' ' -f1 /proc/loadavg)" >> "$out"
   done
-  echo "$row |$d |$o | $(cut -d' ' -f1 /proc/loadavg)" >> "$OUT"
-done
-python3 - "$OUT" <<'EOF'
-import statistics, sys
-ops = {"uniformity": "uniformity", "radical": "radical", "pieces3": "reparam --pieces 3",
-       "target99": "reparam --target 0.99"}
-def ms(x):
-    return f"{x:.3g} ms" if x < 1000 else f"{x / 1000:.3g} s"
-print("| curve | degree | operation | runs of each | default threads (fastest, median) "
-      "| one thread (fastest, median) | ratio of the fastest | ratio of the medians |")
-print("|---|---|---|---|---|---|---|---|")
-for line in open(sys.argv[1]):
-    name, d, o, _ = [f.strip() for f in line.split("|")]
-    d = [float(x) for x in d.split()]
-    o = [float(x) for x in o.split()]
-    _, fam, deg, op, _ = name.split("/")
-    print(f"| {fam} | {deg} | {ops.get(op, op)} | {len(d)} | {ms(min(d))}, {ms(statistics.median(d))} "
-          f"| {ms(min(o))}, {ms(statistics.median(o))} | {min(d) / min(o):.3f} "
-          f"| {statistics.median(d) / statistics.median(o):.3f} |")
-EOF
+}
+REPORT="$(dirname "$0")/bench-pairs-report.py"
+mapfile -t rows < <("$B" --benchmark_list_tests 2>/dev/null | grep '^cert/.*/15$' | grep -E "$FILTER")
+pairs "$OUT" "$RUNS" "${rows[@]}"
+python3 "$REPORT" "$OUT"
+mapfile -t slower < <(python3 "$REPORT" --slower "$OUT")
+: > "$OUT.confirm"
+if [ "${#slower[@]}" -gt 0 ]; then
+  pairs "$OUT.confirm" "$CONFIRM" "${slower[@]}"
+  echo
+  echo "Paired again ($CONFIRM pairs each), the rows judged slower above:"
+  echo
+  python3 "$REPORT" "$OUT.confirm"
+fi
