@@ -13,8 +13,9 @@ ratios d_j / o_j, and an interval that holds the median of the ratios'
 distribution with probability >= 90% whatever that distribution is (the
 order statistics r_(k) and r_(n+1-k) of the n ratios, with the largest k
 for which 1 - 2 P(Binomial(n, 1/2) <= k - 1) >= 0.9, the sign test's
-interval). Verdict: "slower" when the whole interval lies above 1, "faster"
-when it lies below 1, "same" otherwise (no difference shown). Pairs, not
+interval; its coverage is printed with it: 96% for 9 pairs). Verdict:
+"slower" when the whole interval lies above 1, "faster" when it lies below
+1, "same" otherwise (no difference shown). Pairs, not
 the fastest runs, carry the verdict: a machine whose speed drifts slows
 both runs of a pair alike. Fewer than 5 pairs cannot give a 90% interval:
 the verdict is then "too few pairs".
@@ -51,8 +52,8 @@ def verdict_of(ratios):
     ci = sign_interval(ratios)
     if ci is None:
         return "", "too few pairs"
-    lo, hi, _ = ci
-    return f"{lo:.3f}–{hi:.3f}", "slower" if lo > 1 else "faster" if hi < 1 else "same"
+    lo, hi, coverage = ci
+    return f"{lo:.3f}–{hi:.3f} ({100 * coverage:.0f}%)", "slower" if lo > 1 else "faster" if hi < 1 else "same"
 
 
 def read(paths):
@@ -80,7 +81,7 @@ def main(paths, slower_only):
                 print(name)
         return
     print("| curve | degree | operation | pairs | default threads (fastest) | one thread (fastest) "
-          "| median ratio | 90% interval | verdict |")
+          "| median ratio | interval (coverage) | verdict |")
     print("|---|---|---|---|---|---|---|---|---|")
     verdicts = {}
     for name, (d, o) in rows.items():

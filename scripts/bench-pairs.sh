@@ -7,11 +7,11 @@
 # (scripts/bench-pairs-report.py): the fastest run of each kind, the median
 # of the pairs' ratios (above 1: the default was slower) with a
 # distribution-free confidence interval, and a verdict: "slower" only when
-# the whole interval lies above 1. With 72 rows, a 90% interval lies above 1
-# by chance in about one row of every twenty where the two kinds are equal,
-# so the rows judged "slower" are paired again (PAIR_CONFIRM_RUNS pairs,
-# default 15, into OUT.confirm) and judged on the new pairs alone: a second
-# table, whose "slower" rows are the findings.
+# the whole interval lies above 1. Where the two kinds are equal, the
+# interval of 9 pairs (96%) lies above 1 by chance in about one row of
+# fifty, and there are 72 rows: the rows judged "slower" are paired again
+# (PAIR_CONFIRM_RUNS pairs, default 15, into OUT.confirm) and judged on the
+# new pairs alone: a second table, whose "slower" rows are the findings.
 #
 #   bash scripts/bench-pairs.sh [BENCH_BINARY] [OUT]
 #

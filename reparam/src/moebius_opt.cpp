@@ -66,7 +66,7 @@ MoebiusResult reparam_c0_on(const Speed& s, long N, const Options& opt) {
   // spent a while on item 0 (parallel_for). At low degree mu is the shorter
   // step (dense-plane degree 50: 1.1 ms against 6 ms): with mu first, the
   // other thread took the breakpoints late and the calling thread waited
-  // for them, which on a busy machine cost more than one thread (1.27x).
+  // for them, which on a busy machine cost more than one thread (1.21x).
   // From degree 100 on the two take about as long.
   constexpr long kCompareBits = 40;
   UniformityResult base;
