@@ -47,13 +47,14 @@ for _ in $(seq "$LOAD"); do
   loaders+=($!)
 done
 : > "$OUT"
-time_of() {  # time_of ROW THREADS: the run's real time in ms
+time_of() {  # time_of ROW THREADS: the run's real time in ms (exit 3 when the run fails)
   local r
   if [ "$2" = default ]; then
-    r=$(env -u UNIPARAM_THREADS UNIPARAM_PADDING=1 "$B" --benchmark_filter="^$1\$" --benchmark_min_time=0.3 --benchmark_format=csv 2>/dev/null | grep '^"cert')
+    r=$(env -u UNIPARAM_THREADS UNIPARAM_PADDING=1 "$B" --benchmark_filter="^$1\$" --benchmark_min_time=0.3 --benchmark_format=csv 2>/dev/null | grep '^"cert') || true
   else
-    r=$(UNIPARAM_THREADS=1 "$B" --benchmark_filter="^$1\$" --benchmark_min_time=0.3 --benchmark_format=csv 2>/dev/null | grep '^"cert')
+    r=$(UNIPARAM_THREADS=1 "$B" --benchmark_filter="^$1\$" --benchmark_min_time=0.3 --benchmark_format=csv 2>/dev/null | grep '^"cert') || true
   fi
+  [ -n "$r" ] || { echo "bench-pairs.sh: $1 ($([ "$2" = default ] && echo "default threads" || echo "one thread")) gave no time: the benchmark failed or does not exist" >&2; exit 3; }
   echo "$r" | awk -F, '{ t = $3; if ($5 == "us") t /= 1000; if ($5 == "s") t *= 1000; printf "%.6g", t }'
 }
 pairs() {  # pairs OUT RUNS ROW...: RUNS pairs of each row, appended to OUT
