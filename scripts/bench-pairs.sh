@@ -48,13 +48,14 @@ for _ in $(seq "$LOAD"); do
 done
 : > "$OUT"
 time_of() {  # time_of ROW THREADS: the run's real time in ms (exit 3 when the run fails)
-  local r
+  local r label how
   if [ "$2" = default ]; then
-    r=$(env -u UNIPARAM_THREADS UNIPARAM_PADDING=1 "$B" --benchmark_filter="^$1\$" --benchmark_min_time=0.3 --benchmark_format=csv 2>/dev/null | grep '^"cert') || true
+    label="default threads"; how=(env -u UNIPARAM_THREADS UNIPARAM_PADDING=1)
   else
-    r=$(UNIPARAM_THREADS=1 "$B" --benchmark_filter="^$1\$" --benchmark_min_time=0.3 --benchmark_format=csv 2>/dev/null | grep '^"cert') || true
+    label="one thread"; how=(env UNIPARAM_THREADS=1)
   fi
-  [ -n "$r" ] || { echo "bench-pairs.sh: $1 ($([ "$2" = default ] && echo "default threads" || echo "one thread")) gave no time: the benchmark failed or does not exist" >&2; exit 3; }
+  r=$("${how[@]}" "$B" --benchmark_filter="^$1\$" --benchmark_min_time=0.3 --benchmark_format=csv 2>/dev/null | grep '^"cert') || true
+  [ -n "$r" ] || { echo "bench-pairs.sh: $1 ($label) gave no time: the benchmark failed or does not exist" >&2; exit 3; }
   echo "$r" | awk -F, '{ t = $3; if ($5 == "us") t /= 1000; if ($5 == "s") t *= 1000; printf "%.6g", t }'
 }
 pairs() {  # pairs OUT RUNS ROW...: RUNS pairs of each row, appended to OUT
@@ -74,7 +75,8 @@ pairs() {  # pairs OUT RUNS ROW...: RUNS pairs of each row, appended to OUT
   done
 }
 REPORT="$(dirname "$0")/bench-pairs-report.py"
-mapfile -t rows < <("$B" --benchmark_list_tests 2>/dev/null | grep '^cert/.*/15$' | grep -E "$FILTER")
+mapfile -t rows < <("$B" --benchmark_list_tests 2>/dev/null | grep '^cert/.*/15$' | grep -E "$FILTER" || true)
+[ "${#rows[@]}" -gt 0 ] || { echo "bench-pairs.sh: no certified 15-digit row of $B matches PAIR_FILTER='$FILTER'" >&2; exit 2; }
 pairs "$OUT" "$RUNS" "${rows[@]}"
 python3 "$REPORT" "$OUT"
 mapfile -t slower < <(python3 "$REPORT" --slower "$OUT")
