@@ -59,12 +59,21 @@ def verdict_of(ratios):
 def read(paths):
     rows = {}
     for path in paths:
-        for line in open(path):
+        try:
+            lines = open(path).read().splitlines()
+        except OSError as e:
+            sys.exit(f"bench-pairs-report: cannot read {path}: {e.strerror}")
+        for number, line in enumerate(lines, 1):
             if not line.strip():
                 continue
-            name, d, o, _ = [f.strip() for f in line.split("|")]
-            d = [float(x) for x in d.split()]
-            o = [float(x) for x in o.split()]
+            try:
+                name, d, o, _ = [f.strip() for f in line.split("|")]
+                d = [float(x) for x in d.split()]
+                o = [float(x) for x in o.split()]
+                name.split("/")[4]
+            except (ValueError, IndexError):
+                sys.exit(f"bench-pairs-report: {path}:{number}: not a line of bench-pairs.sh "
+                         "(cert/FAMILY/DEGREE/OP/DIGITS | times | times | load)")
             if len(d) != len(o):
                 sys.exit(f"bench-pairs-report: {path}: {name}: {len(d)} default runs, {len(o)} one-thread runs")
             rd, ro = rows.setdefault(name, ([], []))
